@@ -1,0 +1,315 @@
+"""Rotations, Rodrigues' formula K(a, θ) and homogeneous transforms.
+
+Conventions (stated once for the whole course):
+
+* Angles are in radians.
+* Rotations are *active*: ``R @ v`` turns the vector ``v``.
+* A 4x4 transform ``T`` maps coordinates of a child frame into its parent
+  frame: ``p_parent = T @ [p_child, 1]``.
+* Batches put the batch axis first: angles of shape (N,) give (N, 3, 3).
+* Composing about the *fixed* (scene) frame multiplies on the left,
+  composing about the *moving* (local) frame multiplies on the right;
+  :func:`compose_fixed` and :func:`compose_moving` spell both orders out.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ._validate import as_array, as_rotation
+
+__all__ = [
+    "rotx",
+    "roty",
+    "rotz",
+    "skew",
+    "rodrigues",
+    "axis_angle",
+    "homogeneous",
+    "transl",
+    "transx",
+    "transy",
+    "transz",
+    "trotx",
+    "troty",
+    "trotz",
+    "trot",
+    "inverse_transform",
+    "compose_fixed",
+    "compose_moving",
+    "is_rotation",
+    "zyz_from_rotation",
+    "rotation_from_zyz",
+]
+
+
+def _angle(angle: Any, name: str = "angle") -> np.ndarray:
+    return as_array(angle, name, what="an angle in radians (a number, or an array of shape (N,))")
+
+
+def _rot(angle: Any, axis: int) -> np.ndarray:
+    t = _angle(angle)
+    if t.ndim > 1:
+        raise ValueError(f"angle: expected a number or an array of shape (N,), got an array of shape {t.shape}")
+    c, s = np.cos(t), np.sin(t)
+    R = np.zeros(t.shape + (3, 3))
+    i, j = [(1, 2), (2, 0), (0, 1)][axis]
+    R[..., axis, axis] = 1.0
+    R[..., i, i] = c
+    R[..., j, j] = c
+    R[..., i, j] = -s
+    R[..., j, i] = s
+    return R
+
+
+def rotx(angle: Any) -> np.ndarray:
+    """Rotation about the x axis by ``angle`` (radians); (3, 3), or (N, 3, 3) for N angles.
+
+    >>> np.round(rotx(np.pi / 2) @ [0, 1, 0], 12)
+    array([0., 0., 1.])
+    """
+    return _rot(angle, 0)
+
+
+def roty(angle: Any) -> np.ndarray:
+    """Rotation about the y axis by ``angle`` (radians).
+
+    >>> np.round(roty(np.pi / 2) @ [0, 0, 1], 12)
+    array([1., 0., 0.])
+    """
+    return _rot(angle, 1)
+
+
+def rotz(angle: Any) -> np.ndarray:
+    """Rotation about the z axis by ``angle`` (radians).
+
+    >>> np.round(rotz(np.pi / 2) @ [1, 0, 0], 12)
+    array([0., 1., 0.])
+    """
+    return _rot(angle, 2)
+
+
+def skew(v: Any) -> np.ndarray:
+    """The cross-product matrix [v]x, so that ``skew(v) @ w == np.cross(v, w)``.
+
+    >>> skew([1, 2, 3]) @ [4, 5, 6]
+    array([-3.,  6., -3.])
+    """
+    v = as_array(v, "v", (3,), batch=True)
+    S = np.zeros(v.shape[:-1] + (3, 3))
+    S[..., 0, 1], S[..., 0, 2] = -v[..., 2], v[..., 1]
+    S[..., 1, 0], S[..., 1, 2] = v[..., 2], -v[..., 0]
+    S[..., 2, 0], S[..., 2, 1] = -v[..., 1], v[..., 0]
+    return S
+
+
+def rodrigues(axis: Any, angle: Any) -> np.ndarray:
+    """Rodrigues' rotation K(a, θ) about ``axis`` by ``angle`` (right-hand rule).
+
+    K(a, θ) = I + sin θ [k]x + (1 - cos θ) [k]x², with k = a / |a|. Any
+    non-zero axis is accepted (it is normalised here). ``axis`` (3,) or
+    (N, 3) and ``angle`` scalar or (N,) broadcast to a batch (N, 3, 3).
+
+    >>> np.allclose(rodrigues([0, 0, 2], 0.3), rotz(0.3))
+    True
+    """
+    a = as_array(axis, "axis", (3,), batch=True)
+    t = _angle(angle)
+    norm = np.linalg.norm(a, axis=-1, keepdims=True)
+    if np.any(norm < 1e-12):
+        raise ValueError("axis: expected a non-zero 3-vector (the rotation axis), got a zero vector")
+    K = skew(a / norm)
+    s = np.sin(t)[..., None, None]
+    c = np.cos(t)[..., None, None]
+    return np.eye(3) + s * K + (1.0 - c) * (K @ K)
+
+
+def axis_angle(R: Any) -> tuple[np.ndarray, float]:
+    """Axis and angle of a rotation: ``rodrigues(*axis_angle(R)) == R``.
+
+    Returns a unit axis and an angle in [0, π]. For the identity (angle 0) the
+    axis is arbitrary and e_z is returned; for a half turn (angle π) the axis
+    is found from R + I (its sign is then immaterial).
+
+    >>> axis, angle = axis_angle(rotx(0.5))
+    >>> np.round(axis, 12), round(angle, 12)
+    (array([1., 0., 0.]), 0.5)
+    """
+    R = as_rotation(R, "R")
+    cos_t = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)
+    w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    sin_t = np.linalg.norm(w) / 2.0
+    angle = float(np.arctan2(sin_t, cos_t))
+    if sin_t > 1e-6:
+        return w / (2.0 * sin_t), angle
+    if cos_t > 0:  # identity: any axis will do
+        return np.array([0.0, 0.0, 1.0]), angle
+    # half turn: R = 2 k k^T - I, so k k^T = (R + I) / 2; take the largest column
+    B = (R + np.eye(3)) / 2.0
+    k = B[:, int(np.argmax(np.diag(B)))]
+    k = k / np.linalg.norm(k)
+    # refine the axis sign-consistently with the small antisymmetric part, if any
+    if np.dot(k, w) < 0:
+        k = -k
+    return k, angle
+
+
+def homogeneous(R: Any, p: Any) -> np.ndarray:
+    """The 4x4 transform [[R, p], [0, 1]]; R (3, 3) or (N, 3, 3), p (3,) or (N, 3).
+
+    >>> homogeneous(np.eye(3), [1, 2, 3])[:3, 3]
+    array([1., 2., 3.])
+    """
+    R = as_array(R, "R", (3, 3), batch=True)
+    p = as_array(p, "p", (3,), batch=True)
+    batch = np.broadcast_shapes(R.shape[:-2], p.shape[:-1])
+    T = np.zeros(batch + (4, 4))
+    T[..., :3, :3] = R
+    T[..., :3, 3] = p
+    T[..., 3, 3] = 1.0
+    return T
+
+
+def transl(p: Any) -> np.ndarray:
+    """Pure translation by the vector ``p``: Trans(p) as a 4x4 transform.
+
+    >>> transl([1, 0, 0]) @ [0, 0, 0, 1]
+    array([1., 0., 0., 1.])
+    """
+    p = as_array(p, "p", (3,), batch=True)
+    return homogeneous(np.eye(3), p)
+
+
+def _trans_axis(d: Any, axis: int) -> np.ndarray:
+    d = as_array(d, "d", what="a distance (a number, or an array of shape (N,))")
+    p = np.zeros(d.shape + (3,))
+    p[..., axis] = d
+    return transl(p)
+
+
+def transx(d: Any) -> np.ndarray:
+    """Trans(X, d): translation along x by ``d``."""
+    return _trans_axis(d, 0)
+
+
+def transy(d: Any) -> np.ndarray:
+    """Trans(Y, d): translation along y by ``d``."""
+    return _trans_axis(d, 1)
+
+
+def transz(d: Any) -> np.ndarray:
+    """Trans(Z, d): translation along z by ``d``."""
+    return _trans_axis(d, 2)
+
+
+def trotx(angle: Any) -> np.ndarray:
+    """Rot(X, angle) as a 4x4 transform (no translation)."""
+    R = rotx(angle)
+    return homogeneous(R, np.zeros(R.shape[:-2] + (3,)))
+
+
+def troty(angle: Any) -> np.ndarray:
+    """Rot(Y, angle) as a 4x4 transform (no translation)."""
+    R = roty(angle)
+    return homogeneous(R, np.zeros(R.shape[:-2] + (3,)))
+
+
+def trotz(angle: Any) -> np.ndarray:
+    """Rot(Z, angle) as a 4x4 transform (no translation)."""
+    R = rotz(angle)
+    return homogeneous(R, np.zeros(R.shape[:-2] + (3,)))
+
+
+def trot(axis: Any, angle: Any, point: Any = (0.0, 0.0, 0.0)) -> np.ndarray:
+    """Rotation by ``angle`` about the line through ``point`` along ``axis``, as a 4x4.
+
+    This is Porter's R_a(α) for an axis that does not pass through the origin:
+    T = Trans(point) K(a, α) Trans(-point).
+
+    >>> np.round(trot([0, 0, 1], np.pi, point=[1, 0, 0]) @ [0, 0, 0, 1], 12) + 0.0
+    array([2., 0., 0., 1.])
+    """
+    R = rodrigues(axis, angle)
+    c = as_array(point, "point", (3,), batch=True)
+    p = c - np.einsum("...ij,...j->...i", R, c)
+    return homogeneous(R, p)
+
+
+def inverse_transform(T: Any) -> np.ndarray:
+    """Inverse of a rigid transform, [[R^T, -R^T p], [0, 1]], for (4, 4) or (N, 4, 4).
+
+    >>> T = homogeneous(rotz(0.4), [1, 2, 3])
+    >>> np.allclose(inverse_transform(T) @ T, np.eye(4))
+    True
+    """
+    T = as_array(T, "T", (4, 4), batch=True)
+    Rt = np.swapaxes(T[..., :3, :3], -1, -2)
+    return homogeneous(Rt, -np.einsum("...ij,...j->...i", Rt, T[..., :3, 3]))
+
+
+def compose_moving(*transforms: Any) -> np.ndarray:
+    """Compose motions each given in the *moving* (local) frame: T1 @ T2 @ ... @ Tn.
+
+    "First T1, then T2 about the axes that T1 produced, ..." multiplies on the
+    right. Porter's local-frame product Rz(α1) Tz(l1) Ry(α2) ... is this order.
+    """
+    if not transforms:
+        raise ValueError("transforms: expected at least one transform, got none")
+    out = as_array(transforms[0], "transforms[0]", (4, 4), batch=True)
+    for k, T in enumerate(transforms[1:], start=1):
+        out = out @ as_array(T, f"transforms[{k}]", (4, 4), batch=True)
+    return out
+
+
+def compose_fixed(*transforms: Any) -> np.ndarray:
+    """Compose motions each given in the *fixed* (scene) frame: Tn @ ... @ T2 @ T1.
+
+    "First T1, then T2 about the scene axes, ..." multiplies on the left, so the
+    same list of motions gives the reverse product of :func:`compose_moving`
+    when each later motion is re-expressed about the fixed axes.
+    """
+    if not transforms:
+        raise ValueError("transforms: expected at least one transform, got none")
+    return compose_moving(*transforms[::-1])
+
+
+def is_rotation(R: Any, tol: float = 1e-9) -> bool:
+    """True when ``R`` is a 3x3 (or batch of) orthonormal matrix with det +1."""
+    try:
+        as_rotation(R, "R", batch=True, tol=tol)
+    except ValueError:
+        return False
+    return True
+
+
+def rotation_from_zyz(phi: Any, theta: Any, psi: Any) -> np.ndarray:
+    """Rz(φ) Ry(θ) Rz(ψ): the ZYZ Euler-angle rotation (moving-frame order).
+
+    >>> np.allclose(rotation_from_zyz(0.1, 0.2, 0.3), rotz(0.1) @ roty(0.2) @ rotz(0.3))
+    True
+    """
+    return rotz(phi) @ roty(theta) @ rotz(psi)
+
+
+def zyz_from_rotation(R: Any) -> tuple[float, float, float]:
+    """ZYZ Euler angles (φ, θ, ψ) with θ in [0, π] such that Rz(φ) Ry(θ) Rz(ψ) = R.
+
+    At θ = 0 or θ = π only φ ± ψ is defined; then ψ = 0 is chosen (the
+    representative), and the rotation is still reproduced exactly.
+
+    >>> np.round(zyz_from_rotation(rotation_from_zyz(0.1, 0.2, 0.3)), 12)
+    array([0.1, 0.2, 0.3])
+    """
+    R = as_rotation(R, "R")
+    sin_t = np.hypot(R[0, 2], R[1, 2])
+    theta = float(np.arctan2(sin_t, R[2, 2]))
+    if sin_t > 1e-9:
+        phi = float(np.arctan2(R[1, 2], R[0, 2]))
+        psi = float(np.arctan2(R[2, 1], -R[2, 0]))
+    elif R[2, 2] > 0:  # θ = 0: R = Rz(φ + ψ)
+        phi, psi = float(np.arctan2(R[1, 0], R[0, 0])), 0.0
+    else:  # θ = π: R = Rz(φ - ψ) Ry(π)
+        phi, psi = float(np.arctan2(-R[1, 0], -R[0, 0])), 0.0
+    return np.array([phi, theta, psi])  # type: ignore[return-value]
