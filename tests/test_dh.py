@@ -1,0 +1,105 @@
+"""Craig's modified-DH link matrix and chains against independent truths."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from puma_course import transforms as tf
+from puma_course.dh import DHChain, Link, mdh
+
+angle = st.floats(-7, 7, allow_nan=False)
+length = st.floats(-2, 2, allow_nan=False)
+
+
+@settings(derandomize=True, max_examples=300, deadline=None)
+@given(alpha=angle, a=length, theta=angle, d=length)
+def test_mdh_equals_product_of_four_elementary_transforms(alpha, a, theta, d):
+    expected = tf.trotx(alpha) @ tf.transx(a) @ tf.trotz(theta) @ tf.transz(d)
+    assert np.allclose(mdh(alpha, a, theta, d), expected, atol=1e-12)
+
+
+def test_mdh_hand_worked():
+    # α = -90°: Rot(X, -90°) takes e_z to (0, 1, 0), so Z_i points along +Y_{i-1}
+    # and d = 2 along it puts the origin of {i} at y = 2.
+    T = mdh(-math.pi / 2, 0.0, 0.0, 2.0)
+    assert np.allclose(T[:3, 3], [0, 2, 0])
+    assert np.allclose(T[:3, 2], [0, 1, 0])
+    # Pure a: a translation along x only.
+    assert np.allclose(mdh(0, 1.5, 0, 0), tf.transx(1.5))
+
+
+def test_mdh_broadcasts():
+    th = np.linspace(0, 1, 7)
+    T = mdh(0.3, 1.0, th, 0.2)
+    assert T.shape == (7, 4, 4)
+    for i, t in enumerate(th):
+        assert np.allclose(T[i], mdh(0.3, 1.0, t, 0.2))
+
+
+def _random_chain(rng: np.random.Generator, n: int = 5) -> DHChain:
+    kinds = ["R", "P", "R", "R", "P", "R"][:n]
+    links = [
+        Link(rng.uniform(-3, 3), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), kind=k) for k in kinds
+    ]
+    return DHChain(links, name="random")
+
+
+def test_fk_equals_product_of_link_matrices_built_independently():
+    rng = np.random.default_rng(7)
+    chain = _random_chain(rng)
+    q = rng.uniform(-3, 3, (20, chain.n))
+    for row in q:
+        T = np.eye(4)
+        for lk, qi in zip(chain.links, row, strict=True):
+            theta = lk.theta + qi if lk.kind == "R" else lk.theta
+            d = lk.d + qi if lk.kind == "P" else lk.d
+            T = T @ tf.trotx(lk.alpha_prev) @ tf.transx(lk.a_prev) @ tf.trotz(theta) @ tf.transz(d)
+        assert np.allclose(chain.fk(row), T, atol=1e-12)
+
+
+def test_batch_fk_equals_each_row_and_frames_end_at_fk():
+    rng = np.random.default_rng(8)
+    chain = _random_chain(rng, 6)
+    q = rng.uniform(-3, 3, (64, chain.n))
+    batch = chain.fk(q)
+    assert batch.shape == (64, 4, 4)
+    rows = np.stack([chain.fk(r) for r in q])
+    assert np.allclose(batch, rows, atol=1e-13)
+    F = chain.frames(q)
+    assert F.shape == (64, chain.n + 1, 4, 4)
+    assert np.allclose(F[:, 0], np.eye(4))
+    assert np.allclose(F[:, -1], batch)
+    A = chain.link_matrices(q)
+    assert np.allclose(F[:, 3], A[:, 0] @ A[:, 1] @ A[:, 2])
+
+
+def test_table_and_repr():
+    chain = DHChain([Link(0, 0, 0), Link(-math.pi / 2, 0.5, 0.1, kind="P")], name="two", units="m")
+    html = chain._repr_html_()
+    assert "<table" in html and "-90" in html and "d2" in html
+    assert "two" in repr(chain)
+
+
+@pytest.mark.parametrize(
+    "call, fragment",
+    [
+        (lambda c: c.fk([0.0, 0.0]), "q: expected joint values of shape (3,)"),
+        (lambda c: c.fk(np.zeros((4, 2))), "got an array of shape (4, 2)"),
+        (lambda c: c.fk([0.0, float("nan"), 0.0]), "q: expected finite"),
+        (lambda c: c.fk(["a", 0, 0]), "non-numeric"),
+        (lambda c: mdh(0, 0, "x", 0), "theta"),
+        (lambda c: mdh(np.zeros(2), 0, np.zeros(3), 0), "broadcast"),
+        (lambda c: Link(0, 0, kind="X"), "kind"),
+        (lambda c: c.q("nope"), "name: expected one of"),
+    ],
+)
+def test_bad_input(call, fragment):
+    chain = DHChain([Link(0, 0, 0), Link(0, 1, 0), Link(0, 1, 0)])
+    with pytest.raises(ValueError) as err:
+        call(chain)
+    assert fragment in str(err.value)
