@@ -1,0 +1,40 @@
+"""Package-level promises: a light import, a curated namespace, a CI script that fails on failure."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_import_is_light():
+    code = (
+        "import sys, puma_course\n"
+        "heavy = [m for m in ('sympy', 'matplotlib', 'ipywidgets', 'nbclient', 'IPython') if m in sys.modules]\n"
+        "print(','.join(heavy))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "", f"import puma_course pulled in: {out.stdout.strip()}"
+
+
+def test_public_names():
+    import puma_course
+
+    for name in puma_course.__all__:
+        assert hasattr(puma_course, name), name
+
+
+def test_ci_script_propagates_pytest_failure_and_no_tests():
+    text = (ROOT / ".ci" / "run").read_text()
+    assert "set -euo pipefail" in text
+    assert 'pip install -e ".[dev]"' in text
+    assert "python -m pytest" in text
+    assert '"$status" -eq 5' in text  # "no tests ran" must not pass CI
+
+
+def test_readme_commands_match_ci():
+    readme = (ROOT / "README.md").read_text()
+    assert 'python -m pip install -e ".[dev]" && python -m pytest' in readme
+    assert 'python -m pip install -e ".[dev]" && jupyter lab notebooks/' in readme
