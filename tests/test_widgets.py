@@ -15,8 +15,9 @@ from puma_course.widgets import Panel, chain_panel, dh_link_panel, joint_sliders
 
 
 def test_joint_sliders_labels_and_units():
-    s = joint_sliders(["θ1", "θ2", "d3"], [-np.pi, -np.pi / 2, 0.0], [np.pi, np.pi / 2, 0.5], degrees=[1, 1, 0],
-                      units="m")
+    s = joint_sliders(
+        ["θ1", "θ2", "d3"], [-np.pi, -np.pi / 2, 0.0], [np.pi, np.pi / 2, 0.5], degrees=[1, 1, 0], units="m"
+    )
     assert [x.description for x in s] == ["θ1 [deg]", "θ2 [deg]", "d3 [m]"]
     assert s[0].min == pytest.approx(-180.0) and s[0].max == pytest.approx(180.0)
     assert s[1].max == pytest.approx(90.0)
@@ -50,7 +51,6 @@ def test_chain_panel_passes_radians_to_fk():
     q = np.array([0.0, np.pi / 2, 0.0, 0.0, 0.0, 0.0])  # ... the kinematics sees radians
     np.testing.assert_allclose(seen[-1], q, atol=1e-12)
     np.testing.assert_allclose(panel.last_frames[-1], arm.fk(q), atol=1e-12)
-    # with θ2 = 90° the upper arm turns down: hand-worked p = (-d4·0 + ..., ) checked via the readout text
     assert "p = " in panel.last_readout and "R =" in panel.last_readout
     assert plt.get_fignums() == []  # every redraw closes its figure
 
