@@ -142,11 +142,12 @@ def axis_angle(R: Any) -> tuple[np.ndarray, float]:
     w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
     sin_t = np.linalg.norm(w) / 2.0
     angle = float(np.arctan2(sin_t, cos_t))
-    if sin_t > 1e-6:
+    # Away from a half turn the antisymmetric part w = 2 sin(θ) k is accurate, even for tiny θ.
+    if sin_t > 0.0 and (cos_t > 0.0 or sin_t > 1e-6):
         return w / (2.0 * sin_t), angle
-    if cos_t > 0:  # identity: any axis will do
+    if cos_t > 0:  # exactly the identity: any axis will do
         return np.array([0.0, 0.0, 1.0]), angle
-    # half turn: R = 2 k k^T - I, so k k^T = (R + I) / 2; take the largest column
+    # (near) half turn: R + I ≈ 2 k k^T; take the largest column
     B = (R + np.eye(3)) / 2.0
     k = B[:, int(np.argmax(np.diag(B)))]
     k = k / np.linalg.norm(k)

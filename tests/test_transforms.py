@@ -170,3 +170,11 @@ def test_bad_input_raises_value_error_naming_the_argument(call, fragment):
     with pytest.raises(ValueError) as err:
         call()
     assert fragment in str(err.value)
+
+
+@pytest.mark.parametrize("angle", [1e-12, 1e-9, 1e-7, 1e-5, math.pi - 1e-9, math.pi - 1e-7, math.pi - 1e-4])
+def test_axis_angle_near_identity_and_half_turn(angle):
+    axis = np.array([0.3, -0.5, 0.8])
+    R = tf.rodrigues(axis, angle)
+    k, t = tf.axis_angle(R)
+    assert np.allclose(tf.rodrigues(k, t), R, atol=1e-12)
