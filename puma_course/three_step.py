@@ -137,8 +137,7 @@ def as_state(start: Any) -> ArmState:
             f"got a sequence of length {len(start)}"
         )
     raise ValueError(
-        f"start: expected None, an ArmState, a dict or a tuple (theta0, theta1, theta2, F), "
-        f"got {type(start).__name__}"
+        f"start: expected None, an ArmState, a dict or a tuple (theta0, theta1, theta2, F), got {type(start).__name__}"
     )
 
 
