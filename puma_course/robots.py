@@ -7,6 +7,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ._validate import as_array
@@ -70,7 +72,38 @@ def puma560(
 
 
 class PumaChain(DHChain):
-    """A PUMA-560 chain; ``ik`` (closed-form inverse kinematics) is added in lecture 09."""
+    """A PUMA-560 chain with closed-form inverse kinematics (lecture 09, :mod:`puma_course.puma_ik`)."""
+
+    @property
+    def lengths(self) -> dict[str, float]:
+        """The four lengths of the table: a2, a3, d3, d4 (the chain's units)."""
+        return {"a2": self._a[2], "a3": self._a[3], "d3": self._d[2], "d4": self._d[3]}
+
+    def ik(self, T: Any, near: Any | None = None, *, tol: float = 1e-7):
+        """Every joint vector reaching the pose T (closed form, Craig §4.7): an ``IKResult``.
+
+        Up to eight solutions labelled shoulder left/right, elbow up/down, wrist
+        noflip/flip; ``near`` sorts them by wrapped joint distance (nearest
+        first). Unreachable T raises ``ValueError`` with the reason; a
+        singular pose warns (``SingularityWarning``). See :func:`puma_ik.ik`.
+
+        >>> arm = puma560()
+        >>> q = arm.q("qn")
+        >>> sol = arm.ik(arm.fk(q), near=q)
+        >>> len(sol), bool(np.allclose(sol[0], q))
+        (8, True)
+        """
+        from .puma_ik import ik
+
+        return ik(T, float(self._a[2]), float(self._a[3]), float(self._d[2]), float(self._d[3]), near=near, tol=tol)
+
+    def ik_batch(self, T: Any, near: Any | None = None, *, tol: float = 1e-7):
+        """All eight branches for N poses (N, 4, 4), vectorised: an ``IKBatch`` (q (N, 8, 6), valid (N, 8))."""
+        from .puma_ik import ik_batch
+
+        return ik_batch(
+            T, float(self._a[2]), float(self._a[3]), float(self._d[2]), float(self._d[3]), near=near, tol=tol
+        )
 
 
 def mk3(
