@@ -1,0 +1,172 @@
+"""Cartesian paths and joint paths: geometry of the paths by hand, joint paths checked through the
+forward kinematics, the nearest-continuation rule against the naive first solution at a wrist flip."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from puma_course import trajectories as tr
+from puma_course.robots import puma560
+from puma_course.transforms import rotx, rotz
+
+ARM = puma560()
+
+
+# ---------------------------------------------------------------- paths
+def test_line_path_endpoints_spacing_and_fixed_orientation():
+    T0 = np.eye(4)
+    T0[:3, :3] = rotz(0.3) @ rotx(0.2)
+    T0[:3, 3] = [0.1, 0.2, 0.3]
+    T1 = np.eye(4)
+    T1[:3, 3] = [0.4, -0.1, 0.6]  # T1's rotation (identity) is ignored
+    P = tr.line_path(T0, T1, 7)
+    assert P.shape == (7, 4, 4)
+    assert np.allclose(P[0, :3, 3], [0.1, 0.2, 0.3]) and np.allclose(P[-1, :3, 3], [0.4, -0.1, 0.6])
+    steps = np.diff(P[:, :3, 3], axis=0)
+    assert np.allclose(steps, [0.05, -0.05, 0.05])  # (0.3, -0.3, 0.3) / 6 by hand
+    assert np.allclose(P[:, :3, :3], T0[:3, :3])
+    assert np.allclose(P[:, 3], [0, 0, 0, 1])
+    assert np.allclose(tr.line_path(T0, [0.4, -0.1, 0.6], 7), P)
+
+
+def test_circle_path_geometry():
+    c, r, nrm = np.array([0.2, 0.1, 0.4]), 0.15, np.array([1.0, 1.0, 0.0])
+    R = rotz(0.5)
+    P = tr.circle_path(c, r, nrm, R, 41)
+    pts = P[:, :3, 3]
+    assert np.allclose(np.linalg.norm(pts - c, axis=1), r)
+    assert np.allclose((pts - c) @ nrm, 0.0)
+    assert np.allclose(pts[0], pts[-1])  # closed
+    assert np.allclose(P[:, :3, :3], R)
+    # counter-clockwise seen from the tip of the normal: (p0 - c) x (p1 - c) points along the normal
+    assert np.cross(pts[0] - c, pts[1] - c) @ nrm > 0
+    # equal steps: chord 2 r sin(π / 40)
+    assert np.allclose(np.linalg.norm(np.diff(pts, axis=0), axis=1), 2 * r * np.sin(np.pi / 40))
+    P2 = tr.circle_path(c, r, [0, 0, 1], R, 5, start=[0, 1, 0])
+    assert np.allclose(P2[0, :3, 3], c + [0, r, 0])
+
+
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda: tr.line_path(np.eye(4), [1, 2], 5), "T1"),
+        (lambda: tr.line_path(np.eye(3), [1, 2, 3], 5), "T0"),
+        (lambda: tr.line_path(np.eye(4), [1, 2, 3], 1), "n"),
+        (lambda: tr.circle_path([0, 0, 0], 1.0, [0, 0, 0], np.eye(3), 5), "normal"),
+        (lambda: tr.circle_path([0, 0, 0], -1.0, [0, 0, 1], np.eye(3), 5), "radius"),
+        (lambda: tr.circle_path([0, 0, 0], 1.0, [0, 0, 1], 2 * np.eye(3), 5), "R"),
+        (lambda: tr.circle_path([0, 0, 0], 1.0, [0, 0, 1], np.eye(3), 5, start=[0, 0, 2]), "start"),
+    ],
+)
+def test_bad_path_input(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+# ---------------------------------------------------------------- joint paths on the PUMA-560
+def _wrist_flip_path(n: int = 60):
+    """A vertical line whose middle pose has θ5 = 0 on the branch left/up: the wrist flips there."""
+    qm = np.array([0.0, -0.6, 0.3, 0.0, 0.0, 0.0])
+    Tm = ARM.fk(qm)
+    d = np.array([0.0, 0.0, 0.15])
+    T0 = Tm.copy()
+    T0[:3, 3] -= d
+    return tr.line_path(T0, Tm[:3, 3] + d, n), qm
+
+
+def test_follow_reaches_every_pose_and_moves_smoothly():
+    q0 = ARM.q("qn")
+    T0 = ARM.fk(q0)
+    path = tr.circle_path(T0[:3, 3] - [0, 0.1, 0], 0.1, [1, 0, 0], T0[:3, :3], 200, start=[0, 1, 0])
+    jp = tr.follow(path, tr.puma_candidates(ARM), q0)
+    assert jp.q.shape == (200, 6)
+    assert np.abs(ARM.fk(jp.q) - path).max() < 1e-9
+    assert jp.start_jump < 1e-9
+    # a chord of 2π·0.1/199 ≈ 3 mm needs only small joint steps; and the loop closes on itself
+    assert jp.max_step < 0.05
+    assert tr.step_distance(jp.q[0], jp.q[-1]) < 1e-9
+
+
+def test_follow_stays_on_the_branch_of_q0():
+    q_right = ARM.ik(ARM.fk(ARM.q("qn")))
+    k = q_right.labels.index("right/down/flip")
+    q0 = q_right[k]
+    path = tr.line_path(ARM.fk(q0), ARM.fk(q0)[:3, 3] + [0.0, 0.05, 0.05], 30)
+    jp = tr.follow(path, tr.puma_candidates(ARM), q0)
+    assert (jp.choice == 7).all()  # branch index of right/down/flip in BRANCH_LABELS
+    assert jp.start_jump < 1e-9 and jp.max_step < 0.05
+    nv = tr.naive(path, tr.puma_candidates(ARM))
+    assert (nv.choice == 0).all()
+    assert tr.step_distance(nv.q[0], q0) > 1.0  # the naive first solution is another arm altogether
+
+
+def test_naive_jumps_at_the_wrist_flip_follow_does_not():
+    path, qm = _wrist_flip_path()
+    cand = tr.puma_candidates(ARM)
+    q0 = ARM.ik(path[0]).nearest(qm)
+    jp = tr.follow(path, cand, q0)
+    nv = tr.naive(path, cand)
+    assert np.abs(ARM.fk(jp.q) - path).max() < 1e-9
+    assert np.abs(ARM.fk(nv.q) - path).max() < 1e-9
+    # θ5 changes sign along the path; the continuous solution crosses from noflip to flip
+    assert jp.q[0, 4] * jp.q[-1, 4] < 0
+    assert set(jp.choice.tolist()) == {0, 1}
+    assert jp.max_step < 0.05
+    # the naive choice stays on "noflip" and so turns θ4 and θ6 by π at once: a step of sqrt(2) π
+    assert nv.max_step == pytest.approx(np.sqrt(2) * np.pi, abs=0.02)
+
+
+def test_unreachable_path_raises_with_the_pose_index():
+    T0 = ARM.fk(ARM.q("qn"))
+    path = tr.line_path(T0, [1.5, 0.0, 0.0], 10)
+    with pytest.raises(ValueError, match="pose [0-9] of the path"):
+        tr.follow(path, tr.puma_candidates(ARM), ARM.q("qn"))
+    with pytest.raises(ValueError, match="PUMA-560"):
+        tr.puma_candidates(object())
+    with pytest.raises(ValueError, match="q0"):
+        tr.follow(path[:1], tr.puma_candidates(ARM), np.zeros(5))
+
+
+def test_step_distance_and_unwrap():
+    assert tr.step_distance([np.pi - 0.1, 0.0], [-np.pi + 0.1, 0.0]) == pytest.approx(0.2)
+    # a prismatic joint is not wrapped
+    assert tr.step_distance([0.0, 7.0], [0.0, 0.0], revolute=[True, False]) == pytest.approx(7.0)
+    q = np.array([[3.0, 1.0], [-3.0, 2.0], [-2.9, 9.0]])
+    u = tr.unwrap(q, revolute=[True, False])
+    assert np.allclose(u[:, 0], [3.0, 2 * np.pi - 3.0, 2 * np.pi - 2.9])
+    assert np.allclose(u[:, 1], q[:, 1])
+
+
+def test_thousand_pose_path_is_vectorised_enough():
+    """Not a timing assert: only that 1,000 poses go through the batched solver in one call."""
+    q0 = ARM.q("qn")
+    T0 = ARM.fk(q0)
+    path = tr.circle_path(T0[:3, 3] - [0, 0.1, 0], 0.1, [1, 0, 0], T0[:3, :3], 1000, start=[0, 1, 0])
+    calls = []
+
+    def counting(Ts):
+        calls.append(len(Ts))
+        return tr.puma_candidates(ARM)(Ts)
+
+    jp = tr.follow(path, counting, q0)
+    assert calls == [1000]
+    assert jp.q.shape == (1000, 6)
+
+
+# ---------------------------------------------------------------- Porter's chain
+def test_porter_follow_line_and_circle():
+    porter = pytest.importorskip("puma_course.porter")
+    l1, l3, l4 = 1.0, 0.5, 0.3
+    q0 = np.array([0.3, 0.4, 1.0, 0.5, 0.6, 0.7])
+    T0 = porter.fk(q0, l1, l3, l4)
+    cand = tr.porter_candidates(l1, l3, l4)
+    for path in (
+        tr.line_path(T0, T0[:3, 3] + [0.3, 0.2, 0.4], 100),
+        tr.circle_path(T0[:3, 3] - [0, 0.3, 0], 0.3, [0, 0, 1], T0[:3, :3], 100, start=[0, 1, 0]),
+    ):
+        jp = tr.follow(path, cand, q0, revolute=tr.PORTER_REVOLUTE)
+        assert np.abs(porter.fk(jp.q, l1, l3, l4) - path).max() < 1e-9
+        assert jp.start_jump < 1e-9
+        assert jp.max_step < 0.2
+        assert (jp.q[:, 2] >= 0).all()
