@@ -356,6 +356,7 @@ def ik(
     *,
     near: Any | None = None,
     tol: float = 1e-7,
+    stacklevel: int = 2,
 ) -> IKResult:
     """Every joint vector of the PUMA-560 that reaches the pose T (closed form, Craig §4.7).
 
@@ -365,6 +366,8 @@ def ik(
     ``near`` the solutions are sorted by wrapped joint distance to it, nearest
     first, and free joints at a singularity take their value from it.
     Raises ``ValueError`` with the reason when T cannot be reached.
+    ``tol`` is the threshold on sin θ5 below which the wrist counts as singular;
+    ``stacklevel`` is passed to ``warnings.warn`` (3 when called through a method).
 
     >>> from puma_course.robots import puma560
     >>> arm = puma560()
@@ -389,5 +392,5 @@ def ik(
     allf = int(np.bitwise_or.reduce(flags)) if len(flags) else 0
     reasons = [text for bit, text in _REASONS.items() if allf & bit]
     if reasons:
-        warnings.warn("; ".join(reasons), SingularityWarning, stacklevel=2)
+        warnings.warn("; ".join(reasons), SingularityWarning, stacklevel=stacklevel)
     return IKResult(q=q, labels=labels, flags=flags, singular=reasons)

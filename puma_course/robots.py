@@ -95,7 +95,8 @@ class PumaChain(DHChain):
         """
         from .puma_ik import ik
 
-        return ik(T, float(self._a[2]), float(self._a[3]), float(self._d[2]), float(self._d[3]), near=near, tol=tol)
+        lengths = {k: float(v) for k, v in self.lengths.items()}
+        return ik(T, **lengths, near=near, tol=tol, stacklevel=3)
 
     def ik_batch(self, T: Any, near: Any | None = None, *, tol: float = 1e-7):
         """All eight branches for N poses (N, 4, 4), vectorised: an ``IKBatch`` (q (N, 8, 6), valid (N, 8))."""
