@@ -169,6 +169,7 @@ class Question:
     ``public`` cases are shown to the student (self-check); ``hidden(rng)`` draws
     more at grading time. ``reference(*args)`` gives the expected value in the
     grader's process, ``compare(got, expected)`` returns None or a reason.
+    A ``bonus`` question's points count in the score but not in the maximum.
     """
 
     qid: str
@@ -180,6 +181,7 @@ class Question:
     reference: Callable[..., Any]
     compare: Callable[[Any, np.ndarray], str | None] = compare_close
     hint: str = ""
+    bonus: bool = False
 
     def cases(self, rng: np.random.Generator) -> list[tuple[Any, ...]]:
         """Public cases followed by hidden ones drawn from ``rng``."""
@@ -196,7 +198,7 @@ class Exercise:
 
     @property
     def max_score(self) -> float:
-        return float(sum(q.points for q in self.questions))
+        return float(sum(q.points for q in self.questions if not q.bonus))
 
     def question(self, qid: str) -> Question:
         for q in self.questions:
@@ -377,7 +379,215 @@ EX03 = Exercise(
     ),
 )
 
-EXERCISES: dict[str, Exercise] = {ex.name: ex for ex in (EX01, EX02, EX03)}
+# ---- Porter's chain (exercises 4 and 5) -------------------------------------------------------
+PORTER_PUBLIC_Q = np.array([0.3, 0.7, 1.3, 5.9, 0.9, 0.6])
+PORTER_PUBLIC_L = (1.0, 0.5, 0.3)
+
+
+def _porter(name: str, index: Any = None) -> Callable[..., Any]:
+    def ref(*args: Any) -> Any:
+        import warnings
+
+        from . import porter
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            out = getattr(porter, name)(*args)
+        return out if index is None else np.asarray(out)[index]
+
+    return ref
+
+
+def _porter_configs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, float, float, float]]:
+    """Configurations in general position (|cos α4| >= 0.3, q2 >= 0.3, wrist point off the z0 axis)."""
+    from .porter import points
+
+    out: list[tuple[np.ndarray, float, float, float]] = []
+    while len(out) < n:
+        q = rng.uniform(0.0, 2 * np.pi, 6)
+        q[2] = rng.uniform(0.3, 2.0)
+        l1, l3, l4 = (float(x) for x in rng.uniform(0.3, 1.5, 3))
+        p4 = points(q, l1, l3, l4)[4]
+        if abs(np.cos(q[4])) >= 0.3 and np.hypot(p4[0], p4[1]) > 0.2:
+            out.append((q, l1, l3, l4))
+    return out
+
+
+def _porter_poses(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    from .porter import fk
+
+    return [(fk(q, l1, l3, l4), l1, l3, l4) for q, l1, l3, l4 in _porter_configs(rng, n)]
+
+
+def _ref_porter_p4(T: np.ndarray, l4: float) -> np.ndarray:
+    T = np.asarray(T, dtype=float)
+    return T[:3, 3] - l4 * T[:3, 0]
+
+
+def _public_pose() -> tuple[Any, ...]:
+    from .porter import fk
+
+    return (fk(PORTER_PUBLIC_Q, *PORTER_PUBLIC_L), *PORTER_PUBLIC_L)
+
+
+EX04 = Exercise(
+    "ex04_porter_fk",
+    "Porter's chain: the direct problem",
+    (
+        Question(
+            "q1", "porter_fk", 4, "F05 of Porter's chain",
+            public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L), (np.array([0.0, 0.0, 2.0, 0.0, 0.0, 0.0]), 1.0, 0.5, 0.25)),
+            hidden=lambda rng: _porter_configs(rng, 5),
+            reference=_porter("fk"),
+            hint="Local (moving) frames multiply left to right: Rz(α1) Tz(l1) Ry(α2) Tx(q2) Ry(α3) Tz(-l3) "
+                 "Rz(α4) Tx(l4) Rx(α5).",
+        ),
+        Question(
+            "q2", "porter_points", 3, "the joint points p0 ... p5",
+            public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L),),
+            hidden=lambda rng: _porter_configs(rng, 4),
+            reference=_porter("points"),
+            hint="Return a (6, 3) array: p0 = p1 = origin, p2 = l1 z0, p3 = p2 + q2 x2, p4 = p3 - l3 z3, "
+                 "p5 = p4 + l4 x4.",
+        ),
+        Question(
+            "q3", "porter_z5", 2, "the corrected closed form of z5",
+            public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L),),
+            hidden=lambda rng: _porter_configs(rng, 4),
+            reference=_porter("fk", (slice(0, 3), 2)),
+            hint="Compare the printed second entry with the first: only c1 and s1 should swap roles.",
+        ),
+    ),
+)
+
+
+EX05 = Exercise(
+    "ex05_porter_ik",
+    "Porter's chain: the inverse problem",
+    (
+        Question(
+            "q1", "porter_p4", 2, "the wrist point p4 from the end-effector pose",
+            public=((np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]), 0.5),),
+            hidden=lambda rng: [(T, l4) for T, _, _, l4 in _porter_poses(rng, 4)],
+            reference=_ref_porter_p4,
+            hint="The last link runs along x5 with length l4, so p4 = p5 - l4 x5.",
+        ),
+        Question(
+            "q2", "porter_ik", 6, "every configuration reaching F05 (Ver.1, explicit)",
+            public=(_public_pose(),),
+            hidden=lambda rng: _porter_poses(rng, 5),
+            reference=_porter("ik_explicit"),
+            compare=compare_solution_set([0, 1, 3, 4, 5], tol=1e-6),
+            hint="In general position there are four configurations with q2 >= 0: α1 and α1 + π, times the two "
+                 "solutions of eq. 10 for α4. Return them as a (4, 6) array, angles in [0, 2π).",
+        ),
+        Question(
+            "q3", "porter_ik_geometric", 3, "bonus: Porter's Ver.2 (geometric) pair",
+            public=(_public_pose(),),
+            hidden=lambda rng: _porter_poses(rng, 4),
+            reference=_porter("ik_geometric"),
+            compare=compare_solution_set([0, 1, 3, 4, 5], tol=1e-6),
+            hint="Keep the arm plane α1 = atan2(p4_y, p4_x) and the two elbow points p3 = p4 ± l3 z4; "
+                 "return a (2, 6) array.",
+            bonus=True,
+        ),
+    ),
+)
+
+# ---- the three-step exercise (exercise 6) -------------------------------------------------------
+THREE_STEP_W = np.array([0.5, 0.5, 2.0])
+THREE_STEP_TARGET = np.diag([-1.0, 1.0, -1.0])
+THREE_STEP_L = (1.5, 1.0)
+
+
+def _three_step(fields: Sequence[str]) -> Callable[..., Any]:
+    """Reference from ``three_step.solve`` (elbow up, straight start) for args (w), (w, l1, l2) or (w, F, l1, l2)."""
+
+    def ref(w: Any, *rest: Any) -> Any:
+        import warnings
+
+        from .three_step import solve
+
+        w = np.asarray(w, dtype=float)
+        if len(rest) == 3:
+            target, l1, l2 = rest
+        elif len(rest) == 2:
+            target, (l1, l2) = np.eye(3), rest
+        else:  # step 1 does not depend on the lengths; pick any that reach w
+            target, l1, l2 = np.eye(3), float(np.linalg.norm(w)), float(np.linalg.norm(w))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            sol = solve(w, target, l1, l2, elbow="up")
+        values = [np.asarray(getattr(sol, f), dtype=float) for f in fields]
+        return values[0] if len(values) == 1 else np.array(values)
+
+    return ref
+
+
+def _reachable_w(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, float, float]]:
+    out: list[tuple[np.ndarray, float, float]] = []
+    while len(out) < n:
+        l1, l2 = (float(x) for x in rng.uniform(0.5, 2.0, 2))
+        r = rng.uniform(abs(l1 - l2) + 0.1, l1 + l2 - 0.1)
+        if r <= 0.1:
+            continue
+        d = rng.normal(size=3)
+        d /= np.linalg.norm(d)
+        if np.hypot(d[0], d[1]) < 0.2:
+            continue
+        out.append((r * d, l1, l2))
+    return out
+
+
+EX06 = Exercise(
+    "ex06_three_step",
+    "The three-step inverse kinematics of a PUMA with a spherical wrist",
+    (
+        Question(
+            "q1", "base_angle", 2, "(a) the base angle θ0",
+            public=((THREE_STEP_W,),),
+            hidden=lambda rng: [(w,) for w, _, _ in _reachable_w(rng, 5)],
+            reference=_three_step(["theta0"]),
+            compare=compare_angles,
+            hint="Use np.arctan2(w_y, w_x): the ratio w_y / w_x alone loses the quadrant.",
+        ),
+        Question(
+            "q2", "step1_frame", 2, "(a) the wrist frame after step 1",
+            public=((THREE_STEP_W,),),
+            hidden=lambda rng: [(w,) for w, _, _ in _reachable_w(rng, 4)],
+            reference=_three_step(["frame_step1"]),
+            hint="Starting from the straight arm the wrist frame is the identity; turn it by K(e_z, δ0).",
+        ),
+        Question(
+            "q3", "arm_angles", 3, "(b) θ, θ1 and θ2 (elbow up)",
+            public=((THREE_STEP_W, *THREE_STEP_L),),
+            hidden=lambda rng: _reachable_w(rng, 5),
+            reference=_three_step(["theta", "theta1", "theta2"]),
+            compare=compare_angles,
+            hint="θ1 = φ + θ with φ the elevation of w; the elbow bends back by θ2 = -(π - β), "
+                 "β the triangle's angle at the elbow.",
+        ),
+        Question(
+            "q4", "step2_frame", 2, "(b) the wrist frame after step 2",
+            public=((THREE_STEP_W, *THREE_STEP_L),),
+            hidden=lambda rng: _reachable_w(rng, 4),
+            reference=_three_step(["frame_step2"]),
+            hint="Turn the step-1 frame by K(a, δ) with a = (sin θ0, -cos θ0, 0) and δ = θ1 + θ2.",
+        ),
+        Question(
+            "q5", "wrist_rotation", 3, "(c) the composite wrist rotation",
+            public=((THREE_STEP_W, THREE_STEP_TARGET, *THREE_STEP_L),),
+            hidden=lambda rng: [(w, R, l1, l2) for (w, l1, l2), R in
+                                zip(_reachable_w(rng, 4), _rotations(rng, 4), strict=True)],
+            reference=_three_step(["K_wrist"]),
+            hint="You need the rotation K with K F2 = F (F2 the step-2 frame, F the target); "
+                 "F2 is orthogonal, so its inverse is its transpose.",
+        ),
+    ),
+)
+
+EXERCISES: dict[str, Exercise] = {ex.name: ex for ex in (EX01, EX02, EX03, EX04, EX05, EX06)}
+
 
 
 def _register(ex: Exercise) -> None:
