@@ -170,6 +170,8 @@ class Question:
     more at grading time. ``reference(*args)`` gives the expected value in the
     grader's process, ``compare(got, expected)`` returns None or a reason.
     A ``bonus`` question's points count in the score but not in the maximum.
+    ``forbidden`` names package functions (``"module:attr"``) that are this
+    question's answer key; calling them while being graded fails the case.
     """
 
     qid: str
@@ -182,6 +184,7 @@ class Question:
     compare: Callable[[Any, np.ndarray], str | None] = compare_close
     hint: str = ""
     bonus: bool = False
+    forbidden: tuple[str, ...] = ()
 
     def cases(self, rng: np.random.Generator) -> list[tuple[Any, ...]]:
         """Public cases followed by hidden ones drawn from ``rng``."""
@@ -205,6 +208,60 @@ class Exercise:
             if q.qid == qid:
                 return q
         raise ValueError(f"question: expected one of {[q.qid for q in self.questions]} in {self.name}, got {qid!r}")
+
+
+# Package functions that answer a question ("module:attr"): calling them while that question
+# is graded fails the case (see grading_worker._install_tripwires).
+_KEY_ROT = (
+    "puma_course.transforms:rotx",
+    "puma_course.transforms:roty",
+    "puma_course.transforms:rotz",
+    "puma_course.transforms:trotx",
+    "puma_course.transforms:troty",
+    "puma_course.transforms:trotz",
+)
+_KEY_RODRIGUES = (
+    "puma_course.transforms:rodrigues",
+    "puma_course.transforms:trot",
+)
+_KEY_AXIS_ANGLE = (
+    "puma_course.transforms:axis_angle",
+)
+_KEY_INVERSE = (
+    "puma_course.transforms:inverse_transform",
+)
+_KEY_MDH = (
+    "puma_course.dh:mdh",
+    "puma_course.dh:DHChain.link_matrices",
+)
+_KEY_PUMA = (
+    "puma_course.robots:puma560",
+    "puma_course.dh:DHChain.fk",
+    "puma_course.dh:DHChain.frames",
+    "puma_course.dh:mdh",
+)
+_KEY_MK3 = (
+    "puma_course.robots:mk3",
+    "puma_course.dh:DHChain.fk",
+    "puma_course.dh:DHChain.frames",
+    "puma_course.dh:mdh",
+)
+_KEY_PORTER_FK = (
+    "puma_course.porter:fk",
+    "puma_course.porter:frames",
+    "puma_course.porter:points",
+)
+_KEY_PORTER_IK = (
+    "puma_course.porter:ik_explicit",
+    "puma_course.porter:ik_explicit_batch",
+    "puma_course.porter:ik_geometric",
+    "puma_course.porter:solve",
+)
+_KEY_THREE_STEP = (
+    "puma_course.three_step:solve",
+    "puma_course.three_step:motion",
+    "puma_course.three_step:arm_axis",
+)
 
 
 def _unit_vectors(rng: np.random.Generator, n: int) -> np.ndarray:
@@ -292,6 +349,7 @@ EX01 = Exercise(
             public=(("x", 0.3), ("y", -1.2), ("z", np.pi / 2)),
             hidden=lambda rng: [(ax, float(t)) for ax, t in zip("xyzxyz", rng.uniform(-np.pi, np.pi, 6), strict=True)],
             reference=_ref_elementary,
+            forbidden=_KEY_ROT,
             hint="Each column of R is where the rotation sends e_x, e_y, e_z; check the sign of the sines.",
         ),
         Question(
@@ -300,6 +358,7 @@ EX01 = Exercise(
             hidden=lambda rng: [(list(rng.normal(size=3) * rng.uniform(0.5, 3)), float(t))
                                 for t in rng.uniform(-3, 3, 5)],
             reference=_ref_transforms("rodrigues"),
+            forbidden=_KEY_RODRIGUES,
             hint="Normalise the axis first; K = I + sin θ [k]x + (1 - cos θ) [k]x².",
         ),
         Question(
@@ -307,6 +366,7 @@ EX01 = Exercise(
             public=((np.round(_ref_elementary("x", 0.5), 15),), (np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]]),)),
             hidden=lambda rng: [(R,) for R in _rotations(rng, 5)],
             reference=_ref_axis_angle,
+            forbidden=_KEY_AXIS_ANGLE,
             hint="cos θ = (trace R - 1) / 2 and the axis comes from the antisymmetric part R - R^T; "
                  "return [kx, ky, kz, θ] with θ in (0, π).",
         ),
@@ -315,6 +375,7 @@ EX01 = Exercise(
             public=((np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]),),),
             hidden=lambda rng: _random_transforms(rng, 4),
             reference=_ref_transforms("inverse_transform"),
+            forbidden=_KEY_INVERSE,
             hint="The inverse rotation is R^T and the inverse translation is -R^T p.",
         ),
     ),
@@ -332,6 +393,7 @@ EX02 = Exercise(
                                                  rng.uniform(-1, 1, 5), rng.uniform(-np.pi, np.pi, 5),
                                                  rng.uniform(-1, 1, 5)])],
             reference=_ref_mdh,
+            forbidden=_KEY_MDH,
             hint="Multiply Rot(X, α) Trans(X, a) Rot(Z, θ) Trans(Z, d) in that order.",
         ),
         Question(
@@ -339,6 +401,7 @@ EX02 = Exercise(
             public=((np.zeros(6),), (np.array([0.0, -np.pi / 2, -np.pi / 2, 0, 0, 0]),)),
             hidden=lambda rng: _angles(rng, 5, 6),
             reference=_ref_puma_fk,
+            forbidden=_KEY_PUMA,
             hint="Use the lecture's table with a2 = 0.4318, a3 = 0.0203, d3 = 0.15005, d4 = 0.4318 (metres).",
         ),
         Question(
@@ -346,6 +409,7 @@ EX02 = Exercise(
             public=((np.zeros(6),),),
             hidden=lambda rng: _angles(rng, 3, 6),
             reference=_ref_puma_frames,
+            forbidden=_KEY_PUMA,
             hint="Return a (7, 4, 4) array starting with the identity (frame {0}) and ending with ^0T_6.",
         ),
     ),
@@ -360,6 +424,7 @@ EX03 = Exercise(
             public=((np.zeros(5),), (np.array([0.0, np.pi / 2, -np.pi / 2, 0.0, 0.0]),)),
             hidden=lambda rng: _angles(rng, 5, 5),
             reference=_ref_mk3_fk,
+            forbidden=_KEY_MK3,
             hint="The table: d1 = 360, a1 = 135, a2 = 250, a3 = 215, d5 = 100 mm; α1 = α4 = 90°.",
         ),
         Question(
@@ -367,6 +432,7 @@ EX03 = Exercise(
             public=((np.zeros(5),), (np.array([0.5, 0.3, -0.4, 0.2, 0.1]),)),
             hidden=lambda rng: _angles(rng, 5, 5),
             reference=_ref_mk3_position,
+            forbidden=_KEY_MK3,
             hint="The horizontal reach is a1 + a2 C2 + a3 C23 + d5 S234; the height starts at d1.",
         ),
         Question(
@@ -374,6 +440,7 @@ EX03 = Exercise(
             public=((np.zeros(5),),),
             hidden=lambda rng: _angles(rng, 4, 5),
             reference=_ref_mk3_tool_axis,
+            forbidden=_KEY_MK3,
             hint="It is the third column of the rotation part; only θ1 and θ2 + θ3 + θ4 matter.",
         ),
     ),
@@ -439,6 +506,7 @@ EX04 = Exercise(
             public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L), (np.array([0.0, 0.0, 2.0, 0.0, 0.0, 0.0]), 1.0, 0.5, 0.25)),
             hidden=lambda rng: _porter_configs(rng, 5),
             reference=_porter("fk"),
+            forbidden=_KEY_PORTER_FK,
             hint="Local (moving) frames multiply left to right: Rz(α1) Tz(l1) Ry(α2) Tx(q2) Ry(α3) Tz(-l3) "
                  "Rz(α4) Tx(l4) Rx(α5).",
         ),
@@ -447,6 +515,7 @@ EX04 = Exercise(
             public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L),),
             hidden=lambda rng: _porter_configs(rng, 4),
             reference=_porter("points"),
+            forbidden=_KEY_PORTER_FK,
             hint="Return a (6, 3) array: p0 = p1 = origin, p2 = l1 z0, p3 = p2 + q2 x2, p4 = p3 - l3 z3, "
                  "p5 = p4 + l4 x4.",
         ),
@@ -455,6 +524,7 @@ EX04 = Exercise(
             public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L),),
             hidden=lambda rng: _porter_configs(rng, 4),
             reference=_porter("fk", (slice(0, 3), 2)),
+            forbidden=_KEY_PORTER_FK,
             hint="Compare the printed second entry with the first: only c1 and s1 should swap roles.",
         ),
     ),
@@ -478,6 +548,7 @@ EX05 = Exercise(
             hidden=lambda rng: _porter_poses(rng, 5),
             reference=_porter("ik_explicit"),
             compare=compare_solution_set([0, 1, 3, 4, 5], tol=1e-6),
+            forbidden=_KEY_PORTER_IK,
             hint="In general position there are four configurations with q2 >= 0: α1 and α1 + π, times the two "
                  "solutions of eq. 10 for α4. Return them as a (4, 6) array, angles in [0, 2π).",
         ),
@@ -487,6 +558,7 @@ EX05 = Exercise(
             hidden=lambda rng: _porter_poses(rng, 4),
             reference=_porter("ik_geometric"),
             compare=compare_solution_set([0, 1, 3, 4, 5], tol=1e-6),
+            forbidden=_KEY_PORTER_IK,
             hint="Keep the arm plane α1 = atan2(p4_y, p4_x) and the two elbow points p3 = p4 ± l3 z4; "
                  "return a (2, 6) array.",
             bonus=True,
@@ -549,6 +621,7 @@ EX06 = Exercise(
             hidden=lambda rng: [(w,) for w, _, _ in _reachable_w(rng, 5)],
             reference=_three_step(["theta0"]),
             compare=compare_angles,
+            forbidden=_KEY_THREE_STEP,
             hint="Use np.arctan2(w_y, w_x): the ratio w_y / w_x alone loses the quadrant.",
         ),
         Question(
@@ -556,6 +629,7 @@ EX06 = Exercise(
             public=((THREE_STEP_W,),),
             hidden=lambda rng: [(w,) for w, _, _ in _reachable_w(rng, 4)],
             reference=_three_step(["frame_step1"]),
+            forbidden=_KEY_THREE_STEP,
             hint="Starting from the straight arm the wrist frame is the identity; turn it by K(e_z, δ0).",
         ),
         Question(
@@ -564,6 +638,7 @@ EX06 = Exercise(
             hidden=lambda rng: _reachable_w(rng, 5),
             reference=_three_step(["theta", "theta1", "theta2"]),
             compare=compare_angles,
+            forbidden=_KEY_THREE_STEP,
             hint="θ1 = φ + θ with φ the elevation of w; the elbow bends back by θ2 = -(π - β), "
                  "β the triangle's angle at the elbow.",
         ),
@@ -572,6 +647,7 @@ EX06 = Exercise(
             public=((THREE_STEP_W, *THREE_STEP_L),),
             hidden=lambda rng: _reachable_w(rng, 4),
             reference=_three_step(["frame_step2"]),
+            forbidden=_KEY_THREE_STEP,
             hint="Turn the step-1 frame by K(a, δ) with a = (sin θ0, -cos θ0, 0) and δ = θ1 + θ2.",
         ),
         Question(
@@ -580,6 +656,7 @@ EX06 = Exercise(
             hidden=lambda rng: [(w, R, l1, l2) for (w, l1, l2), R in
                                 zip(_reachable_w(rng, 4), _rotations(rng, 4), strict=True)],
             reference=_three_step(["K_wrist"]),
+            forbidden=_KEY_THREE_STEP,
             hint="You need the rotation K with K F2 = F (F2 the step-2 frame, F the target); "
                  "F2 is orthogonal, so its inverse is its transpose.",
         ),
@@ -623,14 +700,20 @@ def _find_question(question: str) -> tuple[Exercise, Question]:
 
 def _public_report(q: Question, answer: Callable[..., Any]) -> tuple[str, str]:
     """('passed' | 'failed' | 'not attempted', message) for the public cases of ``q``."""
+    from .grading_worker import forbidden_codes, guarded_call
+
+    codes = forbidden_codes(q.forbidden)
     for i, args in enumerate(q.public, start=1):
         expected = np.asarray(q.reference(*copy.deepcopy(args)), dtype=float)
         try:
-            got = answer(*copy.deepcopy(args))
+            got, hit = guarded_call(answer, copy.deepcopy(args), codes)
         except NotImplementedError:
             return "not attempted", "not attempted yet"
         except Exception as exc:  # noqa: BLE001 - summarised for the student
             return "failed", f"case {i} raised {type(exc).__name__}: {str(exc)[:200]}"
+        if hit is not None:
+            return "failed", (f"case {i}: your function calls the course package's answer "
+                              f"({hit.replace(':', '.')}); write your own code")
         why = q.compare(got, expected)
         if why is not None:
             shown = ", ".join(_short_repr(a) for a in args)
@@ -876,9 +959,11 @@ def _drain(stream: Any, cap: int, sink: list[bytes], overflow: list[bool]) -> No
 
 
 def _run_child(cells: list[str], calls: list[dict[str, Any]], workdir: str, timeout_cell: float,
-               timeout_total: float) -> tuple[list[dict[str, Any]], bool, int | None, bool]:
+               timeout_total: float, forbidden: dict[str, list[str]] | None = None,
+               ) -> tuple[list[dict[str, Any]], bool, int | None, bool]:
     """Run the worker; return (events, timed_out, returncode, output_overflow)."""
-    job = json.dumps({"cells": cells, "calls": calls, "timeout_cell": timeout_cell, "max_size": 10_000})
+    job = json.dumps({"cells": cells, "calls": calls, "timeout_cell": timeout_cell, "max_size": 10_000,
+                      "forbidden": forbidden or {}})
     bootstrap = (f"import sys; sys.path.insert(0, {str(REPO_ROOT)!r}); "
                  "from puma_course.grading_worker import main; main()")
     kwargs: dict[str, Any] = {}
@@ -952,7 +1037,9 @@ def grade_notebook(path: str | os.PathLike[str] | None, exercise: Exercise, stud
     calls = [{k: v for k, v in item.items() if k != "expected"} for item in plan]
     with tempfile.TemporaryDirectory(prefix="puma-grade-") as workdir:
         (Path(workdir) / path.name).write_bytes(data)
-        events, timed_out, returncode, overflow = _run_child(cells, calls, workdir, timeout_cell, timeout_total)
+        forbidden = {q.qid: list(q.forbidden) for q in exercise.questions if q.forbidden}
+        events, timed_out, returncode, overflow = _run_child(cells, calls, workdir, timeout_cell, timeout_total,
+                                                             forbidden)
     done = any(e.get("kind") == "done" for e in events)
     for e in events:
         if e.get("kind") == "cell" and e.get("status") in ("error", "timeout"):

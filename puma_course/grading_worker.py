@@ -5,7 +5,7 @@ This module runs in a fresh ``python -I`` process started by
 JSON job from stdin::
 
     {"cells": [source, ...], "calls": [{"qid", "case", "function", "args"}, ...],
-     "timeout_cell": seconds, "max_size": n}
+     "timeout_cell": seconds, "max_size": n, "forbidden": {qid: ["module:attr", ...]}}
 
 executes the cells in order in one namespace (a cell that raises or runs past
 ``timeout_cell`` is recorded and the next cell still runs), then calls each
@@ -21,6 +21,11 @@ Only numbers travel back (``np.asarray(value, float).tolist()``, at most
 its own process, so nothing the student's code does here can change how values
 are judged. The student's prints go to a small capped buffer, and the OS-level
 stdout/stderr are pointed at /dev/null so that a flood of output costs nothing.
+
+"Forbidden" package functions (the answer key of a question, e.g.
+``puma_course.transforms:rodrigues`` for "write Rodrigues' formula") are wrapped
+before any student code runs; a call to one of them *while that question's
+function is being graded* makes the case fail with a clear reason.
 
 Nothing runs at import time; the grader starts :func:`main`.
 """
@@ -91,6 +96,99 @@ def _short_error(exc: BaseException, filename_prefix: str = "<cell") -> str:
     return f"{type(exc).__name__}: {msg}"[:300] + where
 
 
+def resolve(spec: str) -> Any:
+    """The object named by ``"module:attr[.attr]"`` (None if it does not exist).
+
+    >>> resolve("puma_course.transforms:rotx").__name__
+    'rotx'
+    """
+    import importlib
+
+    modname, _, path = spec.partition(":")
+    try:
+        obj: Any = importlib.import_module(modname)
+        for part in path.split("."):
+            obj = getattr(obj, part)
+    except (ImportError, AttributeError):
+        return None
+    return obj
+
+
+def forbidden_codes(specs: Any) -> dict[Any, str]:
+    """Map the code objects of the named functions (unwrapped) to their names, for :func:`guarded_call`."""
+    codes = {}
+    for spec in specs:
+        obj = resolve(spec)
+        while obj is not None and hasattr(obj, "__wrapped__"):
+            obj = obj.__wrapped__
+        code = getattr(obj, "__code__", None)
+        if code is not None:
+            codes[code] = spec
+    return codes
+
+
+def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | None]:
+    """Call ``fn(*args)``; also return the first forbidden function (by code object) it called, if any.
+
+    Uses ``sys.setprofile``, so it sees calls however the function got hold of them
+    (``from puma_course import rodrigues`` included).
+
+    >>> import numpy as np
+    >>> from puma_course.transforms import rotx
+    >>> guarded_call(lambda t: rotx(t), (0.1,), forbidden_codes(["puma_course.transforms:rotx"]))[1]
+    'puma_course.transforms:rotx'
+    """
+    if not codes:
+        return fn(*args), None
+    hit: list[str] = []
+
+    def profile(frame: Any, event: str, arg: Any) -> None:
+        if event == "call" and not hit and frame.f_code in codes:
+            hit.append(codes[frame.f_code])
+
+    old = sys.getprofile()
+    sys.setprofile(profile)
+    try:
+        value = fn(*args)
+    finally:
+        sys.setprofile(old)
+    return value, (hit[0] if hit else None)
+
+
+def _install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
+    """Wrap each ``module:attr[.attr]`` so that calls during a guarded question are recorded in ``state``."""
+    import functools
+    import importlib
+
+    for spec in sorted(specs):
+        modname, _, path = spec.partition(":")
+        try:
+            owner: Any = importlib.import_module(modname)
+            parts = path.split(".")
+            for part in parts[:-1]:
+                owner = getattr(owner, part)
+            original = getattr(owner, parts[-1])
+        except (ImportError, AttributeError):
+            continue
+
+        def make(original: Any, spec: str) -> Any:
+            @functools.wraps(original)
+            def wrapper(*args: Any, **kwargs: Any) -> Any:
+                if spec in state["guard"] and state["hit"] is None:
+                    state["hit"] = spec
+                return original(*args, **kwargs)
+
+            return wrapper
+
+        wrapped = make(original, spec)
+        setattr(owner, parts[-1], wrapped)
+        if len(parts) == 1:  # re-exports such as puma_course.rodrigues
+            for mod in list(sys.modules.values()):
+                name = getattr(mod, "__name__", "") or ""
+                if name.split(".")[0] == "puma_course" and getattr(mod, parts[-1], None) is original:
+                    setattr(mod, parts[-1], wrapped)
+
+
 def main() -> None:
     """Run one job read from stdin (see the module docstring)."""
     # Keep private references before any student code can monkeypatch them.
@@ -134,6 +232,11 @@ def main() -> None:
         for obj in objs:
             print(repr(obj))
 
+    forbidden = {qid: set(specs) for qid, specs in job.get("forbidden", {}).items()}
+    state: dict[str, Any] = {"guard": set(), "hit": None}
+    _install_tripwires(set().union(*forbidden.values()) if forbidden else set(), state)
+    codes = {qid: forbidden_codes(specs) for qid, specs in forbidden.items()}
+
     ns: dict[str, Any] = {"__name__": "__main__", "display": display}
     for index, source in enumerate(job["cells"]):
         try:
@@ -155,8 +258,11 @@ def main() -> None:
             event["error"] = f"{call['function']} is a {type(fn).__name__}, not a function"
         else:
             args = [asarray(a, dtype=isfinite_dtype) if isinstance(a, list) else a for a in call["args"]]
+            state["guard"], state["hit"] = forbidden.get(call["qid"], set()), None
             try:
-                value = run_timed(fn, *args)
+                value, hit = run_timed(guarded_call, fn, args, codes.get(call["qid"], {}))
+                if hit is not None and state["hit"] is None:
+                    state["hit"] = hit
             except CellTimeout:
                 event["error"] = f"the call ran longer than {timeout:g} s"
             except NotImplementedError:
@@ -170,10 +276,14 @@ def main() -> None:
                     kind = type(value).__name__
                     event["error"] = f"returned a {kind}, which is not an array of numbers ({str(exc)[:120]})"
                 else:
-                    if arr.size > max_size:
+                    if state["hit"] is not None:
+                        event["error"] = (f"used the course package's answer ({state['hit'].replace(':', '.')}) "
+                                          "instead of your own code")
+                    elif arr.size > max_size:
                         event["error"] = f"returned {arr.size} numbers, more than the {max_size} allowed"
                     else:
                         event["value"] = arr.tolist()
+            state["guard"] = set()
         emit(event)
     emit({"kind": "done", "printed": sink.size})
 
