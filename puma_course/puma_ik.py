@@ -275,7 +275,7 @@ def _core(T: np.ndarray, a2: float, a3: float, d3: float, d4: float, near: np.nd
         rp = np.sqrt(rho2[:, 0] + pz[:, 0] ** 2)
         for i in np.flatnonzero(reach[:, 0]):
             reason[i] = (
-                f"out of reach: the wrist centre is {rp[i]:.6g} from the shoulder axis origin; "
+                f"out of reach: the wrist centre is {rp[i]:.6g} from the origin (where axes 1 and 2 cross); "
                 f"|K| = {abs(K[i, 0]):.6g} exceeds sqrt(a3² + d4²) = {np.hypot(a3, d4):.6g}"
             )
         for i in np.flatnonzero(base[:, 0]):
