@@ -144,7 +144,7 @@ class JointPath:
     candidate (column of the solver's output) was chosen; ``step`` (n-1,)
     wrapped distance between successive configurations (``step[0]`` from the
     first pose's choice to the second's); ``start_jump`` the distance from the
-    starting configuration ``q0`` to ``q[0]`` (0 for :func:`naive`, which has no q0).
+    starting configuration ``q0`` to ``q[0]`` (0 for :func:`naive` called without q0).
     """
 
     q: np.ndarray
@@ -212,8 +212,11 @@ def follow(path_Ts: Any, ik_all: Candidates, q0: Any, *, revolute: Any | None = 
     )
 
 
-def naive(path_Ts: Any, ik_all: Candidates, *, revolute: Any | None = None) -> JointPath:
+def naive(path_Ts: Any, ik_all: Candidates, q0: Any | None = None, *, revolute: Any | None = None) -> JointPath:
     """At each pose, simply the first valid solution the solver lists (for comparison with :func:`follow`).
+
+    ``q0``, if given, is where the arm starts: ``start_jump`` is then the jump
+    from it to the first chosen configuration (else 0).
 
     >>> from puma_course.robots import puma560
     >>> arm = puma560()
@@ -224,8 +227,13 @@ def naive(path_Ts: Any, ik_all: Candidates, *, revolute: Any | None = None) -> J
     Ts, Q, valid = _candidates(path_Ts, ik_all)
     choice = np.argmax(valid, axis=1)
     q = Q[np.arange(Q.shape[0]), choice]
-    rev = np.ones(Q.shape[-1], dtype=bool) if revolute is None else np.asarray(revolute, dtype=bool)
-    return JointPath(q=q, choice=choice, step=step_distance(q[1:], q[:-1], rev), start_jump=0.0)
+    m = Q.shape[-1]
+    rev = np.ones(m, dtype=bool) if revolute is None else np.asarray(revolute, dtype=bool)
+    start = 0.0
+    if q0 is not None:
+        q0 = as_array(q0, "q0", (m,), what=f"a starting configuration of shape ({m},)")
+        start = float(step_distance(q[0], q0, rev))
+    return JointPath(q=q, choice=choice, step=step_distance(q[1:], q[:-1], rev), start_jump=start)
 
 
 def puma_candidates(chain: Any) -> Candidates:

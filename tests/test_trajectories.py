@@ -96,9 +96,10 @@ def test_follow_stays_on_the_branch_of_q0():
     jp = tr.follow(path, tr.puma_candidates(ARM), q0)
     assert (jp.choice == 7).all()  # branch index of right/down/flip in BRANCH_LABELS
     assert jp.start_jump < 1e-9 and jp.max_step < 0.05
-    nv = tr.naive(path, tr.puma_candidates(ARM))
+    nv = tr.naive(path, tr.puma_candidates(ARM), q0)
     assert (nv.choice == 0).all()
-    assert tr.step_distance(nv.q[0], q0) > 1.0  # the naive first solution is another arm altogether
+    assert nv.start_jump > 1.0  # the naive first solution is another arm altogether
+    assert nv.start_jump == pytest.approx(float(tr.step_distance(nv.q[0], q0)))
 
 
 def test_naive_jumps_at_the_wrist_flip_follow_does_not():
@@ -170,3 +171,23 @@ def test_porter_follow_line_and_circle():
         assert jp.start_jump < 1e-9
         assert jp.max_step < 0.2
         assert (jp.q[:, 2] >= 0).all()
+
+
+def test_porter_naive_jumps_where_the_planes_become_parallel():
+    """x5 = y0 fixed and p4 crossing the plane y = 0 at x > 0: there s4 = cos α1 = 1, c4 = 0 (Porter's
+    planes-parallel case), and the continuous solution moves from the branch c4 > 0 to c4 < 0."""
+    porter = pytest.importorskip("puma_course.porter")
+    l1, l3, l4 = 1.0, 0.5, 0.3
+    T0 = np.eye(4)
+    T0[:3, :3] = rotz(np.pi / 2)
+    T0[:3, 3] = [1.0, -0.4 + l4, 1.3]
+    path = tr.line_path(T0, [1.0, 0.4 + l4, 1.3], 60)
+    cand = tr.porter_candidates(l1, l3, l4)
+    q0 = cand(path[:1])[0][0, 0]
+    jp = tr.follow(path, cand, q0, revolute=tr.PORTER_REVOLUTE)
+    nv = tr.naive(path, cand, q0, revolute=tr.PORTER_REVOLUTE)
+    assert np.abs(porter.fk(jp.q, l1, l3, l4) - path).max() < 1e-9
+    assert np.abs(porter.fk(nv.q, l1, l3, l4) - path).max() < 1e-9
+    assert jp.max_step < 0.05 and nv.start_jump == 0.0
+    assert nv.max_step > 3.0
+    assert set(jp.choice.tolist()) == {0, 1}
