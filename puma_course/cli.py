@@ -97,7 +97,9 @@ def _release(args: argparse.Namespace) -> int:
 
 
 def _grade(args: argparse.Namespace) -> int:
-    from .grading import grade
+    import warnings
+
+    from .grading import GradingIntegrityWarning, grade
 
     def progress(r):  # type: ignore[no-untyped-def]
         if not args.quiet:
@@ -105,15 +107,20 @@ def _grade(args: argparse.Namespace) -> int:
                   flush=True)
 
     try:
-        results = grade(args.submissions, args.output, feedback=args.feedback, jobs=args.jobs,
-                        timeout_cell=args.timeout_cell, timeout_total=args.timeout_total, seed=args.seed,
-                        exercises=args.exercise, progress=progress)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", GradingIntegrityWarning)
+            results = grade(args.submissions, args.output, feedback=args.feedback, jobs=args.jobs,
+                            timeout_cell=args.timeout_cell, timeout_total=args.timeout_total, seed=args.seed,
+                            exercises=args.exercise, progress=progress)
     except ValueError as exc:
         print(f"grade failed: {exc}", file=sys.stderr)
         return 2
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s); wrote {args.output}")
-    return 0
+    tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
+    for w in tampered:
+        print(f"WARNING: {w.message}", file=sys.stderr)
+    return 3 if tampered else 0
 
 
 def _check(args: argparse.Namespace) -> int:

@@ -56,6 +56,7 @@ __all__ = [
     "grade",
     "grade_notebook",
     "NotebookResult",
+    "GradingIntegrityWarning",
 ]
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
@@ -857,6 +858,15 @@ def release(
 
 
 # --------------------------------------------------------------------------- grading
+class GradingIntegrityWarning(UserWarning):
+    """The course package's files changed while grading: a submission may have tampered with them."""
+
+
+def _package_digest() -> dict[str, bytes]:
+    pkg = Path(__file__).resolve().parent
+    return {p.name: p.read_bytes() for p in sorted(pkg.glob("*.py"))}
+
+
 @dataclass
 class NotebookResult:
     """The outcome of grading one (student, exercise) pair."""
@@ -1144,7 +1154,8 @@ def grade(submissions: str | os.PathLike[str], output: str | os.PathLike[str],
             raise ValueError(f"exercises: expected names among {sorted(EXERCISES)}, got {name!r}")
     seed = secrets.randbits(31) if seed is None else int(seed)
     students = sorted(p.name for p in sub_dir.iterdir() if p.is_dir() and not p.name.startswith("."))
-    plans = {name: _plan(EXERCISES[name], seed) for name in names}
+    plans = {name: _plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
+    package_before = _package_digest()
     # read every file into memory before any student code runs: a student's process
     # cannot alter what is graded for anyone, itself included
     tasks = []
@@ -1180,6 +1191,12 @@ def grade(submissions: str | os.PathLike[str], output: str | os.PathLike[str],
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, int(jobs))) as pool:
         results = list(pool.map(work, tasks))
     results.sort(key=lambda r: (r.student, r.exercise))
+    if _package_digest() != package_before:
+        import warnings
+
+        warnings.warn("the puma_course package files changed while grading; a submission may have tampered "
+                      "with them, so the grades of notebooks graded afterwards are not reliable. Grade in a "
+                      "container or as a user who cannot write the package.", GradingIntegrityWarning, stacklevel=2)
     _write_csv(output, results, names)
     if feedback is not None:
         fb_dir = Path(feedback)

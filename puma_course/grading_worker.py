@@ -249,10 +249,13 @@ def main() -> None:
             event = {"kind": "cell", "index": index, "status": "error", "error": _short_error(exc)}
         emit(event)
 
+    slow: set[str] = set()  # questions whose function already ran out of time: skip their other cases
     for call in job["calls"]:
         event = {"kind": "call", "qid": call["qid"], "case": call["case"]}
         fn = ns.get(call["function"])
-        if fn is None:
+        if call["qid"] in slow:
+            event["error"] = "skipped: an earlier case of this question ran out of time"
+        elif fn is None:
             event["error"] = f"no function named {call['function']}() was defined"
         elif not callable(fn):
             event["error"] = f"{call['function']} is a {type(fn).__name__}, not a function"
@@ -265,6 +268,7 @@ def main() -> None:
                     state["hit"] = hit
             except CellTimeout:
                 event["error"] = f"the call ran longer than {timeout:g} s"
+                slow.add(call["qid"])
             except NotImplementedError:
                 event["error"] = "not attempted yet (NotImplementedError)"
             except BaseException as exc:  # noqa: BLE001

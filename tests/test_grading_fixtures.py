@@ -1,0 +1,138 @@
+"""Grading is robust and fair: each crafted submission in tests/fixtures/submissions gets what it earned.
+
+One grading run over a copy of the fixture class (14 students, exercise 1 only) with short
+limits (3 s per cell and per call, 8 s per notebook), plus a student built here who tampers
+with files whose paths it is given. Expected scores are worked out from what each crafted
+notebook does (see tests/fixtures/submissions/*/ex01_rotations.ipynb).
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import shutil
+from pathlib import Path
+
+import nbformat
+import pytest
+
+from puma_course.grading import EXERCISES, grade
+
+FIXTURES = Path(__file__).parent / "fixtures" / "submissions"
+EX = "ex01_rotations"
+
+# student -> (score, status, {question: points})
+EXPECTED = {
+    "good": (10, "ok", {}),
+    "malformed_json": (0, "malformed", {}),
+    "not_a_notebook": (0, "malformed", {}),
+    "raises": (7, "cell-error", {"q3": 0}),
+    "endless_loop": (7, "cell-error", {"q3": 0}),
+    "stubborn_loop": (0, "timeout", {}),
+    "huge_print": (10, "ok", {}),
+    "missing_function": (7, "ok", {"q2": 0}),
+    "wrong_type": (2, "ok", {"q4": 2}),
+    "cheat_monkeypatch": (0, "ok", {}),
+    "exit_sys": (10, "cell-error", {}),
+    "exit_os": (0, "crashed", {}),
+    "answer_key": (2, "ok", {"q4": 2}),
+    "read_expected": (2, "ok", {"q1": 0, "q4": 2}),
+    "tamper_files": (10, "ok", {}),
+}
+
+
+def _digest(folder: Path) -> dict[str, str]:
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory):
+    root = tmp_path_factory.mktemp("class")
+    subs = root / "submissions"
+    shutil.copytree(FIXTURES, subs)
+    out = root / "grades.csv"
+    # a student who knows every path: the grades file, a classmate's notebook, its own notebook
+    good_nb = subs / "good" / f"{EX}.ipynb"
+    tamper = nbformat.read(good_nb, as_version=4)
+    own_nb = subs / "tamper_files" / f"{EX}.ipynb"
+    tamper.cells.append(nbformat.v4.new_code_cell(
+        "import os\n"
+        f"for target in [{str(out)!r}, {str(good_nb)!r}, 'grades.csv', {str(own_nb)!r}]:\n"
+        "    try:\n"
+        "        with open(target, 'w') as fh:\n"
+        "            fh.write('student,exercise,score\\ntamper_files,ex01_rotations,1000\\n')\n"
+        "    except OSError:\n"
+        "        pass\n"))
+    (subs / "tamper_files").mkdir()
+    nbformat.write(tamper, own_nb)
+    before = _digest(subs)
+    fb = root / "feedback"
+    results = grade(subs, out, feedback=fb, jobs=2, timeout_cell=3, timeout_total=8, seed=11, exercises=[EX])
+    with open(out, newline="", encoding="utf-8") as fh:
+        rows = {row["student"]: row for row in csv.DictReader(fh)}
+    return {"results": {r.student: r for r in results}, "rows": rows, "before": before, "subs": subs,
+            "feedback": fb, "out": out}
+
+
+@pytest.mark.parametrize("student", sorted(EXPECTED))
+def test_each_crafted_submission_gets_what_it_earned(graded, student):
+    score, status, per_question = EXPECTED[student]
+    row = graded["rows"][student]
+    assert float(row["score"]) == score, (student, row)
+    assert row["status"] == status, (student, row)
+    assert float(row["max_score"]) == EXERCISES[EX].max_score
+    for qid, points in per_question.items():
+        assert float(row[qid]) == points, (student, qid, row)
+
+
+def test_csv_has_one_row_per_student_and_the_documented_columns(graded):
+    rows = graded["rows"]
+    assert set(rows) == set(EXPECTED)
+    columns = list(next(iter(rows.values())))
+    assert columns[:4] == ["student", "exercise", "score", "max_score"]
+    assert {"q1", "q2", "q3", "q4", "status"} <= set(columns)
+
+
+def test_the_grades_file_is_written_by_the_grader_last(graded):
+    text = graded["out"].read_text(encoding="utf-8")
+    assert "1000" not in text
+
+
+def test_the_tamperer_damaged_only_files_on_disk_not_grades(graded):
+    # the tamperer did overwrite files it could reach on disk (the grader is no OS sandbox) ...
+    after = _digest(graded["subs"])
+    changed = {k for k in after if after[k] != graded["before"].get(k)}
+    assert changed <= {f"good/{EX}.ipynb", f"tamper_files/{EX}.ipynb"}
+    # ... but every notebook was read before any student code ran, so "good" still has full marks
+    assert float(graded["rows"]["good"]["score"]) == 10
+
+
+def test_other_submissions_are_never_modified(graded):
+    after = _digest(graded["subs"])
+    for key, digest in graded["before"].items():
+        if not key.startswith(("good/", "tamper_files/")):
+            assert after[key] == digest, key
+
+
+def test_feedback_explains_what_passed_and_failed(graded):
+    fb = graded["feedback"]
+    assert sorted(p.stem for p in fb.glob("*.md")) == sorted(EXPECTED)
+    text = (fb / "missing_function.md").read_text(encoding="utf-8")
+    assert "no function named rodrigues_formula() was defined" in text
+    assert "7 / 10" in text
+    text = (fb / "answer_key.md").read_text(encoding="utf-8")
+    assert "course package's answer" in text
+    text = (fb / "endless_loop.md").read_text(encoding="utf-8")
+    assert "ran longer than 3 s" in text
+    text = (fb / "malformed_json.md").read_text(encoding="utf-8")
+    assert "not a readable notebook" in text
+    text = (fb / "huge_print.md").read_text(encoding="utf-8")
+    assert "10 / 10" in text
+
+
+def test_timeouts_are_reported_per_notebook(graded):
+    res = graded["results"]
+    assert res["stubborn_loop"].status == "timeout"
+    assert any("ran longer than 8 s" in n for n in res["stubborn_loop"].notes)
+    assert res["huge_print"].status == "ok"
