@@ -182,6 +182,95 @@ def _lengths(a2: float, a3: float, d3: float, d4: float) -> tuple[float, float, 
     return out  # type: ignore[return-value]
 
 
+def _reason_reach(dist: float, K: float, a3: float, d4: float) -> str:
+    return (
+        f"out of reach: the wrist centre is {dist:.6g} from the origin (where axes 1 and 2 cross); "
+        f"|K| = {abs(K):.6g} exceeds sqrt(a3² + d4²) = {math.hypot(a3, d4):.6g}"
+    )
+
+
+def _reason_base(rho: float, d3: float) -> str:
+    return (
+        f"too close to the base axis: the wrist centre is at distance ρ = {rho:.6g} "
+        f"from the base (z0) axis, less than the shoulder offset |d3| = {abs(d3):.6g}"
+    )
+
+
+def _wrap1(a: float) -> float:
+    return math.pi - (math.pi - a) % (2.0 * math.pi)
+
+
+def _solve_one(
+    T: np.ndarray, a2: float, a3: float, d3: float, d4: float, near: np.ndarray | None, tol: float
+) -> tuple[list[tuple[int, list[float], int]], str]:
+    """The closed form for one pose in plain floats (the fast path of :func:`ik`; :func:`_core` is the batch).
+
+    Same formulas, branch order and tolerances as :func:`_core`, but only the distinct
+    branches are computed (2 shoulders, 2 elbows, 4 wrists, the flip by symmetry).
+    Returns ``([(branch index, q, flags), ...], reason)``; reason is "" when reachable.
+    """
+    (r11, r12, r13, px), (r21, r22, r23, py), (r31, r32, r33, pz), _ = T.tolist()
+    nr = None if near is None else near.tolist()
+    L = a2 + math.hypot(a3, d4) + abs(d3)
+    ltol, sqtol = 1e-7 * L, 1e-12 * L * L
+    rho2 = px * px + py * py
+    S1sq = rho2 - d3 * d3
+    K = (rho2 + pz * pz - a2 * a2 - a3 * a3 - d3 * d3 - d4 * d4) / (2.0 * a2)
+    S3sq = a3 * a3 + d4 * d4 - K * K
+    if S1sq < -sqtol:
+        return [], _reason_base(math.sqrt(rho2), d3)
+    if S3sq < -sqtol:
+        return [], _reason_reach(math.sqrt(rho2 + pz * pz), K, a3, d4)
+    S1, S3 = math.sqrt(max(S1sq, 0.0)), math.sqrt(max(S3sq, 0.0))
+    sh_sing, el_sing = S1 < ltol, S3 < ltol
+    axis_case = math.sqrt(rho2) < ltol
+    phi = (nr[0] if nr is not None else 0.0) if axis_case else math.atan2(py, px)
+    psi = math.atan2(a3, d4)
+    base_flags = SHOULDER_SINGULAR * sh_sing + ELBOW_SINGULAR * el_sing + BASE_AXIS_SINGULAR * axis_case
+    out: list[tuple[int, list[float], int]] = []
+    w = _wrap1
+    for ish, sh in enumerate((1.0, -1.0)):
+        if ish and sh_sing:
+            continue
+        X = sh * S1
+        t1 = phi - math.atan2(d3, X)
+        c1, s1 = math.cos(t1), math.sin(t1)
+        u0, u1, u2 = c1 * r11 + s1 * r21, c1 * r12 + s1 * r22, c1 * r13 + s1 * r23
+        m20, m22 = -s1 * r11 + c1 * r21, -s1 * r13 + c1 * r23
+        for iel, el in enumerate((1.0, -1.0)):
+            if iel and el_sing:
+                continue
+            t3 = psi - math.atan2(K, sh * el * S3)
+            c3, s3 = math.cos(t3), math.sin(t3)
+            vx, vy = a2 + a3 * c3 - d4 * s3, a3 * s3 + d4 * c3
+            flags = base_flags
+            if math.hypot(vx, vy) < ltol:
+                t2 = nr[1] if nr is not None else 0.0
+                flags |= JOINT2_AXIS_SINGULAR
+            else:
+                t2 = math.atan2(-pz, X) - math.atan2(vy, vx)
+            t23 = t2 + t3
+            c23, s23 = math.cos(t23), math.sin(t23)
+            m02, m12 = c23 * u2 - s23 * r33, -s23 * u2 - c23 * r33
+            m10, m11 = -s23 * u0 - c23 * r31, -s23 * u1 - c23 * r32
+            s5 = math.hypot(m02, m22)
+            k = 4 * ish + 2 * iel
+            arm = [w(t1), w(t2), w(t3)]
+            if s5 < tol:
+                t4 = nr[3] if nr is not None else 0.0
+                m00, m01 = c23 * u0 - s23 * r31, c23 * u1 - s23 * r32
+                if m12 >= 0:
+                    t5, t6 = 0.0, math.atan2(-m20, m00) - t4
+                else:
+                    t5, t6 = math.pi, t4 - math.atan2(-m01, -m00)
+                out.append((k, arm + [w(t4), w(t5), w(t6)], flags | WRIST_SINGULAR))
+            else:
+                t4, t5, t6 = math.atan2(m22, -m02), math.atan2(s5, m12), math.atan2(-m11, m10)
+                out.append((k, arm + [w(t4), w(t5), w(t6)], flags))
+                out.append((k + 1, arm + [w(t4 + math.pi), w(-t5), w(t6 + math.pi)], flags))
+    return out, ""
+
+
 def _core(T: np.ndarray, a2: float, a3: float, d3: float, d4: float, near: np.ndarray | None, tol: float) -> IKBatch:
     """The closed form on validated transforms T (N, 4, 4); near None or (N, 6)."""
     N = T.shape[0]
@@ -274,15 +363,9 @@ def _core(T: np.ndarray, a2: float, a3: float, d3: float, d4: float, near: np.nd
         flags[~reachable] = 0
         rp = np.sqrt(rho2[:, 0] + pz[:, 0] ** 2)
         for i in np.flatnonzero(reach[:, 0]):
-            reason[i] = (
-                f"out of reach: the wrist centre is {rp[i]:.6g} from the origin (where axes 1 and 2 cross); "
-                f"|K| = {abs(K[i, 0]):.6g} exceeds sqrt(a3² + d4²) = {np.hypot(a3, d4):.6g}"
-            )
+            reason[i] = _reason_reach(rp[i], K[i, 0], a3, d4)
         for i in np.flatnonzero(base[:, 0]):
-            reason[i] = (
-                f"too close to the base axis: the wrist centre is at distance ρ = {np.sqrt(rho2[i, 0]):.6g} "
-                f"from the base (z0) axis, less than the shoulder offset |d3| = {abs(d3):.6g}"
-            )
+            reason[i] = _reason_base(np.sqrt(rho2[i, 0]), d3)
     flags = np.ascontiguousarray(flags, dtype=np.int64)
     return IKBatch(q=q, valid=valid, reachable=reachable, reason=reason.astype(str), flags=flags)
 
@@ -379,13 +462,12 @@ def ik(
     T = _fast_transform(T)
     nr = None if near is None else as_array(near, "near", (6,), what="a joint vector of shape (6,)")
     a2, a3, d3, d4 = _lengths(a2, a3, d3, d4)
-    b = _core(T[None], a2, a3, d3, d4, None if nr is None else nr[None], tol)
-    if not b.reachable[0]:
-        raise ValueError(f"T: the PUMA-560 cannot reach this pose: {b.reason[0]}")
-    keep = np.flatnonzero(b.valid[0])
-    q = b.q[0, keep]
-    flags = b.flags[0, keep]
-    labels = [BRANCH_LABELS[i] for i in keep]
+    found, reason = _solve_one(T, a2, a3, d3, d4, nr, tol)
+    if reason:
+        raise ValueError(f"T: the PUMA-560 cannot reach this pose: {reason}")
+    q = np.array([row for _, row, _ in found])
+    flags = np.array([f for _, _, f in found], dtype=np.int64)
+    labels = [BRANCH_LABELS[k] for k, _, _ in found]
     if nr is not None:
         order = np.argsort(joint_distance(q, nr), kind="stable")
         q, flags, labels = q[order], flags[order], [labels[i] for i in order]

@@ -348,3 +348,28 @@ def test_module_functions_with_lengths_agree_with_the_chain():
     assert np.abs(ARM.fk(a.reshape(-1, 6)).reshape(-1, 8, 4, 4) - T[:, None]).max() < 1e-9
     with pytest.raises(ValueError, match="a2"):
         puma_ik.ik(T[0], a2=-1.0)
+
+
+def test_scalar_fast_path_agrees_with_the_batch():
+    """ik (plain floats, one pose) and ik_batch (numpy, N poses) are two codings of the same closed form:
+    same branches, same angles, same flags, in general position and at every singular case."""
+    cases = list(_random_q(200, 7))
+    t3s = np.arctan2(-D4, A3)
+    cases += [
+        np.array([0.3, -0.6, 0.2, 0.9, 0.0, 0.4]),
+        np.array([-0.4, -0.2, 0.5, 0.3, np.pi, -1.0]),
+        _shoulder_singular_q(),
+        np.array([0.5, -0.3, t3s, 0.2, 1.0, 0.1]),
+        np.concatenate([_shoulder_singular_q(t3s)[:4], [0.0, 0.2]]),
+    ]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SingularityWarning)
+        for q in cases:
+            T = ARM.fk(q)
+            s = ARM.ik(T)
+            b = ARM.ik_batch(T)
+            keep = np.flatnonzero(b.valid[0])
+            assert [BRANCH_LABELS[i] for i in keep] == s.labels
+            assert np.abs(wrap(np.asarray(s) - b.q[0, keep])).max() < 1e-12
+            assert np.array_equal(s.flags, b.flags[0, keep])
+            assert (np.asarray(s) > -np.pi).all() and (np.asarray(s) <= np.pi).all()
