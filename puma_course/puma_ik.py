@@ -460,7 +460,12 @@ def ik(
     (8, 'left/up/noflip', True)
     """
     T = _fast_transform(T)
-    nr = None if near is None else as_array(near, "near", (6,), what="a joint vector of shape (6,)")
+    if near is None:
+        nr = None
+    elif isinstance(near, np.ndarray) and near.shape == (6,) and near.dtype == np.float64 and np.isfinite(near).all():
+        nr = near
+    else:
+        nr = as_array(near, "near", (6,), what="a joint vector of shape (6,)")
     a2, a3, d3, d4 = _lengths(a2, a3, d3, d4)
     found, reason = _solve_one(T, a2, a3, d3, d4, nr, tol)
     if reason:
@@ -469,7 +474,8 @@ def ik(
     flags = np.array([f for _, _, f in found], dtype=np.int64)
     labels = [BRANCH_LABELS[k] for k, _, _ in found]
     if nr is not None:
-        order = np.argsort(joint_distance(q, nr), kind="stable")
+        d = wrap(q - nr)
+        order = np.argsort(np.einsum("kj,kj->k", d, d), kind="stable")
         q, flags, labels = q[order], flags[order], [labels[i] for i in order]
     allf = int(np.bitwise_or.reduce(flags)) if len(flags) else 0
     reasons = [text for bit, text in _REASONS.items() if allf & bit]
