@@ -23,13 +23,19 @@ __all__ = ["main", "build_parser", "lab_command"]
 REPO_ROOT = Path(__file__).resolve().parent.parent
 
 
+def _course_dir(name: str) -> Path:
+    """``<repo>/name`` for a checkout (editable install), else ``./name`` (run from the course folder)."""
+    here = REPO_ROOT / name
+    return here if here.is_dir() else Path.cwd() / name
+
+
 def lab_command(no_browser: bool = False, notebooks: Path | None = None) -> list[str]:
     """The command line that opens JupyterLab on the course's lecture notebooks.
 
     >>> lab_command(no_browser=True)[1:3]
     ['-m', 'jupyterlab']
     """
-    folder = notebooks if notebooks is not None else REPO_ROOT / "notebooks"
+    folder = notebooks if notebooks is not None else _course_dir("notebooks")
     cmd = [sys.executable, "-m", "jupyterlab", str(folder)]
     if no_browser:
         cmd.append("--no-browser")
@@ -47,8 +53,8 @@ def build_parser() -> argparse.ArgumentParser:
     lab.add_argument("--print-command", action="store_true", help="print the command instead of running it")
 
     rel = sub.add_parser("release", help="generate exercises/ from solutions/")
-    rel.add_argument("--solutions", type=Path, default=REPO_ROOT / "solutions")
-    rel.add_argument("--exercises", type=Path, default=REPO_ROOT / "exercises")
+    rel.add_argument("--solutions", type=Path, default=_course_dir("solutions"))
+    rel.add_argument("--exercises", type=Path, default=_course_dir("exercises"))
     rel.add_argument("--check", action="store_true", help="write nothing; exit 1 if exercises/ is out of date")
 
     gr = sub.add_parser("grade", help="grade SUBMISSIONS/<student>/<exercise>.ipynb")
