@@ -130,6 +130,10 @@ class IKResult:
 
     ``labels[i]`` names the branch of ``q[i]`` (shoulder/elbow/wrist);
     ``flags[i]`` its singularity bits; ``singular`` the reasons, in words.
+
+    >>> r = IKResult(q=np.zeros((1, 6)), labels=["left/up/noflip"], flags=np.zeros(1, dtype=int))
+    >>> np.asarray(r).shape, len(r), r.is_singular
+    ((1, 6), 1, False)
     """
 
     q: np.ndarray
@@ -158,10 +162,6 @@ class IKResult:
         """The solution closest to ``q_ref`` in wrapped joint distance."""
         ref = as_array(q_ref, "q_ref", (6,), what="a joint vector of shape (6,)")
         return self.q[int(np.argmin(joint_distance(self.q, ref)))].copy()
-
-    def label_of(self, i: int) -> str:
-        """Label of solution ``i``."""
-        return self.labels[i]
 
     def __repr__(self) -> str:
         lines = [f"IKResult: {len(self.q)} solution(s)" + (" [singular]" if self.singular else "")]
