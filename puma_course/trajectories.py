@@ -57,8 +57,11 @@ def line_path(T0: Any, T1: Any, n: int) -> np.ndarray:
            [1. , 2. , 0. ]])
     """
     T0 = as_transform(T0, "T0")
-    arr = np.asarray(T1, dtype=float) if not isinstance(T1, str) else T1
-    if getattr(arr, "shape", None) == (4, 4):
+    try:
+        shape = np.shape(T1)
+    except ValueError:  # ragged nested lists
+        shape = None
+    if shape == (4, 4):
         p1 = as_transform(T1, "T1")[:3, 3]
     else:
         p1 = as_array(T1, "T1", (3,), what="a pose (4, 4) or a point (3,)")
