@@ -943,18 +943,6 @@ def _child_env(workdir: str) -> dict[str, str]:
     return env
 
 
-def _limit_resources() -> None:  # pragma: no cover - runs in the child before exec
-    try:
-        import resource
-
-        gib = 1 << 30
-        resource.setrlimit(resource.RLIMIT_AS, (4 * gib, 4 * gib))
-        resource.setrlimit(resource.RLIMIT_FSIZE, (200 << 20, 200 << 20))
-        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-    except (ImportError, ValueError, OSError):
-        pass
-
-
 def _drain(stream: Any, cap: int, sink: list[bytes], overflow: list[bool]) -> None:
     kept = 0
     while True:
@@ -978,7 +966,7 @@ def _run_child(cells: list[str], calls: list[dict[str, Any]], workdir: str, time
                  "from puma_course.grading_worker import main; main()")
     kwargs: dict[str, Any] = {}
     if os.name == "posix":
-        kwargs.update(start_new_session=True, preexec_fn=_limit_resources)
+        kwargs.update(start_new_session=True)  # its own process group, killed as a whole
     proc = subprocess.Popen([sys.executable, "-I", "-c", bootstrap], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                             stderr=subprocess.DEVNULL, cwd=workdir, env=_child_env(workdir), **kwargs)
     sink: list[bytes] = []

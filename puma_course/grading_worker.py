@@ -189,8 +189,21 @@ def _install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
                     setattr(mod, parts[-1], wrapped)
 
 
+def limit_resources(memory_bytes: int = 4 << 30, file_bytes: int = 200 << 20) -> None:
+    """Cap this process's address space and file sizes and disable core dumps (POSIX; no-op elsewhere)."""
+    try:
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
+        resource.setrlimit(resource.RLIMIT_FSIZE, (file_bytes, file_bytes))
+        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    except (ImportError, ValueError, OSError):
+        pass
+
+
 def main() -> None:
     """Run one job read from stdin (see the module docstring)."""
+    limit_resources()
     # Keep private references before any student code can monkeypatch them.
     dumps = json.dumps
     write = os.write
