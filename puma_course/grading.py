@@ -1179,12 +1179,16 @@ def grade(submissions: str | os.PathLike[str], output: str | os.PathLike[str],
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, int(jobs))) as pool:
         results = list(pool.map(work, tasks))
     results.sort(key=lambda r: (r.student, r.exercise))
-    if _package_digest() != package_before:
+    package_after = _package_digest()
+    changed = sorted(k for k in set(package_before) | set(package_after)
+                     if package_before.get(k) != package_after.get(k))
+    if changed:
         import warnings
 
-        warnings.warn("the puma_course package files changed while grading; a submission may have tampered "
-                      "with them, so the grades of notebooks graded afterwards are not reliable. Grade in a "
-                      "container or as a user who cannot write the package.", GradingIntegrityWarning, stacklevel=2)
+        warnings.warn(f"the puma_course package files changed while grading ({', '.join(changed)}); a submission "
+                      "may have tampered with them, so the grades of notebooks graded afterwards are not reliable. "
+                      "Grade in a container or as a user who cannot write the package.", GradingIntegrityWarning,
+                      stacklevel=2)
     _write_csv(output, results, names)
     if feedback is not None:
         fb_dir = Path(feedback)
