@@ -1190,12 +1190,23 @@ def grade(submissions: str | os.PathLike[str], output: str | os.PathLike[str],
                       "Grade in a container or as a user who cannot write the package.", GradingIntegrityWarning,
                       stacklevel=2)
     _write_csv(output, results, names)
+    for r in results:
+        if r.status == "missing":
+            others = sorted(p.name for p in (sub_dir / r.student).glob("*.ipynb") if p.stem not in EXERCISES)
+            if others:
+                r.notes.append(f"notebooks found under other names: {', '.join(others)} "
+                               f"(name the file exactly {r.exercise}.ipynb)")
     if feedback is not None:
         fb_dir = Path(feedback)
         fb_dir.mkdir(parents=True, exist_ok=True)
+        used: set[str] = set()
         for student in students:
             mine = [r for r in results if r.student == student]
-            (fb_dir / f"{_safe_name(student)}.md").write_text(_feedback_markdown(student, mine, seed), encoding="utf-8")
+            stem = _safe_name(student)
+            while stem in used:  # two folder names that sanitise alike
+                stem += "_"
+            used.add(stem)
+            (fb_dir / f"{stem}.md").write_text(_feedback_markdown(student, mine, seed), encoding="utf-8")
     return results
 
 

@@ -92,3 +92,13 @@ def test_grade_warns_and_exits_3_when_the_package_changes_during_grading(tmp_pat
                  "--quiet"])
     assert code == 3
     assert "changed while grading" in capsys.readouterr().err
+
+
+def test_missing_notebook_feedback_names_misnamed_files(tmp_path):
+    subs = tmp_path / "subs"
+    (subs / "cat").mkdir(parents=True)
+    shutil.copy(ROOT / "solutions" / "ex01_rotations.ipynb", subs / "cat" / "ex01_rotations (1).ipynb")
+    assert main(["grade", str(subs), "-o", str(tmp_path / "g.csv"), "--feedback", str(tmp_path / "fb"),
+                 "--exercise", "ex01_rotations", "--quiet"]) == 0
+    text = (tmp_path / "fb" / "cat.md").read_text(encoding="utf-8")
+    assert "missing" in text and "ex01_rotations (1).ipynb" in text
