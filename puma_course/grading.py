@@ -993,6 +993,8 @@ def _run_child(cells: list[str], calls: list[dict[str, Any]], workdir: str, time
         if timed_out:
             proc.wait()
     reader.join(timeout=5)
+    if not reader.is_alive() and proc.stdout is not None:
+        proc.stdout.close()
     events = []
     for line in b"".join(sink).splitlines():
         try:

@@ -287,8 +287,17 @@ def main() -> None:
             except BaseException as exc:  # noqa: BLE001
                 event["error"] = _short_error(exc)
             else:
+                def to_floats(value: Any) -> Any:
+                    raw = asarray(value)
+                    if raw.dtype.kind == "c":
+                        raise TypeError("complex numbers are not accepted")
+                    return asarray(raw, dtype=isfinite_dtype)
+
                 try:
-                    arr = asarray(value, dtype=isfinite_dtype)
+                    arr = run_timed(to_floats, value)  # a hostile __array__ must not escape the time limit
+                except CellTimeout:
+                    event["error"] = f"converting the returned value to numbers took longer than {timeout:g} s"
+                    slow.add(call["qid"])
                 except BaseException as exc:  # noqa: BLE001
                     kind = type(value).__name__
                     event["error"] = f"returned a {kind}, which is not an array of numbers ({str(exc)[:120]})"
