@@ -84,26 +84,48 @@ def _s(x: Any) -> sp.Expr:
 
 
 def rot_x_sym(angle: Any) -> sp.Matrix:
-    """Rot(X, angle) as a symbolic 4x4 transform."""
+    """Rot(X, angle) as a symbolic 4x4 transform (active rotation about x).
+
+    >>> rot_x_sym(sp.pi / 2) * sp.Matrix([0, 1, 0, 1])  # y turns onto z
+    Matrix([
+    [0],
+    [0],
+    [1],
+    [1]])
+    """
     c, s = sp.cos(_s(angle)), sp.sin(_s(angle))
     return sp.Matrix([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1]])
 
 
 def rot_z_sym(angle: Any) -> sp.Matrix:
-    """Rot(Z, angle) as a symbolic 4x4 transform."""
+    """Rot(Z, angle) as a symbolic 4x4 transform (active rotation about z).
+
+    >>> rot_z_sym(sp.pi / 2)[:2, :2]
+    Matrix([
+    [0, -1],
+    [1,  0]])
+    """
     c, s = sp.cos(_s(angle)), sp.sin(_s(angle))
     return sp.Matrix([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
 
 
 def trans_x_sym(a: Any) -> sp.Matrix:
-    """Trans(X, a) as a symbolic 4x4 transform."""
+    """Trans(X, a) as a symbolic 4x4 transform (slide along x by a).
+
+    >>> trans_x_sym(sp.Symbol("a"))[:3, 3].T
+    Matrix([[a, 0, 0]])
+    """
     T = sp.eye(4)
     T[0, 3] = _s(a)
     return T
 
 
 def trans_z_sym(d: Any) -> sp.Matrix:
-    """Trans(Z, d) as a symbolic 4x4 transform."""
+    """Trans(Z, d) as a symbolic 4x4 transform (slide along z by d).
+
+    >>> trans_z_sym(sp.Symbol("d"))[:3, 3].T
+    Matrix([[0, 0, d]])
+    """
     T = sp.eye(4)
     T[2, 3] = _s(d)
     return T
@@ -232,7 +254,11 @@ def chain_sym(rows: Any, simplify: bool = True) -> tuple[list[sp.Matrix], sp.Mat
 
 
 def entries(T: sp.Matrix) -> dict[str, sp.Expr]:
-    """The twelve informative entries of a 4x4 transform as a dict r11..r33, px, py, pz."""
+    """The twelve informative entries of a 4x4 transform as a dict r11..r33, px, py, pz.
+
+    >>> entries(trans_x_sym(5))["px"], entries(sp.eye(4))["r22"]
+    (5, 1)
+    """
     return {name: T[i, j] for name, (i, j) in _ENTRY_INDEX.items()}
 
 
@@ -374,14 +400,22 @@ def fk_from_forms(forms: Mapping[str, Any], q: Any, **lengths: float) -> np.ndar
 
 # ---- the lecture's printed formulas (transcribed as printed, misprints included) -----------
 def printed_general_link_matrix() -> sp.Matrix:
-    """The general link matrix as printed (Meghdari, "the T transformation"), symbols alpha, a, theta, d."""
+    """The general link matrix as printed (Meghdari, "the T transformation"), symbols alpha, a, theta, d.
+
+    >>> printed_general_link_matrix()[2, 3]
+    d*cos(alpha)
+    """
     al, a, th, d = sp.symbols("alpha a theta d", real=True)
     Ct, St, Ca, Sa = sp.cos(th), sp.sin(th), sp.cos(al), sp.sin(al)
     return sp.Matrix([[Ct, -St, 0, a], [St * Ca, Ct * Ca, -Sa, -Sa * d], [St * Sa, Ct * Sa, Ca, Ca * d], [0, 0, 0, 1]])
 
 
 def printed_puma560_link_matrices() -> dict[str, sp.Matrix]:
-    """The six PUMA-560 link matrices ^0T1 .. ^5T6 exactly as printed (short-hand C1 = cos θ1, ...)."""
+    """The six PUMA-560 link matrices ^0T1 .. ^5T6 exactly as printed (short-hand C1 = cos θ1, ...).
+
+    >>> printed_puma560_link_matrices()["3T4"][1, :]
+    Matrix([[0, 0, 1, d4]])
+    """
     C1, C2, C3, C4, C5, C6 = _sh("C1 C2 C3 C4 C5 C6")
     S1, S2, S3, S4, S5, S6 = _sh("S1 S2 S3 S4 S5 S6")
     a2, a3, d3, d4 = PUMA560_LENGTHS
@@ -397,7 +431,11 @@ def printed_puma560_link_matrices() -> dict[str, sp.Matrix]:
 
 
 def printed_puma560_0T6_entries() -> dict[str, sp.Expr]:
-    """r11, r21, r31 of the PUMA-560's ^0T6 as printed (Meghdari eq. 3.14), in the short-hand."""
+    """r11, r21, r31 of the PUMA-560's ^0T6 as printed (Meghdari eq. 3.14), in the short-hand.
+
+    >>> printed_puma560_0T6_entries()["r31"]
+    -C23*C6*S5 - S23*(C4*C5*C6 - S4*S6)
+    """
     C1, C4, C5, C6, C23 = _sh("C1 C4 C5 C6 C23")
     S1, S4, S5, S6, S23 = _sh("S1 S4 S5 S6 S23")
     return {
@@ -413,6 +451,9 @@ def printed_mk3_link_matrices() -> dict[str, sp.Matrix]:
     Misprint kept on purpose: the printed ^4T5 has -d5 in row 3 (z), column 4
     and 0 in row 2; the table (α4 = 90°, d5) gives -sin(α4) d5 = -d5 in row 2
     and cos(α4) d5 = 0 in row 3.
+
+    >>> printed_mk3_link_matrices()["4T5"][:3, 3].T  # as printed (wrong): the offset sits in row 3
+    Matrix([[0, 0, -d5]])
     """
     C1, C2, C3, C4, C5 = _sh("C1 C2 C3 C4 C5")
     S1, S2, S3, S4, S5 = _sh("S1 S2 S3 S4 S5")
@@ -428,7 +469,11 @@ def printed_mk3_link_matrices() -> dict[str, sp.Matrix]:
 
 
 def printed_mk3_0T5() -> dict[str, sp.Expr]:
-    """All twelve entries of the MK3's ^0T5 as printed, in the short-hand."""
+    """All twelve entries of the MK3's ^0T5 as printed, in the short-hand (they agree with the table).
+
+    >>> printed_mk3_0T5()["pz"]
+    -C234*d5 + S2*a2 + S23*a3 + d1
+    """
     C1, C2, C5, C23, C234 = _sh("C1 C2 C5 C23 C234")
     S1, S2, S5, S23, S234 = _sh("S1 S2 S5 S23 S234")
     d1, a1, a2, a3, d5 = MK3_LENGTHS
@@ -450,7 +495,11 @@ def printed_mk3_0T5() -> dict[str, sp.Expr]:
 
 
 def derived_link_matrices(rows: Any) -> dict[str, sp.Matrix]:
-    """Link matrices from a table (or ``DHChain``) keyed like the printed ones: "0T1", "1T2", ..."""
+    """Link matrices from a table (or ``DHChain``) keyed like the printed ones: "0T1", "1T2", ...
+
+    >>> derived_link_matrices(mk3_table_sym())["4T5"][:3, 3].T  # from the table: the offset sits in row 2
+    Matrix([[0, -d5, 0]])
+    """
     mats, _ = chain_sym(rows, simplify=False)
     return {f"{i}T{i + 1}": m.applyfunc(sp.simplify) for i, m in enumerate(mats)}
 

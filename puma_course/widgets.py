@@ -28,6 +28,7 @@ from typing import Any
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
+from IPython import get_ipython
 from IPython.display import display
 
 from . import plotting
@@ -114,7 +115,7 @@ def joint_sliders(
         label = f"{names[i]} [deg]" if deg[i] else (f"{names[i]} [{units}]" if units else names[i])
         sliders.append(
             widgets.FloatSlider(
-                value=round(v / st) * st if deg[i] else v,
+                value=v,
                 min=a,
                 max=b,
                 step=st,
@@ -129,7 +130,15 @@ def joint_sliders(
 
 
 def pose_readout(q: np.ndarray, frames: np.ndarray, precision: int = 4) -> str:
-    """Text of the last frame's pose: position p and rotation matrix R (for a panel's readout)."""
+    """Text of the last frame's pose: position p and rotation matrix R (for a panel's readout).
+
+    >>> print(pose_readout(np.zeros(1), np.eye(4)[None]))
+    p = [0. 0. 0.]
+    R =
+    [[1. 0. 0.]
+     [0. 1. 0.]
+     [0. 0. 1.]]
+    """
     T = np.asarray(frames)[-1]
     with np.printoptions(precision=precision, suppress=True):
         return f"p = {np.round(T[:3, 3], precision) + 0.0}\nR =\n{np.round(T[:3, :3], precision) + 0.0}"
@@ -183,7 +192,15 @@ class Panel(widgets.VBox):
         self.last_readout: str | None = None
         self.readout_widget = widgets.HTML(value="")
         controls = widgets.VBox(list(sliders) + ([self.readout_widget] if readout is not None else []))
-        self.output = widgets.interactive_output(self._redraw, {f"s{i}": s for i, s in enumerate(sliders)})
+        if get_ipython() is not None:
+            # in a kernel: the standard ipywidgets route (clears and refills the Output on every change)
+            self.output = widgets.interactive_output(self._redraw, {f"s{i}": s for i, s in enumerate(sliders)})
+        else:
+            # plain Python (tests, doctests): same callback, wired directly, without terminal clear-codes
+            self.output = widgets.Output()
+            for s in sliders:
+                s.observe(lambda change: self._redraw(), names="value")
+            self._redraw()
         super().__init__([widgets.HBox([controls, self.output])])
 
     def _redraw(self, **kw: float) -> None:
@@ -201,7 +218,8 @@ class Panel(widgets.VBox):
             text = _call_readout(self._readout_fn, q, self.last_frames)
             self.last_readout = text
             self.readout_widget.value = "<pre style='font-size:85%; line-height:1.2'>" + _escape(text) + "</pre>"
-        display(fig)
+        if get_ipython() is not None:  # in a kernel: show it in the panel's Output; elsewhere (tests) just close
+            display(fig)
         plt.close(fig)
 
     def set_radians(self, q: Any) -> None:
@@ -259,6 +277,14 @@ def chain_panel(
     cube framing the arm over many configurations, fixed once for the panel.
     Works for any chain: ``chain_panel(arm.frames, 6)`` or, for Porter's chain,
     ``chain_panel(lambda q: porter.frames(q, l1, l3, l4), names, ...)``.
+
+    >>> from puma_course import mk3
+    >>> panel = chain_panel(mk3().frames, 5, readout="pose")
+    >>> panel.sliders[1].description, panel.sliders[1].max
+    ('θ2 [deg]', 180.0)
+    >>> panel.sliders[1].value = 90.0  # the student sets degrees ...
+    >>> np.round(panel.last_q, 4).tolist()  # ... the kinematics receives radians
+    [0.0, 1.5708, 0.0, 0.0, 0.0]
     """
     names = [f"θ{i + 1}" for i in range(joints)] if isinstance(joints, (int, np.integer)) else list(joints)
     sliders = joint_sliders(names, lows, highs, values, degrees=degrees, step=step, units=units)
@@ -289,6 +315,11 @@ def dh_link_panel(
     The four elementary steps Rot(X, α) Trans(X, a) Rot(Z, θ) Trans(Z, d) are
     drawn as faint intermediate frames, so the path from {i-1} to {i} (a along
     X_{i-1}, then d along Z_i) is visible. ``values`` are radians / lengths.
+
+    >>> panel = dh_link_panel()
+    >>> panel.sliders[0].value, panel.sliders[1].value = 90.0, 1.0  # α_{i-1} = 90°, a_{i-1} = 1
+    >>> np.round(panel.last_frames[-1][:3, 3], 4) + 0.0  # origin of {i}: (a, -sin(α) d, cos(α) d)
+    array([ 1. , -0.5,  0. ])
     """
     lo, hi = length_range
     sliders = joint_sliders(

@@ -98,3 +98,28 @@ def test_dh_link_panel_matrix_matches_hand_worked_cases():
     np.testing.assert_allclose(T[:3, 2], [0.0, -1.0, 0.0], atol=1e-12)
     assert "^(i-1)T_i" in panel.last_readout
     np.testing.assert_allclose(panel.last_frames[0], np.eye(4))
+
+
+def test_kernel_route_uses_interactive_output(monkeypatch):
+    # pretend to be inside a kernel: the panel then goes through ipywidgets.interactive_output
+    import ipywidgets
+
+    import puma_course.widgets as W
+
+    calls = []
+    real = ipywidgets.interactive_output
+
+    def spy(f, controls):
+        calls.append(sorted(controls))
+        return real(f, controls)
+
+    monkeypatch.setattr(W, "get_ipython", lambda: object())
+    monkeypatch.setattr(W.widgets, "interactive_output", spy)
+    arm = mk3()
+    panel = W.chain_panel(arm.frames, 5, readout="pose")
+    assert calls == [["s0", "s1", "s2", "s3", "s4"]]
+    panel.sliders[2].value = -90.0
+    q = np.array([0.0, 0.0, -np.pi / 2, 0.0, 0.0])
+    np.testing.assert_allclose(panel.last_q, q, atol=1e-12)
+    np.testing.assert_allclose(panel.last_frames[-1], arm.fk(q), atol=1e-9)
+    assert plt.get_fignums() == []
