@@ -173,19 +173,24 @@ def import_row() -> None:
             return time.perf_counter() - t
 
         bare = min(run("pass") for _ in range(5))
+        numpy_only = min(run("import numpy") for _ in range(5))
         full = min(run("import puma_course") for _ in range(5))
         heavy = subprocess.run(
             [
                 sys.executable,
                 "-c",
-                "import sys, puma_course; print(sorted({'sympy', 'matplotlib', 'ipywidgets'} & set(sys.modules)))",
+                "import sys, puma_course; "
+                "print(', '.join(sorted({'sympy', 'matplotlib', 'ipywidgets'} & set(sys.modules))))",
             ],
             check=True,
             cwd=ROOT,
             capture_output=True,
             text=True,
         ).stdout.strip()
-        return f"{(full - bare) * 1e3:.0f} ms (heavy modules loaded: {heavy})"
+        return (
+            f"{(full - bare) * 1e3:.0f} ms, of which numpy {(numpy_only - bare) * 1e3:.0f} ms "
+            f"(sympy/matplotlib/ipywidgets loaded: {heavy or 'none'})"
+        )
 
     row("`import puma_course` (fresh process, minus bare python)", "fast: numpy only", measure)
 
@@ -236,7 +241,7 @@ def grading_rows() -> None:
                 rows.append((f"grading: {cells[0]}", " / ".join(cells[1:]), ""))
         else:
             for ln in lines[-5:]:
-                rows.append(("grading (bench_grading.py)", ln.strip()[:100], ""))
+                rows.append(("grading (bench_grading.py)", ln.strip()[:200], ""))
     except Exception as err:  # noqa: BLE001
         rows.append(("grading (bench_grading.py)", f"n/a (error {type(err).__name__}: {err})", ""))
 
