@@ -1,6 +1,6 @@
 """Grading is robust and fair: each crafted submission in tests/fixtures/submissions gets what it earned.
 
-One grading run over a copy of the fixture class (16 students, exercise 1 only) with short
+One grading run over a copy of the fixture class (17 students, exercise 1 only) with short
 limits (3 s per cell and per call, 8 s per notebook), plus a student built here who tampers
 with files whose paths it is given. Expected scores are worked out from what each crafted
 notebook does (see tests/fixtures/submissions/*/ex01_rotations.ipynb).
@@ -40,6 +40,7 @@ EXPECTED = {
     "tamper_files": (10, "ok", {}),
     "memory_hog": (10, "cell-error", {}),
     "evil_values": (5, "ok", {"q1": 0, "q2": 0}),
+    "memorizer": (2.4, "ok", {"q1": 2, "q4": 0.4}),
 }
 
 
