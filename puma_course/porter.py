@@ -37,6 +37,7 @@ is fixed). One representative per branch is returned: the configuration nearest
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass, field
 from typing import Any
@@ -182,13 +183,40 @@ def fk(q: Any, l1: Any, l3: Any, l4: Any) -> np.ndarray:
     (Porter's eq. 6 with the corrected local-frame product). q (6,) -> (4, 4),
     (N, 6) -> (N, 4, 4), vectorised.
 
-    >>> np.round(fk([0, 0, 2, 0, 0, 0], l1=1, l3=0.5, l4=0.25), 12)
+    >>> np.round(fk([0, 0, 2, 0, 0, 0], l1=1, l3=0.5, l4=0.25), 12) + 0.0
     array([[1.  , 0.  , 0.  , 2.25],
            [0.  , 1.  , 0.  , 0.  ],
            [0.  , 0.  , 1.  , 0.5 ],
            [0.  , 0.  , 0.  , 1.  ]])
     """
-    return frames(q, l1, l3, l4)[..., 5, :, :]
+    q = _q(q)
+    l1, l3, l4 = _lengths(l1, l3, l4)
+    return _fk(q, l1, l3, l4)
+
+
+def _fk(q: np.ndarray, l1: float, l3: float, l4: float) -> np.ndarray:
+    """F05 only (closed form of the corrected product), q (..., 6) -> (..., 4, 4); no validation."""
+    a1, a2, q2, a3, a4, a5 = np.moveaxis(q, -1, 0)
+    c1, s1, c2, s2 = np.cos(a1), np.sin(a1), np.cos(a2), np.sin(a2)
+    c4, s4, c5, s5 = np.cos(a4), np.sin(a4), np.cos(a5), np.sin(a5)
+    c23, s23 = np.cos(a2 + a3), np.sin(a2 + a3)
+    T = np.zeros(q.shape[:-1] + (4, 4))
+    x3u, x3z = c23, -s23  # x3 = c23 u - s23 z0 (u = (c1, s1, 0) radial, y1 = (-s1, c1, 0))
+    # x5 = x4 = c4 x3 + s4 y1
+    x5x, x5y, x5z = c4 * x3u * c1 - s4 * s1, c4 * x3u * s1 + s4 * c1, c4 * x3z
+    # y4 = -s4 x3 + c4 y1, z4 = z3 = s23 u + c23 z0
+    y4x, y4y, y4z = -s4 * x3u * c1 - c4 * s1, -s4 * x3u * s1 + c4 * c1, -s4 * x3z
+    z3x, z3y, z3z = s23 * c1, s23 * s1, c23
+    T[..., 0, 0], T[..., 1, 0], T[..., 2, 0] = x5x, x5y, x5z
+    T[..., 0, 1], T[..., 1, 1], T[..., 2, 1] = c5 * y4x + s5 * z3x, c5 * y4y + s5 * z3y, c5 * y4z + s5 * z3z
+    T[..., 0, 2], T[..., 1, 2], T[..., 2, 2] = -s5 * y4x + c5 * z3x, -s5 * y4y + c5 * z3y, -s5 * y4z + c5 * z3z
+    # p5 = p2 + q2 x2 - l3 z3 + l4 x5, x2 = c2 u - s2 z0
+    r = q2 * c2 - l3 * s23  # radial coordinate of p4
+    T[..., 0, 3] = r * c1 + l4 * x5x
+    T[..., 1, 3] = r * s1 + l4 * x5y
+    T[..., 2, 3] = l1 - q2 * s2 - l3 * c23 + l4 * x5z
+    T[..., 3, 3] = 1.0
+    return T
 
 
 # --------------------------------------------------------------------------- helpers on configurations
@@ -359,6 +387,47 @@ def _ver1_batch(
     return Q.reshape(N, 4, 6), flags.reshape(N, 4), w.reshape(N, 4, 2)
 
 
+def _ver1_scalar(T: list, l1: float, l3: float, l4: float, tol: float = TOL) -> list | None:
+    """The same formulas as :func:`_ver1_batch` for one pose in plain floats (fast path).
+
+    Returns the four configurations, or None when the pose is within ``tol`` of a singular
+    case (then the batched path, which holds the representative rules, is used).
+    """
+    (r00, r01, _, px), (r10, r11, _, py), (r20, r21, _, pz) = T[0], T[1], T[2]
+    L = l1 + l3 + l4 + math.sqrt(px * px + py * py + pz * pz)
+    p4x, p4y, p4z = px - l4 * r00, py - l4 * r10, pz - l4 * r20
+    if math.hypot(p4x, p4y) <= tol * L:
+        return None
+    out = []
+    base = math.atan2(p4y, p4x)
+    h = p4z - l1
+    for a1 in (base, base + math.pi):
+        c1, s1 = math.cos(a1), math.sin(a1)
+        m00, m01 = c1 * r00 + s1 * r10, c1 * r01 + s1 * r11
+        m10, m11 = -s1 * r00 + c1 * r10, -s1 * r01 + c1 * r11
+        m20, m21 = r20, r21
+        c4a = math.hypot(m00, m20)
+        if c4a <= tol:
+            return None
+        s4 = m10
+        r4 = c1 * p4x + s1 * p4y
+        for sg in (1.0, -1.0):
+            c4 = sg * c4a
+            a4 = math.atan2(s4, c4)
+            a23 = math.atan2(-sg * m20, sg * m00)
+            c23, s23 = math.cos(a23), math.sin(a23)
+            b0 = c23 * m01 - s23 * m21
+            b2 = s23 * m01 + c23 * m21
+            a5 = math.atan2(b2, -s4 * b0 + c4 * m11)
+            c2q2, s2q2 = r4 + l3 * s23, -(h + l3 * c23)
+            q2 = math.hypot(c2q2, s2q2)
+            if q2 <= tol * L:
+                return None
+            a2 = math.atan2(s2q2, c2q2)
+            out.append((a1, a2, q2, a23 - a2, a4, a5))
+    return out
+
+
 def ik_explicit_batch(T: Any, l1: Any, l3: Any, l4: Any) -> tuple[np.ndarray, np.ndarray]:
     """Ver.1 for a batch of poses: (N, 4, 6) configurations and (N, 4) singular-case bit flags.
 
@@ -518,7 +587,7 @@ def _finish(
     # differ by π in α1 or in α2 + α3)
     L = _scale(T[:3, 3], l1, l3, l4)
     if bits and len(S):
-        err = np.abs(_frames(S, l1, l3, l4)[:, 5] - T).max(axis=(-2, -1)) / max(1.0, L)
+        err = np.abs(_fk(S, l1, l3, l4) - T).max(axis=(-2, -1)) / max(1.0, L)
         S = _dedupe(S[err < 1e-8])
     reason = "; ".join(CASES[n] for n in _names(bits))
     if q2_max is not None:
@@ -572,6 +641,9 @@ def solve(
 def _solve_explicit(
     T: np.ndarray, l1: float, l3: float, l4: float, near: np.ndarray | None, q2_max: float | None
 ) -> IKResult:
+    fast = _ver1_scalar(T.tolist(), l1, l3, l4)
+    if fast is not None:  # general position: the four branches, pure-Python arithmetic
+        return _finish(np.array(fast), 0, T, l1, l3, l4, near, q2_max, "explicit")
     R, p = T[None, :3, :3], T[None, :3, 3]
     alpha1 = None if near is None else np.array([near[0]])
     Q, flags, _ = _ver1_batch(R, p, l1, l3, l4, alpha1=alpha1)
@@ -643,55 +715,86 @@ def angle(v: Any, w: Any, n: Any) -> float:
     return float(np.arctan2(np.dot(n, np.cross(v, w)), np.dot(v, w)))
 
 
+def _cross(a: tuple, b: tuple) -> tuple:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _dot(a: tuple, b: tuple) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _sub(a: tuple, b: tuple) -> tuple:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _axpy(k: float, a: tuple, b: tuple) -> tuple:  # b + k a
+    return (b[0] + k * a[0], b[1] + k * a[1], b[2] + k * a[2])
+
+
+def _norm(a: tuple) -> float:
+    return math.sqrt(_dot(a, a))
+
+
+def _angle(v: tuple, w: tuple, n: tuple) -> float:  # angle() about n, plain floats
+    return math.atan2(_dot(n, _cross(v, w)), _dot(v, w))
+
+
 def _solve_geometric(
     T: np.ndarray, l1: float, l3: float, l4: float, near: np.ndarray | None, q2_max: float | None
 ) -> IKResult:
-    R, p5 = T[:3, :3], T[:3, 3]
-    x5, z5 = R[:, 0], R[:, 2]
-    L = float(_scale(p5, l1, l3, l4))
+    """Ver.2 with plain-float 3-vectors (p0 = 0 is kept in the formulas for readability)."""
+    t = T.tolist()
+    x5 = (t[0][0], t[1][0], t[2][0])
+    z5 = (t[0][2], t[1][2], t[2][2])
+    p5 = (t[0][3], t[1][3], t[2][3])
+    L = l1 + l3 + l4 + _norm(p5)
     bits = 0
-    p0 = np.zeros(3)
-    p2 = np.array([0.0, 0.0, l1])  # eq. 17
-    p4 = p5 - l4 * x5  # eq. 17
-    # normal of the plane P through p0, p2, p4: (p2 - p0) × (p4 - p0), i.e. the joint axis y1
-    # (the printed order (p4 - p0) × (p2 - p0) gives -y1 and flips the signs of α2, α3, α4)
-    n = np.cross(p2 - p0, p4 - p0)
-    if np.linalg.norm(n) <= TOL * L * L:  # p4 on the z0 axis: the plane P is free
+    p0 = (0.0, 0.0, 0.0)
+    p2 = (0.0, 0.0, l1)  # eq. 17: p2 = p0 + l1 z0
+    p4 = _axpy(-l4, x5, p5)  # eq. 17: p4 = p5 - l4 x5
+    # normal of the plane P through p0, p2, p4: (p2 - p0) x (p4 - p0), i.e. the joint axis y1
+    # (the printed order (p4 - p0) x (p2 - p0) gives -y1 and flips the signs of α2, α3, α4)
+    n = _cross(_sub(p2, p0), _sub(p4, p0))
+    nn = _norm(n)
+    if nn <= TOL * L * L:  # p4 on the z0 axis: the plane P is free
         bits |= _BITS[AXIS]
-        a1 = float(near[0]) if near is not None else float(_alpha1_simplest(R))
-        n = np.array([-np.sin(a1), np.cos(a1), 0.0])
+        a1 = float(near[0]) if near is not None else float(_alpha1_simplest(T[:3, :3]))
+        n = (-math.sin(a1), math.cos(a1), 0.0)
     else:
-        a1 = float(np.arctan2(p4[1], p4[0]))
-        n = n / np.linalg.norm(n)
-    # eq. 19: z4 ⊥ n, z4 ⊥ x5, |z4| = 1  ->  z4 = ±(n × x5)/|n × x5|; p3 = p4 ± l3 z4 (eq. 18 with l3)
-    m = np.cross(n, x5)
-    if np.linalg.norm(m) <= TOL:  # n ∥ x5: planes parallel, p3 on a circle; Porter: minimal q2
+        a1 = math.atan2(p4[1], p4[0])
+        n = (n[0] / nn, n[1] / nn, n[2] / nn)
+    # eq. 19: z4 ⊥ n, z4 ⊥ x5, |z4| = 1  ->  z4 = ±(n x x5)/|n x x5|; p3 = p4 ± l3 z4 (eq. 18 with l3)
+    m = _cross(n, x5)
+    mn = _norm(m)
+    if mn <= TOL:  # n ∥ x5: planes parallel, p3 on a circle about p4; Porter: minimal q2
         bits |= _BITS[PARALLEL]
-        d = p4 - p2
+        d = _sub(p4, p2)
+        dn = _norm(d)
         if near is not None:  # the member of the family nearest to ``near``
-            a23 = _refine_parallel(R, p5, l1, l3, l4, a1, near)[[1, 3]].sum()
-            u = np.array([np.cos(a1), np.sin(a1), 0.0])
-            P3 = [p4 + l3 * (np.sin(a23) * u + np.array([0.0, 0.0, np.cos(a23)]))]
-        elif np.linalg.norm(d) > TOL * L:
-            P3 = [p4 - l3 * d / np.linalg.norm(d)]
+            a23 = float(_refine_parallel(T[:3, :3], T[:3, 3], l1, l3, l4, a1, near)[[1, 3]].sum())
+            z = (math.sin(a23) * math.cos(a1), math.sin(a23) * math.sin(a1), math.cos(a23))
+            P3 = [_axpy(l3, z, p4)]
+        elif dn > TOL * L:
+            P3 = [_axpy(-l3 / dn, d, p4)]
         else:  # p4 = p2: every p3 on the circle gives q2 = l3; take z4 = z0 (simplest)
-            P3 = [p4 + l3 * np.array([0.0, 0.0, 1.0])]
+            P3 = [_axpy(l3, (0.0, 0.0, 1.0), p4)]
     else:
-        z4 = m / np.linalg.norm(m)
-        P3 = [p4 + l3 * z4, p4 - l3 * z4]
+        z4 = (m[0] / mn, m[1] / mn, m[2] / mn)
+        P3 = [_axpy(l3, z4, p4), _axpy(-l3, z4, p4)]
     sols = []
     for p3 in P3:
-        z4 = (p3 - p4) / l3
-        q2 = float(np.linalg.norm(p3 - p2))
-        a23 = angle(p2 - p0, p4 - p3, n) - np.pi
-        if q2 <= TOL * L:  # p3 = p2: α2 free, only α2 + α3 fixed
+        z4 = _sub(p3, p4)
+        z4 = (z4[0] / l3, z4[1] / l3, z4[2] / l3)
+        q2 = _norm(_sub(p3, p2))
+        a4 = _angle(n, x5, z4) + math.pi / 2
+        a5 = _angle(_sub(p3, p4), z5, x5)
+        if q2 <= TOL * L:  # p3 = p2: α2 free, only α2 + α3 = angle(p2 - p0, p4 - p3) - π is fixed
             bits |= _BITS[Q2_ZERO]
             a2 = 0.0
+            a3 = _angle(_sub(p2, p0), _sub(p4, p3), n) - math.pi - a2
         else:
-            a2 = angle(p2 - p0, p3 - p2, n) - np.pi / 2
-        a3 = a23 - a2 if q2 <= TOL * L else angle(p3 - p2, p4 - p3, n) - np.pi / 2
-        a4 = angle(n, x5, z4) + np.pi / 2
-        a5 = angle(p3 - p4, z5, x5)
+            a2 = _angle(_sub(p2, p0), _sub(p3, p2), n) - math.pi / 2
+            a3 = _angle(_sub(p3, p2), _sub(p4, p3), n) - math.pi / 2
         q = np.array([a1, a2, q2, a3, a4, a5])
         if near is not None and q2 <= TOL * L:
             q = _split_q2zero(q, near)
