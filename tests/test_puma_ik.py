@@ -373,3 +373,15 @@ def test_scalar_fast_path_agrees_with_the_batch():
             assert np.abs(wrap(np.asarray(s) - b.q[0, keep])).max() < 1e-12
             assert np.array_equal(s.flags, b.flags[0, keep])
             assert (np.asarray(s) > -np.pi).all() and (np.asarray(s) <= np.pi).all()
+
+
+def test_batch_near_fixes_the_free_wrist_angle():
+    q = np.array([[0.3, -0.6, 0.2, 0.9, 0.0, 0.4], [0.1, -0.5, 0.3, 0.4, 0.6, -0.7]])
+    sol = ARM.ik_batch(ARM.fk(q), near=q)
+    k = int(np.argmax(sol.flags[0] & WRIST_SINGULAR))
+    assert sol.flags[0, k] & WRIST_SINGULAR
+    assert sol.q[0, k, 3] == pytest.approx(0.9)  # θ4 from near
+    assert joint_distance(sol.q[0, k], q[0]) < 1e-9
+    assert not sol.flags[1].any()
+    with pytest.raises(ValueError, match="near"):
+        ARM.ik_batch(ARM.fk(q), near=np.zeros((2, 5)))
