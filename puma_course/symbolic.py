@@ -61,10 +61,13 @@ __all__ = [
     "PrintedCheck",
     "check_printed",
     "ENTRY_NAMES",
+    "ENTRY_LATEX",
 ]
 
 ENTRY_NAMES = ("r11", "r12", "r13", "px", "r21", "r22", "r23", "py", "r31", "r32", "r33", "pz")
 _ENTRY_INDEX = {name: divmod(k, 4) for k, name in enumerate(ENTRY_NAMES)}
+#: LaTeX names of the entries for display: "r11" -> "r_{11}", "px" -> "p_x"
+ENTRY_LATEX = {name: (f"r_{{{name[1:]}}}" if name[0] == "r" else f"p_{name[1]}") for name in ENTRY_NAMES}
 
 PUMA560_LENGTHS = sp.symbols("a2 a3 d3 d4", real=True)
 MK3_LENGTHS = sp.symbols("d1 a1 a2 a3 d5", real=True)
