@@ -7,11 +7,10 @@ nbval must not collect them.
 
 from __future__ import annotations
 
-import os
-
 import matplotlib
 
-os.environ.setdefault("MPLBACKEND", "Agg")
+# Only this (test) process draws off-screen. Do not export MPLBACKEND: nbval's kernels
+# inherit the environment, and a kernel with MPLBACKEND=Agg shows no figures.
 matplotlib.use("Agg")
 
 collect_ignore_glob = ["fixtures/*", "fixtures/**/*"]
