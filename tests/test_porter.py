@@ -229,6 +229,22 @@ def test_singular_cases_exact(name, method):
         assert P.config_distance(Sn[0], q) < 1e-9
     res = P.solve(T, *LEN, method=method)
     assert res.success and set(res.singular) <= cases | {P.PARALLEL} and res.reason
+    if method == "geometric":  # Ver.2's representatives are among Ver.1's (same rules)
+        S1 = quiet(P.ik_explicit, T, *LEN)
+        for g in S:
+            assert P.config_distance(S1, g).min() < 1e-9
+
+
+def test_batch_and_scalar_paths_agree():
+    # two code paths (numpy batch, plain floats) for the same formulas, including singular poses
+    rng = np.random.default_rng(10)
+    Q = np.vstack([random_q(rng, 100), np.array([v[0] for v in SINGULAR.values()])])
+    T = P.fk(Q, *LEN)
+    B, flags = P.ik_explicit_batch(T, *LEN)
+    assert flags[:100].sum() == 0 and np.all(flags[100:].any(axis=1))
+    for Tk, Bk in zip(T, B, strict=True):
+        S = quiet(P.ik_explicit, Tk, *LEN)
+        assert all(P.config_distance(Bk, s).min() < 1e-12 for s in S)
 
 
 def test_singular_rules_without_near():
