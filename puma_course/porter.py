@@ -33,13 +33,18 @@ and :class:`IKResult`): ``"p4_on_z0_axis"`` (α1 free), ``"planes_parallel"``
 is fixed). One representative per branch is returned: the configuration nearest
 ``near`` when given, else Porter's rule (minimal q2 for parallel planes) and the
 "simplest" choice (α1 with s4 = 0, α2 = 0) for the others.
+
+Unreachable poses: none without a stroke limit. With ``q2_max=`` the IK functions
+return an empty (0, 6) array and emit :class:`PorterUnreachableWarning` (``solve``:
+``success`` False and a ``reason``); never NaN, never a ValueError for a valid pose.
+Invalid input (T not a 4x4 rigid transform, NaN, lengths <= 0) raises ``ValueError``.
 """
 
 from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -468,7 +473,6 @@ class IKResult:
     singular: tuple[str, ...] = ()
     reason: str = ""
     method: str = "explicit"
-    counts: dict = field(default_factory=dict)
 
     @property
     def success(self) -> bool:
