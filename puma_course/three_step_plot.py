@@ -1,0 +1,136 @@
+"""Pictures and the animation of the three-step wrist-frame procedure (lecture 08).
+
+Companion of :mod:`puma_course.three_step`: nothing here computes kinematics,
+it draws (with :mod:`puma_course.plotting`'s helpers) a :class:`~puma_course.three_step.ThreeStepSolution` and its
+:func:`~puma_course.three_step.motion`.
+The arm is drawn as grey links s-e-w, the moving wrist frame as an RGB triad
+(f1 red, f2 green, f3 blue), the target frame as a thick red triad and the
+wrist centre's path in green, as in the source's Figure 3.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.animation import FuncAnimation
+
+from ._validate import as_array
+from .plotting import AXIS_COLORS, draw_points, set_equal
+from .three_step import Motion, ThreeStepSolution, motion
+
+__all__ = ["draw_triad", "draw_state", "plot_steps", "animate"]
+
+PHASE_TITLES = (
+    "start",
+    "step 1: base turns by δ0 about e_z",
+    "step 2: shoulder and elbow, K(a, δ)",
+    "step 3: wrist, composite rotation",
+)
+
+
+def draw_triad(
+    ax: Any,
+    origin: Any,
+    R: Any,
+    length: float = 0.5,
+    color: str | None = None,
+    lw: float = 2.0,
+    alpha: float = 1.0,
+    label: str | None = None,
+) -> list:
+    """Draw the columns of the rotation ``R`` as arrows from ``origin``; one colour or x/y/z = red/green/blue."""
+    o = as_array(origin, "origin", (3,))
+    R = as_array(R, "R", (3, 3))
+    artists = []
+    for k in range(3):
+        tip = o + length * R[:, k]
+        c = color or AXIS_COLORS[k]
+        artists += ax.plot(*np.stack([o, tip]).T, color=c, lw=lw, alpha=alpha)
+        artists.append(ax.text(*(o + 1.12 * length * R[:, k]), f"f{k + 1}", color=c, fontsize=7, alpha=alpha))
+    if label:
+        artists.append(ax.text(*(o - 0.25 * length * R[:, 2]), label, fontsize=8, color=color or "k"))
+    return artists
+
+
+def draw_state(ax: Any, points: Any, frame: Any, length: float = 0.5, alpha: float = 1.0) -> list:
+    """Draw one arm configuration: links s-e-w (3, 3) and the wrist frame at w."""
+    P = as_array(points, "points", (3, 3))
+    artists = list(draw_points(ax, P, color="0.35", lw=4.0, alpha=alpha))
+    artists += draw_triad(ax, P[2], frame, length=length, alpha=alpha)
+    return artists
+
+
+def _scene(ax: Any, sol: ThreeStepSolution, m: Motion, k: int, length: float) -> list:
+    """Everything but the arm at sample ``k``: floor cross, target, start ghost, path so far."""
+    arts = []
+    arts += ax.plot([0, 0], [0, 0], [-0.2, 0.2], color="k", lw=1)  # the base axis
+    arts += draw_triad(ax, sol.w, sol.target, length=length, color="red", lw=4.0, alpha=0.45)
+    arts += ax.plot(*m.points[0].T, color="0.6", lw=1.5, ls=":")  # the straight-arm start
+    path = m.path[: k + 1]
+    arts += ax.plot(*path.T, color="tab:green", lw=2.5)
+    return arts
+
+
+def _limits(sol: ThreeStepSolution, m: Motion, length: float) -> np.ndarray:
+    tips = sol.w + length * sol.target.T
+    return np.vstack([m.points.reshape(-1, 3), tips, np.zeros((1, 3))])
+
+
+def plot_steps(sol: ThreeStepSolution, length: float = 0.5, figsize: tuple[float, float] = (9.0, 8.0)):
+    """Four panels: the start and the arm with its wrist frame after steps 1, 2 and 3; returns ``fig``."""
+    n = 12
+    m = motion(sol, steps_per_phase=n)  # samples 0, n, 2n, 3n: the start and the ends of steps 1, 2, 3
+    lims = _limits(sol, m, length)
+    fig = plt.figure(figsize=figsize)
+    for i, k in enumerate(range(0, 3 * n + 1, n)):
+        ax = fig.add_subplot(2, 2, i + 1, projection="3d")
+        ax.view_init(elev=20, azim=-50)
+        _scene(ax, sol, m, k, length)
+        draw_state(ax, m.points[k], m.frames[k], length=length)
+        ax.set_title(PHASE_TITLES[i], fontsize=9)
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_zlabel("z")
+        set_equal(ax, lims, margin=0.05)
+    fig.tight_layout()
+    return fig
+
+
+def animate(
+    sol: ThreeStepSolution,
+    steps_per_phase: int = 10,
+    length: float = 0.5,
+    figsize: tuple[float, float] = (4.2, 4.0),
+    dpi: int = 60,
+    interval: int = 120,
+) -> FuncAnimation:
+    """The source's Figure 3: the arm moves through the three steps to the red target frame.
+
+    3 * steps_per_phase + 1 frames (see :func:`~puma_course.three_step.motion`).
+    Show it with ``HTML(anim.to_jshtml())``: it plays in JupyterLab with
+    nothing to install. The figure is created with its ``dpi`` (set at creation
+    so that closing the figure does not reset it).
+    """
+    m = motion(sol, steps_per_phase=steps_per_phase)
+    lims = _limits(sol, m, length)
+    fig = plt.figure(figsize=figsize, dpi=dpi)
+    ax = fig.add_subplot(projection="3d")
+
+    def draw(k: int) -> list:
+        ax.cla()
+        ax.view_init(elev=20, azim=-50)
+        arts = _scene(ax, sol, m, k, length)
+        arts += draw_state(ax, m.points[k], m.frames[k], length=length)
+        ax.set_title(PHASE_TITLES[int(m.phase[k])], fontsize=9)
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_zlabel("z")
+        set_equal(ax, lims, margin=0.05)
+        ax.grid(False)  # the grid lines nearly double the size of every PNG frame
+        return arts
+
+    anim = FuncAnimation(fig, draw, frames=len(m.phase), interval=interval, blit=False)
+    plt.close(fig)
+    return anim
