@@ -78,7 +78,12 @@ def _limits(sol: ThreeStepSolution, m: Motion, length: float) -> np.ndarray:
     return np.vstack([m.points.reshape(-1, 3), tips, np.zeros((1, 3))])
 
 
-def plot_steps(sol: ThreeStepSolution, length: float = 0.5, figsize: tuple[float, float] = (9.0, 8.0)):
+def plot_steps(
+    sol: ThreeStepSolution,
+    length: float = 0.5,
+    figsize: tuple[float, float] = (9.0, 8.0),
+    title: str | None = None,
+):
     """Four panels: the start and the arm with its wrist frame after steps 1, 2 and 3; returns ``fig``."""
     n = 12
     m = motion(sol, steps_per_phase=n)  # samples 0, n, 2n, 3n: the start and the ends of steps 1, 2, 3
@@ -94,6 +99,8 @@ def plot_steps(sol: ThreeStepSolution, length: float = 0.5, figsize: tuple[float
         ax.set_ylabel("y")
         ax.set_zlabel("z")
         set_equal(ax, lims, margin=0.05)
+    if title:
+        fig.suptitle(title)
     fig.tight_layout()
     return fig
 
