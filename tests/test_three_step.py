@@ -441,3 +441,18 @@ def test_plot_steps_and_animation_smoke():
     png = base64.b64decode(frames[0].replace("\\\n", ""))
     width, height = struct.unpack(">II", png[16:24])  # the PNG header's IHDR size
     assert (width, height) == (160, 120)  # 4 x 3 inches at 40 dpi: the dpi was kept
+
+
+def test_wrist_next_to_the_base_axis_uses_atan2_and_flags_ill_conditioning():
+    w = np.array([1e-12, -1e-12, 2.0])
+    with pytest.warns(ts.ThreeStepWarning, match="ill-conditioned"):
+        sol = ts.solve(w, TARGET_EX, L1, L2)
+    assert math.isclose(sol.theta0, -math.pi / 4)
+    assert np.allclose(eq1(*sol.joints, L1, L2), w, atol=1e-12)
+
+
+def test_regular_targets_do_not_warn():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sol = ts.solve(W_EX, TARGET_EX, L1, L2, elbow="down")
+    assert sol.singular == ()
