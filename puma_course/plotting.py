@@ -32,9 +32,15 @@ __all__ = [
 AXIS_COLORS = ("tab:red", "tab:green", "tab:blue")  # x, y, z
 
 
-def new_axes(figsize: tuple[float, float] = (6.0, 5.0), title: str | None = None, elev: float = 25, azim: float = -60):
+def new_axes(
+    figsize: tuple[float, float] = (6.0, 5.0),
+    title: str | None = None,
+    elev: float = 25,
+    azim: float = -60,
+    dpi: float | None = None,
+):
     """A new figure with one 3-D axes; returns ``(fig, ax)``."""
-    fig = plt.figure(figsize=figsize)
+    fig = plt.figure(figsize=figsize, dpi=dpi)
     ax = fig.add_subplot(projection="3d")
     ax.view_init(elev=elev, azim=azim)
     ax.set_xlabel("x")
@@ -152,8 +158,8 @@ def animate_frames(
     S = as_array(frames_seq, "frames_seq", (None, 4, 4), batch=True)
     if S.ndim == 3:
         S = S[None]
-    fig, ax = new_axes(figsize=figsize, title=title)
-    fig.set_dpi(dpi)
+    # The dpi must be given at creation: plt.close() resets a later set_dpi() (matplotlib 3.11).
+    fig, ax = new_axes(figsize=figsize, title=title, dpi=dpi)
     pts = S[:, :, :3, 3].reshape(-1, 3)
     lims = np.vstack([pts, np.zeros((1, 3))])
 
