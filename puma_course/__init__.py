@@ -7,6 +7,7 @@ when those modules are imported.
 
 from __future__ import annotations
 
+from . import dh, porter, robots, three_step, transforms
 from .dh import DHChain, Link, mdh
 from .robots import mk3, puma560
 from .transforms import (
@@ -24,6 +25,11 @@ __all__ = [
     "DHChain",
     "Link",
     "axis_angle",
+    "dh",
+    "porter",
+    "robots",
+    "three_step",
+    "transforms",
     "homogeneous",
     "mdh",
     "mk3",
