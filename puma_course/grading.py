@@ -103,8 +103,20 @@ def compare_close(got: Any, ref: np.ndarray, tol: float = 1e-6) -> str | None:
     scale = max(1.0, float(np.max(np.abs(ref)))) if ref.size else 1.0
     err = float(np.max(np.abs(shaped - ref))) if ref.size else 0.0
     if err > tol * scale:
-        return f"values differ from the reference by up to {err:.3g}"
+        return f"values differ from the reference by up to {err:.3g}{_where(np.abs(shaped - ref))}"
     return None
+
+
+def _where(diff: np.ndarray) -> str:
+    """' (largest at index [i, j])' for an array of differences with more than one entry, else ''.
+
+    >>> _where(np.array([[0.0, 0.1], [0.9, 0.0]]))
+    ' (largest at index [1, 0])'
+    """
+    if diff.size <= 1:
+        return ""
+    index = np.unravel_index(int(np.argmax(diff)), diff.shape)
+    return f" (largest at index [{', '.join(str(int(i)) for i in index)}])"
 
 
 def compare_angles(got: Any, ref: np.ndarray, tol: float = 1e-6) -> str | None:
@@ -125,7 +137,7 @@ def compare_angles(got: Any, ref: np.ndarray, tol: float = 1e-6) -> str | None:
     diff = np.angle(np.exp(1j * (shaped - ref)))
     err = float(np.max(np.abs(diff))) if ref.size else 0.0
     if err > tol:
-        return f"angles differ from the reference by up to {err:.3g} rad"
+        return f"angles differ from the reference by up to {err:.3g} rad{_where(np.abs(diff))}"
     return None
 
 
@@ -153,10 +165,14 @@ def compare_solution_set(angle_columns: Sequence[int], tol: float = 1e-6) -> Cal
             d[..., cols] = np.abs(np.angle(np.exp(1j * (a[:, None, cols] - b[None, :, cols]))))
             return d.max(axis=-1)
 
-        if ref.shape[0] and (arr.shape[0] == 0 or np.any(dist(ref, arr).min(axis=1) > tol)):
-            return f"misses some of the {ref.shape[0]} solutions"
-        if arr.shape[0] and (ref.shape[0] == 0 or np.any(dist(arr, ref).min(axis=1) > tol)):
-            return "returned a row that is not a solution"
+        n_ref, n_got = ref.shape[0], arr.shape[0]
+        missed = int(np.sum(dist(ref, arr).min(axis=1) > tol)) if n_ref and n_got else n_ref
+        if missed:
+            return f"misses {missed} of the {n_ref} expected rows (you returned {n_got})"
+        extra = int(np.sum(dist(arr, ref).min(axis=1) > tol)) if n_ref and n_got else n_got
+        if extra:
+            return (f"{extra} of the {n_got} rows returned are not a solution asked for here "
+                    f"(the expected set has {n_ref} rows)")
         return None
 
     return compare
@@ -569,6 +585,7 @@ EX05 = Exercise(
 
 # ---- the three-step exercise (exercise 6) -------------------------------------------------------
 THREE_STEP_W = np.array([0.5, 0.5, 2.0])
+THREE_STEP_W_BEHIND = np.array([-0.5, -0.5, 2.0])  # same ratio w_y / w_x: a self-check that catches arctan(w_y / w_x)
 THREE_STEP_TARGET = np.diag([-1.0, 1.0, -1.0])
 THREE_STEP_L = (1.5, 1.0)
 
@@ -618,7 +635,7 @@ EX06 = Exercise(
     (
         Question(
             "q1", "base_angle", 2, "(a) the base angle θ0",
-            public=((THREE_STEP_W,),),
+            public=((THREE_STEP_W,), (THREE_STEP_W_BEHIND,)),
             hidden=lambda rng: [(w,) for w, _, _ in _reachable_w(rng, 5)],
             reference=_three_step(["theta0"]),
             compare=compare_angles,
@@ -627,7 +644,7 @@ EX06 = Exercise(
         ),
         Question(
             "q2", "step1_frame", 2, "(a) the wrist frame after step 1",
-            public=((THREE_STEP_W,),),
+            public=((THREE_STEP_W,), (THREE_STEP_W_BEHIND,)),
             hidden=lambda rng: [(w,) for w, _, _ in _reachable_w(rng, 4)],
             reference=_three_step(["frame_step1"]),
             forbidden=_KEY_THREE_STEP,
