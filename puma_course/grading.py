@@ -1133,7 +1133,8 @@ def _feedback_markdown(student: str, results: list[NotebookResult], seed: int) -
         for q in ex.questions:
             notes = "; ".join(r.question_notes.get(q.qid, [])).replace("|", "\\|")
             verdict = "passed" if r.scores[q.qid] >= q.points else ("partly" if r.scores[q.qid] > 0 else "failed")
-            lines.append(f"| {q.qid} `{q.function}` | {r.scores[q.qid]:g} / {q.points:g} | {verdict}: {notes} |")
+            bonus = " (bonus, not in the maximum)" if q.bonus else ""
+            lines.append(f"| {q.qid} `{q.function}`{bonus} | {r.scores[q.qid]:g} / {q.points:g} | {verdict}: {notes} |")
         failing = [q for q in ex.questions if r.scores[q.qid] < q.points and q.hint]
         if failing:
             lines += ["", "Hints:"] + [f"- {q.qid}: {q.hint}" for q in failing]
