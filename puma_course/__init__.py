@@ -7,7 +7,7 @@ when those modules are imported.
 
 from __future__ import annotations
 
-from . import dh, porter, robots, three_step, transforms
+from . import dh, porter, puma_ik, robots, three_step, trajectories, transforms
 from .dh import DHChain, Link, mdh
 from .robots import mk3, puma560
 from .transforms import (
@@ -27,8 +27,10 @@ __all__ = [
     "axis_angle",
     "dh",
     "porter",
+    "puma_ik",
     "robots",
     "three_step",
+    "trajectories",
     "transforms",
     "homogeneous",
     "mdh",
