@@ -38,3 +38,16 @@ def test_readme_commands_match_ci():
     readme = (ROOT / "README.md").read_text()
     assert 'python -m pip install -e ".[dev]" && python -m pytest' in readme
     assert 'python -m pip install -e ".[dev]" && jupyter lab notebooks/' in readme
+
+
+def test_ruff_clean():
+    """The code base stays ruff-clean (the dev extra installs ruff)."""
+    import shutil
+
+    ruff = shutil.which("ruff") or str(Path(sys.executable).with_name("ruff"))
+    if not Path(ruff).exists():
+        import pytest
+
+        pytest.skip("ruff is not installed")
+    out = subprocess.run([ruff, "check", "--quiet", str(ROOT)], capture_output=True, text=True, cwd=ROOT)
+    assert out.returncode == 0, out.stdout + out.stderr
