@@ -180,13 +180,14 @@ class Panel(widgets.VBox):
         figsize: tuple[float, float] = (5.5, 4.8),
         elev: float = 25,
         azim: float = -60,
+        dpi: float = 100,
     ) -> None:
         self.sliders = sliders
         self._draw = draw
         self._readout_fn = readout
         self._title = title
         self._limits = None if limits is None else _limits(limits)
-        self._figsize, self._elev, self._azim = figsize, elev, azim
+        self._figsize, self._elev, self._azim, self._dpi = figsize, elev, azim, dpi
         self.last_q: np.ndarray | None = None
         self.last_frames: np.ndarray | None = None
         self.last_readout: str | None = None
@@ -205,13 +206,16 @@ class Panel(widgets.VBox):
 
     def _redraw(self, **kw: float) -> None:
         q = self.sliders.radians()
-        fig, ax = plotting.new_axes(figsize=self._figsize, title=self._title, elev=self._elev, azim=self._azim)
+        fig, ax = plotting.new_axes(
+            figsize=self._figsize, title=self._title, elev=self._elev, azim=self._azim, dpi=self._dpi
+        )
         frames = self._draw(ax, q)
         if self._limits is not None:
             ax.set_xlim3d(*self._limits[0])
             ax.set_ylim3d(*self._limits[1])
             ax.set_zlim3d(*self._limits[2])
             ax.set_box_aspect(tuple(self._limits[:, 1] - self._limits[:, 0]))
+        ax.locator_params(nbins=5)  # fewer tick numbers: the default ones overlap on a small 3-D axes
         self.last_q = q
         self.last_frames = None if frames is None else np.asarray(frames)
         if self._readout_fn is not None:
