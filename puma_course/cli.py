@@ -12,6 +12,7 @@ Every sub-command returns an exit code from :func:`main` (0 = success).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import shlex
 import subprocess
 import sys
@@ -137,16 +138,21 @@ def _check(args: argparse.Namespace) -> int:
         print(f"check: unknown exercise {name!r}; use --exercise with one of {sorted(EXERCISES)}", file=sys.stderr)
         return 2
     ex = EXERCISES[name]
-    public = type(ex)(ex.name, ex.title, tuple(
-        type(q)(q.qid, q.function, q.points, q.title, q.public, lambda rng: [], q.reference, q.compare, q.hint)
-        for q in ex.questions))
+    # The public cases only: every other field (answer-key tripwires, bonus flags) stays as graded.
+    public = dataclasses.replace(
+        ex, questions=tuple(dataclasses.replace(q, hidden=lambda rng: []) for q in ex.questions)
+    )
     r = grade_notebook(args.notebook, public, seed=0, timeout_cell=args.timeout_cell,
                        timeout_total=args.timeout_total)
     print(f"{name}: {r.score:g} / {r.max_score:g} on the public cases (status {r.status})")
     for note in r.notes:
         print(f"  {note}")
     for q in ex.questions:
-        print(f"  {q.qid} {q.function}: {r.scores[q.qid]:g}/{q.points:g} - " + "; ".join(r.question_notes[q.qid]))
+        bonus = " (bonus)" if getattr(q, "bonus", False) else ""
+        notes = "; ".join(r.question_notes[q.qid])
+        print(f"  {q.qid} {q.function}{bonus}: {r.scores[q.qid]:g}/{q.points:g} - {notes}")
+        if r.scores[q.qid] < q.points and q.hint:
+            print(f"      hint: {q.hint}")
     return 0 if r.status in ("ok", "cell-error") else 1
 
 
