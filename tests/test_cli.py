@@ -108,7 +108,6 @@ def test_check_keeps_bonus_and_answer_key_rules_of_the_grader(tmp_path, capsys):
     """`puma-course check` must judge the public cases exactly as grading does.
 
     The ex05 solution answers the bonus too: 8 points plus a 3-point bonus, not 11 / 11.
-    A q1 that calls the package's own answer must fail here as it fails in grading.
     """
     nb = tmp_path / "ex05_porter_ik.ipynb"
     shutil.copy(ROOT / "solutions" / "ex05_porter_ik.ipynb", nb)
