@@ -91,8 +91,10 @@ def main() -> None:
     print(f"grading wall time {wall:.2f} s with {args.jobs} job(s): {per:.3f} s per submitted notebook")
     if args.kernel_sample:
         k = time_kernel(args.kernel_sample)
-        print(f"for comparison, executing one notebook in a fresh Jupyter kernel (nbclient, serial): {k:.2f} s "
-              f"per notebook, {k / per:.1f}x the grader's per-notebook cost")
+        print(
+            f"for comparison, executing one notebook in a fresh Jupyter kernel (nbclient, serial): {k:.2f} s "
+            f"per notebook, {k / per:.1f}x the grader's per-notebook cost"
+        )
 
 
 if __name__ == "__main__":

@@ -110,15 +110,25 @@ def _grade(args: argparse.Namespace) -> int:
 
     def progress(r):  # type: ignore[no-untyped-def]
         if not args.quiet:
-            print(f"{r.student:>20} {r.exercise:<18} {r.score:>6g}/{r.max_score:<4g} {r.status} ({r.seconds:.1f} s)",
-                  flush=True)
+            print(
+                f"{r.student:>20} {r.exercise:<18} {r.score:>6g}/{r.max_score:<4g} {r.status} ({r.seconds:.1f} s)",
+                flush=True,
+            )
 
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", GradingIntegrityWarning)
-            results = grade(args.submissions, args.output, feedback=args.feedback, jobs=args.jobs,
-                            timeout_cell=args.timeout_cell, timeout_total=args.timeout_total, seed=args.seed,
-                            exercises=args.exercise, progress=progress)
+            results = grade(
+                args.submissions,
+                args.output,
+                feedback=args.feedback,
+                jobs=args.jobs,
+                timeout_cell=args.timeout_cell,
+                timeout_total=args.timeout_total,
+                seed=args.seed,
+                exercises=args.exercise,
+                progress=progress,
+            )
     except ValueError as exc:
         print(f"grade failed: {exc}", file=sys.stderr)
         return 2
@@ -142,8 +152,7 @@ def _check(args: argparse.Namespace) -> int:
     public = dataclasses.replace(
         ex, questions=tuple(dataclasses.replace(q, hidden=lambda rng: []) for q in ex.questions)
     )
-    r = grade_notebook(args.notebook, public, seed=0, timeout_cell=args.timeout_cell,
-                       timeout_total=args.timeout_total)
+    r = grade_notebook(args.notebook, public, seed=0, timeout_cell=args.timeout_cell, timeout_total=args.timeout_total)
     print(f"{name}: {r.score:g} / {r.max_score:g} on the public cases (status {r.status})")
     for note in r.notes:
         print(f"  {note}")

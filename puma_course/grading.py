@@ -171,8 +171,10 @@ def compare_solution_set(angle_columns: Sequence[int], tol: float = 1e-6) -> Cal
             return f"misses {missed} of the {n_ref} expected rows (you returned {n_got})"
         extra = int(np.sum(dist(arr, ref).min(axis=1) > tol)) if n_ref and n_got else n_got
         if extra:
-            return (f"{extra} of the {n_got} rows returned are not a solution asked for here "
-                    f"(the expected set has {n_ref} rows)")
+            return (
+                f"{extra} of the {n_got} rows returned are not a solution asked for here "
+                f"(the expected set has {n_ref} rows)"
+            )
         return None
 
     return compare
@@ -241,12 +243,8 @@ _KEY_RODRIGUES = (
     "puma_course.transforms:rodrigues",
     "puma_course.transforms:trot",
 )
-_KEY_AXIS_ANGLE = (
-    "puma_course.transforms:axis_angle",
-)
-_KEY_INVERSE = (
-    "puma_course.transforms:inverse_transform",
-)
+_KEY_AXIS_ANGLE = ("puma_course.transforms:axis_angle",)
+_KEY_INVERSE = ("puma_course.transforms:inverse_transform",)
 _KEY_MDH = (
     "puma_course.dh:mdh",
     "puma_course.dh:DHChain.link_matrices",
@@ -362,7 +360,10 @@ EX01 = Exercise(
     "Rotations and Rodrigues' formula",
     (
         Question(
-            "q1", "elementary_rotation", 2, "rotation about a coordinate axis",
+            "q1",
+            "elementary_rotation",
+            2,
+            "rotation about a coordinate axis",
             public=(("x", 0.3), ("y", -1.2), ("z", np.pi / 2)),
             hidden=lambda rng: [(ax, float(t)) for ax, t in zip("xyzxyz", rng.uniform(-np.pi, np.pi, 6), strict=True)],
             reference=_ref_elementary,
@@ -370,25 +371,35 @@ EX01 = Exercise(
             hint="Each column of R is where the rotation sends e_x, e_y, e_z; check the sign of the sines.",
         ),
         Question(
-            "q2", "rodrigues_formula", 3, "Rodrigues' formula K(a, θ)",
+            "q2",
+            "rodrigues_formula",
+            3,
+            "Rodrigues' formula K(a, θ)",
             public=(([0.0, 0.0, 1.0], 0.4), ([1.0, 1.0, 0.0], 2.0), ([0.0, 3.0, 0.0], -0.7)),
-            hidden=lambda rng: [(list(rng.normal(size=3) * rng.uniform(0.5, 3)), float(t))
-                                for t in rng.uniform(-3, 3, 5)],
+            hidden=lambda rng: [
+                (list(rng.normal(size=3) * rng.uniform(0.5, 3)), float(t)) for t in rng.uniform(-3, 3, 5)
+            ],
             reference=_ref_transforms("rodrigues"),
             forbidden=_KEY_RODRIGUES,
             hint="Normalise the axis first; K = I + sin θ [k]x + (1 - cos θ) [k]x².",
         ),
         Question(
-            "q3", "axis_angle_from_matrix", 3, "axis and angle of a rotation matrix",
+            "q3",
+            "axis_angle_from_matrix",
+            3,
+            "axis and angle of a rotation matrix",
             public=((np.round(_ref_elementary("x", 0.5), 15),), (np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]]),)),
             hidden=lambda rng: [(R,) for R in _rotations(rng, 5)],
             reference=_ref_axis_angle,
             forbidden=_KEY_AXIS_ANGLE,
             hint="cos θ = (trace R - 1) / 2 and the axis comes from the antisymmetric part R - R^T; "
-                 "return [kx, ky, kz, θ] with θ in (0, π).",
+            "return [kx, ky, kz, θ] with θ in (0, π).",
         ),
         Question(
-            "q4", "invert_transform", 2, "inverse of a homogeneous transform",
+            "q4",
+            "invert_transform",
+            2,
+            "inverse of a homogeneous transform",
             public=((np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]),),),
             hidden=lambda rng: _random_transforms(rng, 4),
             reference=_ref_transforms("inverse_transform"),
@@ -403,18 +414,31 @@ EX02 = Exercise(
     "The DH link matrix and the PUMA-560 forward kinematics",
     (
         Question(
-            "q1", "link_matrix", 3, "Craig's modified DH link matrix",
+            "q1",
+            "link_matrix",
+            3,
+            "Craig's modified DH link matrix",
             public=((0.0, 0.0, 0.3, 0.0), (-np.pi / 2, 0.0, 0.5, 0.2), (np.pi / 2, 0.4, -1.0, 0.15)),
-            hidden=lambda rng: [tuple(float(x) for x in row) for row in
-                                np.column_stack([rng.choice([-np.pi / 2, 0.0, np.pi / 2, 0.7], 5),
-                                                 rng.uniform(-1, 1, 5), rng.uniform(-np.pi, np.pi, 5),
-                                                 rng.uniform(-1, 1, 5)])],
+            hidden=lambda rng: [
+                tuple(float(x) for x in row)
+                for row in np.column_stack(
+                    [
+                        rng.choice([-np.pi / 2, 0.0, np.pi / 2, 0.7], 5),
+                        rng.uniform(-1, 1, 5),
+                        rng.uniform(-np.pi, np.pi, 5),
+                        rng.uniform(-1, 1, 5),
+                    ]
+                )
+            ],
             reference=_ref_mdh,
             forbidden=_KEY_MDH,
             hint="Multiply Rot(X, α) Trans(X, a) Rot(Z, θ) Trans(Z, d) in that order.",
         ),
         Question(
-            "q2", "puma_fk", 4, "PUMA-560 forward kinematics ^0T_6",
+            "q2",
+            "puma_fk",
+            4,
+            "PUMA-560 forward kinematics ^0T_6",
             public=((np.zeros(6),), (np.array([0.0, -np.pi / 2, -np.pi / 2, 0, 0, 0]),)),
             hidden=lambda rng: _angles(rng, 5, 6),
             reference=_ref_puma_fk,
@@ -422,7 +446,10 @@ EX02 = Exercise(
             hint="Use the lecture's table with a2 = 0.4318, a3 = 0.0203, d3 = 0.15005, d4 = 0.4318 (metres).",
         ),
         Question(
-            "q3", "puma_frames", 2, "all PUMA-560 frames ^0T_i, i = 0..6",
+            "q3",
+            "puma_frames",
+            2,
+            "all PUMA-560 frames ^0T_i, i = 0..6",
             public=((np.zeros(6),),),
             hidden=lambda rng: _angles(rng, 3, 6),
             reference=_ref_puma_frames,
@@ -437,7 +464,10 @@ EX03 = Exercise(
     "Forward kinematics of the Motoman MK3",
     (
         Question(
-            "q1", "mk3_fk", 3, "MK3 forward kinematics ^0T_5 (mm)",
+            "q1",
+            "mk3_fk",
+            3,
+            "MK3 forward kinematics ^0T_5 (mm)",
             public=((np.zeros(5),), (np.array([0.0, np.pi / 2, -np.pi / 2, 0.0, 0.0]),)),
             hidden=lambda rng: _angles(rng, 5, 5),
             reference=_ref_mk3_fk,
@@ -445,7 +475,10 @@ EX03 = Exercise(
             hint="The table: d1 = 360, a1 = 135, a2 = 250, a3 = 215, d5 = 100 mm; α1 = α4 = 90°.",
         ),
         Question(
-            "q2", "mk3_position", 3, "tool position from the closed form",
+            "q2",
+            "mk3_position",
+            3,
+            "tool position from the closed form",
             public=((np.zeros(5),), (np.array([0.5, 0.3, -0.4, 0.2, 0.1]),)),
             hidden=lambda rng: _angles(rng, 5, 5),
             reference=_ref_mk3_position,
@@ -453,7 +486,10 @@ EX03 = Exercise(
             hint="The horizontal reach is a1 + a2 C2 + a3 C23 + d5 S234; the height starts at d1.",
         ),
         Question(
-            "q3", "mk3_tool_axis", 2, "direction of the tool axis z5",
+            "q3",
+            "mk3_tool_axis",
+            2,
+            "direction of the tool axis z5",
             public=((np.zeros(5),),),
             hidden=lambda rng: _angles(rng, 4, 5),
             reference=_ref_mk3_tool_axis,
@@ -519,25 +555,34 @@ EX04 = Exercise(
     "Porter's chain: the direct problem",
     (
         Question(
-            "q1", "porter_fk", 4, "F05 of Porter's chain",
+            "q1",
+            "porter_fk",
+            4,
+            "F05 of Porter's chain",
             public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L), (np.array([0.0, 0.0, 2.0, 0.0, 0.0, 0.0]), 1.0, 0.5, 0.25)),
             hidden=lambda rng: _porter_configs(rng, 5),
             reference=_porter("fk"),
             forbidden=_KEY_PORTER_FK,
             hint="Local (moving) frames multiply left to right: Rz(α1) Tz(l1) Ry(α2) Tx(q2) Ry(α3) Tz(-l3) "
-                 "Rz(α4) Tx(l4) Rx(α5).",
+            "Rz(α4) Tx(l4) Rx(α5).",
         ),
         Question(
-            "q2", "porter_points", 3, "the joint points p0 ... p5",
+            "q2",
+            "porter_points",
+            3,
+            "the joint points p0 ... p5",
             public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L),),
             hidden=lambda rng: _porter_configs(rng, 4),
             reference=_porter("points"),
             forbidden=_KEY_PORTER_FK,
             hint="Return a (6, 3) array: p0 = p1 = origin, p2 = l1 z0, p3 = p2 + q2 x2, p4 = p3 - l3 z3, "
-                 "p5 = p4 + l4 x4.",
+            "p5 = p4 + l4 x4.",
         ),
         Question(
-            "q3", "porter_z5", 2, "the corrected closed form of z5",
+            "q3",
+            "porter_z5",
+            2,
+            "the corrected closed form of z5",
             public=((PORTER_PUBLIC_Q, *PORTER_PUBLIC_L),),
             hidden=lambda rng: _porter_configs(rng, 4),
             reference=_porter("fk", (slice(0, 3), 2)),
@@ -553,31 +598,40 @@ EX05 = Exercise(
     "Porter's chain: the inverse problem",
     (
         Question(
-            "q1", "porter_p4", 2, "the wrist point p4 from the end-effector pose",
+            "q1",
+            "porter_p4",
+            2,
+            "the wrist point p4 from the end-effector pose",
             public=((np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]), 0.5),),
             hidden=lambda rng: [(T, l4) for T, _, _, l4 in _porter_poses(rng, 4)],
             reference=_ref_porter_p4,
             hint="The last link runs along x5 with length l4, so p4 = p5 - l4 x5.",
         ),
         Question(
-            "q2", "porter_ik", 6, "every configuration reaching F05 (Ver.1, explicit)",
+            "q2",
+            "porter_ik",
+            6,
+            "every configuration reaching F05 (Ver.1, explicit)",
             public=(_public_pose(),),
             hidden=lambda rng: _porter_poses(rng, 5),
             reference=_porter("ik_explicit"),
             compare=compare_solution_set([0, 1, 3, 4, 5], tol=1e-6),
             forbidden=_KEY_PORTER_IK,
             hint="In general position there are four configurations with q2 >= 0: α1 and α1 + π, times the two "
-                 "solutions of eq. 10 for α4. Return them as a (4, 6) array, angles in [0, 2π).",
+            "solutions of eq. 10 for α4. Return them as a (4, 6) array, angles in [0, 2π).",
         ),
         Question(
-            "q3", "porter_ik_geometric", 3, "bonus: Porter's Ver.2 (geometric) pair",
+            "q3",
+            "porter_ik_geometric",
+            3,
+            "bonus: Porter's Ver.2 (geometric) pair",
             public=(_public_pose(),),
             hidden=lambda rng: _porter_poses(rng, 4),
             reference=_porter("ik_geometric"),
             compare=compare_solution_set([0, 1, 3, 4, 5], tol=1e-6),
             forbidden=_KEY_PORTER_IK,
             hint="Keep the arm plane α1 = atan2(p4_y, p4_x) and the two elbow points p3 = p4 ± l3 z4; "
-                 "return a (2, 6) array.",
+            "return a (2, 6) array.",
             bonus=True,
         ),
     ),
@@ -634,7 +688,10 @@ EX06 = Exercise(
     "The three-step inverse kinematics of a PUMA with a spherical wrist",
     (
         Question(
-            "q1", "base_angle", 2, "(a) the base angle θ0",
+            "q1",
+            "base_angle",
+            2,
+            "(a) the base angle θ0",
             public=((THREE_STEP_W,), (THREE_STEP_W_BEHIND,)),
             hidden=lambda rng: [(w,) for w, _, _ in _reachable_w(rng, 5)],
             reference=_three_step(["theta0"]),
@@ -643,7 +700,10 @@ EX06 = Exercise(
             hint="Use np.arctan2(w_y, w_x): the ratio w_y / w_x alone loses the quadrant.",
         ),
         Question(
-            "q2", "step1_frame", 2, "(a) the wrist frame after step 1",
+            "q2",
+            "step1_frame",
+            2,
+            "(a) the wrist frame after step 1",
             public=((THREE_STEP_W,), (THREE_STEP_W_BEHIND,)),
             hidden=lambda rng: [(w,) for w, _, _ in _reachable_w(rng, 4)],
             reference=_three_step(["frame_step1"]),
@@ -651,17 +711,23 @@ EX06 = Exercise(
             hint="Starting from the straight arm the wrist frame is the identity; turn it by K(e_z, δ0).",
         ),
         Question(
-            "q3", "arm_angles", 3, "(b) θ, θ1 and θ2 (elbow up)",
+            "q3",
+            "arm_angles",
+            3,
+            "(b) θ, θ1 and θ2 (elbow up)",
             public=((THREE_STEP_W, *THREE_STEP_L),),
             hidden=lambda rng: _reachable_w(rng, 5),
             reference=_three_step(["theta", "theta1", "theta2"]),
             compare=compare_angles,
             forbidden=_KEY_THREE_STEP,
             hint="θ1 = φ + θ with φ the elevation of w; the elbow bends back by θ2 = -(π - β), "
-                 "β the triangle's angle at the elbow.",
+            "β the triangle's angle at the elbow.",
         ),
         Question(
-            "q4", "step2_frame", 2, "(b) the wrist frame after step 2",
+            "q4",
+            "step2_frame",
+            2,
+            "(b) the wrist frame after step 2",
             public=((THREE_STEP_W, *THREE_STEP_L),),
             hidden=lambda rng: _reachable_w(rng, 4),
             reference=_three_step(["frame_step2"]),
@@ -669,20 +735,23 @@ EX06 = Exercise(
             hint="Turn the step-1 frame by K(a, δ) with a = (sin θ0, -cos θ0, 0) and δ = θ1 + θ2.",
         ),
         Question(
-            "q5", "wrist_rotation", 3, "(c) the composite wrist rotation",
+            "q5",
+            "wrist_rotation",
+            3,
+            "(c) the composite wrist rotation",
             public=((THREE_STEP_W, THREE_STEP_TARGET, *THREE_STEP_L),),
-            hidden=lambda rng: [(w, R, l1, l2) for (w, l1, l2), R in
-                                zip(_reachable_w(rng, 4), _rotations(rng, 4), strict=True)],
+            hidden=lambda rng: [
+                (w, R, l1, l2) for (w, l1, l2), R in zip(_reachable_w(rng, 4), _rotations(rng, 4), strict=True)
+            ],
             reference=_three_step(["K_wrist"]),
             forbidden=_KEY_THREE_STEP,
             hint="You need the rotation K with K F2 = F (F2 the step-2 frame, F the target); "
-                 "F2 is orthogonal, so its inverse is its transpose.",
+            "F2 is orthogonal, so its inverse is its transpose.",
         ),
     ),
 )
 
 EXERCISES: dict[str, Exercise] = {ex.name: ex for ex in (EX01, EX02, EX03, EX04, EX05, EX06)}
-
 
 
 def _register(ex: Exercise) -> None:
@@ -730,8 +799,10 @@ def _public_report(q: Question, answer: Callable[..., Any]) -> tuple[str, str]:
         except Exception as exc:  # noqa: BLE001 - summarised for the student
             return "failed", f"case {i} raised {type(exc).__name__}: {str(exc)[:200]}"
         if hit is not None:
-            return "failed", (f"case {i}: your function calls the course package's answer "
-                              f"({hit.replace(':', '.')}); write your own code")
+            return "failed", (
+                f"case {i}: your function calls the course package's answer "
+                f"({hit.replace(':', '.')}); write your own code"
+            )
         why = q.compare(got, expected)
         if why is not None:
             shown = ", ".join(_short_repr(a) for a in args)
@@ -917,8 +988,15 @@ def _plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
         rng = np.random.default_rng([seed, zlib.crc32(f"{exercise.name}:{q.qid}".encode())])
         for case, args in enumerate(q.cases(rng)):
             expected = np.asarray(q.reference(*copy.deepcopy(args)), dtype=float)
-            plan.append({"qid": q.qid, "case": case, "function": q.function,
-                         "args": [_jsonable(a) for a in args], "expected": expected})
+            plan.append(
+                {
+                    "qid": q.qid,
+                    "case": case,
+                    "function": q.function,
+                    "args": [_jsonable(a) for a in args],
+                    "expected": expected,
+                }
+            )
     return plan
 
 
@@ -955,8 +1033,16 @@ def _parse_cells(data: bytes) -> list[str]:
 
 def _child_env(workdir: str) -> dict[str, str]:
     env = {k: v for k, v in os.environ.items() if k in ("PATH", "LANG", "LC_ALL", "SYSTEMROOT", "TMPDIR")}
-    env.update(HOME=workdir, MPLBACKEND="Agg", MPLCONFIGDIR=workdir, PYTHONHASHSEED="0",
-               OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1", PYTHONDONTWRITEBYTECODE="1")
+    env.update(
+        HOME=workdir,
+        MPLBACKEND="Agg",
+        MPLCONFIGDIR=workdir,
+        PYTHONHASHSEED="0",
+        OMP_NUM_THREADS="1",
+        OPENBLAS_NUM_THREADS="1",
+        MKL_NUM_THREADS="1",
+        PYTHONDONTWRITEBYTECODE="1",
+    )
     return env
 
 
@@ -973,19 +1059,33 @@ def _drain(stream: Any, cap: int, sink: list[bytes], overflow: list[bool]) -> No
             overflow[0] = True
 
 
-def _run_child(cells: list[str], calls: list[dict[str, Any]], workdir: str, timeout_cell: float,
-               timeout_total: float, forbidden: dict[str, list[str]] | None = None,
-               ) -> tuple[list[dict[str, Any]], bool, int | None, bool]:
+def _run_child(
+    cells: list[str],
+    calls: list[dict[str, Any]],
+    workdir: str,
+    timeout_cell: float,
+    timeout_total: float,
+    forbidden: dict[str, list[str]] | None = None,
+) -> tuple[list[dict[str, Any]], bool, int | None, bool]:
     """Run the worker; return (events, timed_out, returncode, output_overflow)."""
-    job = json.dumps({"cells": cells, "calls": calls, "timeout_cell": timeout_cell, "max_size": 10_000,
-                      "forbidden": forbidden or {}})
-    bootstrap = (f"import sys; sys.path.insert(0, {str(REPO_ROOT)!r}); "
-                 "from puma_course.grading_worker import main; main()")
+    job = json.dumps(
+        {"cells": cells, "calls": calls, "timeout_cell": timeout_cell, "max_size": 10_000, "forbidden": forbidden or {}}
+    )
+    bootstrap = (
+        f"import sys; sys.path.insert(0, {str(REPO_ROOT)!r}); from puma_course.grading_worker import main; main()"
+    )
     kwargs: dict[str, Any] = {}
     if os.name == "posix":
         kwargs.update(start_new_session=True)  # its own process group, killed as a whole
-    proc = subprocess.Popen([sys.executable, "-I", "-c", bootstrap], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                            stderr=subprocess.DEVNULL, cwd=workdir, env=_child_env(workdir), **kwargs)
+    proc = subprocess.Popen(
+        [sys.executable, "-I", "-c", bootstrap],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        cwd=workdir,
+        env=_child_env(workdir),
+        **kwargs,
+    )
     sink: list[bytes] = []
     overflow = [False]
     reader = threading.Thread(target=_drain, args=(proc.stdout, MAX_OUTPUT_BYTES, sink, overflow), daemon=True)
@@ -1023,9 +1123,16 @@ def _run_child(cells: list[str], calls: list[dict[str, Any]], workdir: str, time
     return events, timed_out, proc.returncode, overflow[0]
 
 
-def grade_notebook(path: str | os.PathLike[str] | None, exercise: Exercise, student: str = "", seed: int = 0,
-                   timeout_cell: float = 10.0, timeout_total: float = 60.0,
-                   plan: list[dict[str, Any]] | None = None, data: bytes | None = None) -> NotebookResult:
+def grade_notebook(
+    path: str | os.PathLike[str] | None,
+    exercise: Exercise,
+    student: str = "",
+    seed: int = 0,
+    timeout_cell: float = 10.0,
+    timeout_total: float = 60.0,
+    plan: list[dict[str, Any]] | None = None,
+    data: bytes | None = None,
+) -> NotebookResult:
     """Grade one submitted notebook (``path`` None or absent: status "missing").
 
     The file is read once (or ``data`` holds its bytes, read earlier); the child
@@ -1034,9 +1141,14 @@ def grade_notebook(path: str | os.PathLike[str] | None, exercise: Exercise, stud
     disk while grading can change what is graded.
     """
     start = time.perf_counter()
-    result = NotebookResult(student, exercise.name, "ok", exercise.max_score,
-                            scores={q.qid: 0.0 for q in exercise.questions},
-                            question_notes={q.qid: [] for q in exercise.questions})
+    result = NotebookResult(
+        student,
+        exercise.name,
+        "ok",
+        exercise.max_score,
+        scores={q.qid: 0.0 for q in exercise.questions},
+        question_notes={q.qid: [] for q in exercise.questions},
+    )
     if path is None or (data is None and not Path(path).is_file()):
         result.status = "missing"
         result.notes.append(f"no file {exercise.name}.ipynb was submitted")
@@ -1055,8 +1167,9 @@ def grade_notebook(path: str | os.PathLike[str] | None, exercise: Exercise, stud
     with tempfile.TemporaryDirectory(prefix="puma-grade-") as workdir:
         (Path(workdir) / path.name).write_bytes(data)
         forbidden = {q.qid: list(q.forbidden) for q in exercise.questions if q.forbidden}
-        events, timed_out, returncode, overflow = _run_child(cells, calls, workdir, timeout_cell, timeout_total,
-                                                             forbidden)
+        events, timed_out, returncode, overflow = _run_child(
+            cells, calls, workdir, timeout_cell, timeout_total, forbidden
+        )
     done = any(e.get("kind") == "done" for e in events)
     for e in events:
         if e.get("kind") == "cell" and e.get("status") in ("error", "timeout"):
@@ -1096,12 +1209,16 @@ def grade_notebook(path: str | os.PathLike[str] | None, exercise: Exercise, stud
         result.question_notes[q.qid].insert(0, f"{passed}/{total} cases pass")
     if timed_out:
         result.status = "timeout"
-        result.notes.append(f"the notebook ran longer than {timeout_total:g} s in total and was stopped; "
-                            "answers that came back before that were graded")
+        result.notes.append(
+            f"the notebook ran longer than {timeout_total:g} s in total and was stopped; "
+            "answers that came back before that were graded"
+        )
     elif not done:
         result.status = "crashed"
-        result.notes.append(f"the notebook's process ended early (exit code {returncode}); "
-                            "answers that came back before that were graded")
+        result.notes.append(
+            f"the notebook's process ended early (exit code {returncode}); "
+            "answers that came back before that were graded"
+        )
     elif any(e.get("kind") == "cell" and e.get("status") != "ok" for e in events):
         result.status = "cell-error"
     if overflow:
@@ -1121,8 +1238,12 @@ def _feedback_markdown(student: str, results: list[NotebookResult], seed: int) -
     lines += [f"Total: **{total:g} / {top:g}** points.", ""]
     for r in results:
         ex = EXERCISES[r.exercise]
-        lines += [f"## {r.exercise}: {ex.title}", "",
-                  f"Status: `{r.status}`. Score: **{r.score:g} / {r.max_score:g}**.", ""]
+        lines += [
+            f"## {r.exercise}: {ex.title}",
+            "",
+            f"Status: `{r.status}`. Score: **{r.score:g} / {r.max_score:g}**.",
+            "",
+        ]
         for note in r.notes:
             lines.append(f"- {note}")
         if r.notes:
@@ -1143,10 +1264,17 @@ def _feedback_markdown(student: str, results: list[NotebookResult], seed: int) -
     return "\n".join(lines) + "\n"
 
 
-def grade(submissions: str | os.PathLike[str], output: str | os.PathLike[str],
-          feedback: str | os.PathLike[str] | None = None, jobs: int = 2, timeout_cell: float = 10.0,
-          timeout_total: float = 60.0, seed: int | None = None, exercises: Sequence[str] | None = None,
-          progress: Callable[[NotebookResult], None] | None = None) -> list[NotebookResult]:
+def grade(
+    submissions: str | os.PathLike[str],
+    output: str | os.PathLike[str],
+    feedback: str | os.PathLike[str] | None = None,
+    jobs: int = 2,
+    timeout_cell: float = 10.0,
+    timeout_total: float = 60.0,
+    seed: int | None = None,
+    exercises: Sequence[str] | None = None,
+    progress: Callable[[NotebookResult], None] | None = None,
+) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
     Writes ``output`` (CSV: student, exercise, score, max_score, one column per
@@ -1183,12 +1311,21 @@ def grade(submissions: str | os.PathLike[str], output: str | os.PathLike[str],
         ex = EXERCISES[name]
         try:
             if isinstance(data, Exception):
-                res = NotebookResult(student, name, "malformed", ex.max_score,
-                                     scores={q.qid: 0.0 for q in ex.questions})
+                res = NotebookResult(
+                    student, name, "malformed", ex.max_score, scores={q.qid: 0.0 for q in ex.questions}
+                )
                 res.notes.append(str(data))
             else:
-                res = grade_notebook(path if data is not None else None, ex, student, seed, timeout_cell,
-                                     timeout_total, plans[name], data=data)
+                res = grade_notebook(
+                    path if data is not None else None,
+                    ex,
+                    student,
+                    seed,
+                    timeout_cell,
+                    timeout_total,
+                    plans[name],
+                    data=data,
+                )
         except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
             res = NotebookResult(student, name, "grader-error", ex.max_score, scores={q.qid: 0.0 for q in ex.questions})
             res.notes.append(f"the grader failed on this notebook: {type(exc).__name__}: {exc}")
@@ -1200,22 +1337,27 @@ def grade(submissions: str | os.PathLike[str], output: str | os.PathLike[str],
         results = list(pool.map(work, tasks))
     results.sort(key=lambda r: (r.student, r.exercise))
     package_after = _package_digest()
-    changed = sorted(k for k in set(package_before) | set(package_after)
-                     if package_before.get(k) != package_after.get(k))
+    changed = sorted(
+        k for k in set(package_before) | set(package_after) if package_before.get(k) != package_after.get(k)
+    )
     if changed:
         import warnings
 
-        warnings.warn(f"the puma_course package files changed while grading ({', '.join(changed)}); a submission "
-                      "may have tampered with them, so the grades of notebooks graded afterwards are not reliable. "
-                      "Grade in a container or as a user who cannot write the package.", GradingIntegrityWarning,
-                      stacklevel=2)
+        warnings.warn(
+            f"the puma_course package files changed while grading ({', '.join(changed)}); a submission "
+            "may have tampered with them, so the grades of notebooks graded afterwards are not reliable. "
+            "Grade in a container or as a user who cannot write the package.",
+            GradingIntegrityWarning,
+            stacklevel=2,
+        )
     _write_csv(output, results, names)
     for r in results:
         if r.status == "missing":
             others = sorted(p.name for p in (sub_dir / r.student).glob("*.ipynb") if p.stem not in EXERCISES)
             if others:
-                r.notes.append(f"notebooks found under other names: {', '.join(others)} "
-                               f"(name the file exactly {r.exercise}.ipynb)")
+                r.notes.append(
+                    f"notebooks found under other names: {', '.join(others)} (name the file exactly {r.exercise}.ipynb)"
+                )
     if feedback is not None:
         fb_dir = Path(feedback)
         fb_dir.mkdir(parents=True, exist_ok=True)

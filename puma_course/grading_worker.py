@@ -287,6 +287,7 @@ def main() -> None:
             except BaseException as exc:  # noqa: BLE001
                 event["error"] = _short_error(exc)
             else:
+
                 def to_floats(value: Any) -> Any:
                     raw = asarray(value)
                     if raw.dtype.kind == "c":
@@ -303,8 +304,10 @@ def main() -> None:
                     event["error"] = f"returned a {kind}, which is not an array of numbers ({str(exc)[:120]})"
                 else:
                     if state["hit"] is not None:
-                        event["error"] = (f"used the course package's answer ({state['hit'].replace(':', '.')}) "
-                                          "instead of your own code")
+                        event["error"] = (
+                            f"used the course package's answer ({state['hit'].replace(':', '.')}) "
+                            "instead of your own code"
+                        )
                     elif arr.size > max_size:
                         event["error"] = f"returned {arr.size} numbers, more than the {max_size} allowed"
                     else:

@@ -46,8 +46,27 @@ def test_grade_writes_csv_and_feedback(tmp_path, capsys):
     (subs / "ben").mkdir()
     shutil.copy(ROOT / "solutions" / "ex01_rotations.ipynb", subs / "ann")
     out, fb = tmp_path / "grades.csv", tmp_path / "fb"
-    code = main(["grade", str(subs), "-o", str(out), "--feedback", str(fb), "--jobs", "2", "--timeout-cell", "10",
-                 "--timeout-total", "30", "--seed", "5", "--exercise", "ex01_rotations", "--quiet"])
+    code = main(
+        [
+            "grade",
+            str(subs),
+            "-o",
+            str(out),
+            "--feedback",
+            str(fb),
+            "--jobs",
+            "2",
+            "--timeout-cell",
+            "10",
+            "--timeout-total",
+            "30",
+            "--seed",
+            "5",
+            "--exercise",
+            "ex01_rotations",
+            "--quiet",
+        ]
+    )
     assert code == 0
     with open(out, newline="", encoding="utf-8") as fh:
         rows = {r["student"]: r for r in csv.DictReader(fh)}
@@ -88,8 +107,9 @@ def test_grade_warns_and_exits_3_when_the_package_changes_during_grading(tmp_pat
     digests = iter([{"a.py": b"1"}, {"a.py": b"2"}])
     monkeypatch.setattr(grading, "_package_digest", lambda: next(digests))
     (tmp_path / "subs" / "ann").mkdir(parents=True)
-    code = main(["grade", str(tmp_path / "subs"), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations",
-                 "--quiet"])
+    code = main(
+        ["grade", str(tmp_path / "subs"), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations", "--quiet"]
+    )
     assert code == 3
     assert "changed while grading" in capsys.readouterr().err
 
@@ -98,8 +118,22 @@ def test_missing_notebook_feedback_names_misnamed_files(tmp_path):
     subs = tmp_path / "subs"
     (subs / "cat").mkdir(parents=True)
     shutil.copy(ROOT / "solutions" / "ex01_rotations.ipynb", subs / "cat" / "ex01_rotations (1).ipynb")
-    assert main(["grade", str(subs), "-o", str(tmp_path / "g.csv"), "--feedback", str(tmp_path / "fb"),
-                 "--exercise", "ex01_rotations", "--quiet"]) == 0
+    assert (
+        main(
+            [
+                "grade",
+                str(subs),
+                "-o",
+                str(tmp_path / "g.csv"),
+                "--feedback",
+                str(tmp_path / "fb"),
+                "--exercise",
+                "ex01_rotations",
+                "--quiet",
+            ]
+        )
+        == 0
+    )
     text = (tmp_path / "fb" / "cat.md").read_text(encoding="utf-8")
     assert "missing" in text and "ex01_rotations (1).ipynb" in text
 

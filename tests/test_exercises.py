@@ -73,8 +73,10 @@ def test_no_solution_or_hidden_test_leaks_into_the_exercise(name):
     for cell in exercise.cells:
         assert cell.get("outputs", []) == [] and cell.get("execution_count") is None
         assert set(cell.metadata) <= {"tags"}
-    assert exercise.metadata == {"kernelspec": {"display_name": "Python 3 (ipykernel)", "language": "python",
-                                                "name": "python3"}, "language_info": {"name": "python"}}
+    assert exercise.metadata == {
+        "kernelspec": {"display_name": "Python 3 (ipykernel)", "language": "python", "name": "python3"},
+        "language_info": {"name": "python"},
+    }
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -72,13 +72,19 @@ def _nb(*cells):
 
 
 def test_release_replaces_solutions_by_a_stub_and_drops_hidden_tests():
-    src = ("def f(x):\n    '''doc'''\n    ### BEGIN SOLUTION\n    secret = x * 42\n    return secret\n"
-           "    ### END SOLUTION\n")
+    src = (
+        "def f(x):\n    '''doc'''\n    ### BEGIN SOLUTION\n    secret = x * 42\n    return secret\n"
+        "    ### END SOLUTION\n"
+    )
     hidden = "### BEGIN HIDDEN TESTS\nassert f(1) == 42\n### END HIDDEN TESTS"
     mixed = "check('q1', f)\n### BEGIN HIDDEN TESTS\nassert f(2) == 84\n### END HIDDEN TESTS\nprint('after')"
     md = "Explain.\n### BEGIN SOLUTION\nBecause 42.\n### END SOLUTION"
-    nb = _nb(("code", src, ["question:q1", "points:2"]), ("code", hidden, ["hidden-tests"]),
-             ("code", mixed, None), ("markdown", md, None))
+    nb = _nb(
+        ("code", src, ["question:q1", "points:2"]),
+        ("code", hidden, ["hidden-tests"]),
+        ("code", mixed, None),
+        ("markdown", md, None),
+    )
     nb.cells[0].outputs = [nbformat.v4.new_output("stream", text="old output")]
     nb.cells[0].execution_count = 7
     out = release_notebook(nb)
@@ -170,8 +176,11 @@ def test_reference_answers_agree_with_hand_worked_values():
 
 def _right_rotation(axis, angle):
     c, s = np.cos(angle), np.sin(angle)
-    return {"x": np.array([[1, 0, 0], [0, c, -s], [0, s, c]]), "y": np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
-            "z": np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis]
+    return {
+        "x": np.array([[1, 0, 0], [0, c, -s], [0, s, c]]),
+        "y": np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
+        "z": np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]),
+    }[axis]
 
 
 def test_check_prints_one_clear_line(capsys):

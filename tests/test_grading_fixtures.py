@@ -45,8 +45,11 @@ EXPECTED = {
 
 
 def _digest(folder: Path) -> dict[str, str]:
-    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file()}
+    return {
+        str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+        for p in sorted(folder.rglob("*"))
+        if p.is_file()
+    }
 
 
 @pytest.fixture(scope="module")
@@ -59,14 +62,17 @@ def graded(tmp_path_factory):
     good_nb = subs / "good" / f"{EX}.ipynb"
     tamper = nbformat.read(good_nb, as_version=4)
     own_nb = subs / "tamper_files" / f"{EX}.ipynb"
-    tamper.cells.append(nbformat.v4.new_code_cell(
-        "import os\n"
-        f"for target in [{str(out)!r}, {str(good_nb)!r}, 'grades.csv', {str(own_nb)!r}]:\n"
-        "    try:\n"
-        "        with open(target, 'w') as fh:\n"
-        "            fh.write('student,exercise,score\\ntamper_files,ex01_rotations,1000\\n')\n"
-        "    except OSError:\n"
-        "        pass\n"))
+    tamper.cells.append(
+        nbformat.v4.new_code_cell(
+            "import os\n"
+            f"for target in [{str(out)!r}, {str(good_nb)!r}, 'grades.csv', {str(own_nb)!r}]:\n"
+            "    try:\n"
+            "        with open(target, 'w') as fh:\n"
+            "            fh.write('student,exercise,score\\ntamper_files,ex01_rotations,1000\\n')\n"
+            "    except OSError:\n"
+            "        pass\n"
+        )
+    )
     (subs / "tamper_files").mkdir()
     nbformat.write(tamper, own_nb)
     before = _digest(subs)
@@ -74,8 +80,14 @@ def graded(tmp_path_factory):
     results = grade(subs, out, feedback=fb, jobs=2, timeout_cell=3, timeout_total=8, seed=11, exercises=[EX])
     with open(out, newline="", encoding="utf-8") as fh:
         rows = {row["student"]: row for row in csv.DictReader(fh)}
-    return {"results": {r.student: r for r in results}, "rows": rows, "before": before, "subs": subs,
-            "feedback": fb, "out": out}
+    return {
+        "results": {r.student: r for r in results},
+        "rows": rows,
+        "before": before,
+        "subs": subs,
+        "feedback": fb,
+        "out": out,
+    }
 
 
 @pytest.mark.parametrize("student", sorted(EXPECTED))
