@@ -126,34 +126,36 @@ def rodrigues(axis: Any, angle: Any) -> np.ndarray:
     return np.eye(3) + s * K + (1.0 - c) * (K @ K)
 
 
-def axis_angle(R: Any) -> tuple[np.ndarray, float]:
+def axis_angle(R: Any) -> tuple[np.ndarray, Any]:
     """Axis and angle of a rotation: ``rodrigues(*axis_angle(R)) == R``.
 
     Returns a unit axis and an angle in [0, π]. For the identity (angle 0) the
     axis is arbitrary and e_z is returned; for a half turn (angle π) the axis
-    is found from R + I (its sign is then immaterial).
+    is found from R + I (its sign is then immaterial). A batch R (N, 3, 3)
+    gives axes (N, 3) and angles (N,), in one vectorised pass.
 
     >>> axis, angle = axis_angle(rotx(0.5))
     >>> np.round(axis, 12), round(angle, 12)
     (array([1., 0., 0.]), 0.5)
     """
-    R = as_rotation(R, "R")
-    cos_t = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)
-    w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
-    sin_t = np.linalg.norm(w) / 2.0
-    angle = float(np.arctan2(sin_t, cos_t))
+    R = as_rotation(R, "R", batch=True)
+    cos_t = np.clip((np.trace(R, axis1=-2, axis2=-1) - 1.0) / 2.0, -1.0, 1.0)
+    w = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], axis=-1)
+    sin_t = np.linalg.norm(w, axis=-1) / 2.0
+    angle = np.arctan2(sin_t, cos_t)
     # Away from a half turn the antisymmetric part w = 2 sin(θ) k is accurate, even for tiny θ.
-    if sin_t > 0.0 and (cos_t > 0.0 or sin_t > 1e-6):
-        return w / (2.0 * sin_t), angle
-    if cos_t > 0:  # exactly the identity: any axis will do
-        return np.array([0.0, 0.0, 1.0]), angle
-    # (near) half turn: R + I ≈ 2 k k^T; take the largest column
+    from_w = (sin_t > 0.0) & ((cos_t > 0.0) | (sin_t > 1e-6))
+    k_w = w / np.where(from_w, 2.0 * sin_t, 1.0)[..., None]
+    # (near) half turn: R + I ≈ 2 k k^T; take its largest column, signed like w.
     B = (R + np.eye(3)) / 2.0
-    k = B[:, int(np.argmax(np.diag(B)))]
-    k = k / np.linalg.norm(k)
-    # refine the axis sign-consistently with the small antisymmetric part, if any
-    if np.dot(k, w) < 0:
-        k = -k
+    col = np.argmax(np.diagonal(B, axis1=-2, axis2=-1), axis=-1)
+    k_b = np.take_along_axis(B, col[..., None, None], axis=-1)[..., 0]
+    k_b = k_b / np.maximum(np.linalg.norm(k_b, axis=-1, keepdims=True), 1e-300)
+    k_b = np.where((np.sum(k_b * w, axis=-1) < 0)[..., None], -k_b, k_b)
+    identity = ~from_w & (cos_t > 0)  # exactly the identity: any axis will do
+    k = np.where(from_w[..., None], k_w, np.where(identity[..., None], np.array([0.0, 0.0, 1.0]), k_b))
+    if R.ndim == 2:
+        return k, float(angle)
     return k, angle
 
 

@@ -178,3 +178,16 @@ def test_axis_angle_near_identity_and_half_turn(angle):
     R = tf.rodrigues(axis, angle)
     k, t = tf.axis_angle(R)
     assert np.allclose(tf.rodrigues(k, t), R, atol=1e-12)
+
+
+def test_axis_angle_batch_equals_each_row_including_special_cases():
+    rng = np.random.default_rng(RNG_SEED)
+    Rs = list(tf.rodrigues(rng.normal(size=(40, 3)), rng.uniform(-4, 4, 40)))
+    Rs += [np.eye(3), tf.rotx(math.pi), tf.rodrigues([1, 1, 0], math.pi), tf.rodrigues([1, 2, 3], 1e-9)]
+    R = np.stack(Rs)
+    axes, angles = tf.axis_angle(R)
+    assert axes.shape == (len(Rs), 3) and angles.shape == (len(Rs),)
+    assert np.allclose(tf.rodrigues(axes, angles), R, atol=1e-9)
+    for i, Ri in enumerate(Rs):
+        k, t = tf.axis_angle(Ri)
+        assert np.isclose(t, angles[i]) and np.allclose(k, axes[i])
