@@ -79,6 +79,9 @@ class Link:
     For a revolute joint (``kind="R"``) the joint variable is θ_i and ``theta``
     is a constant offset added to it; for a prismatic joint (``kind="P"``) the
     variable is d_i and ``d`` is the offset.
+
+    >>> Link(alpha_prev=-np.pi / 2, a_prev=0.0, d=0.15).kind
+    'R'
     """
 
     alpha_prev: float
@@ -102,6 +105,12 @@ class DHChain:
     drawing. ``q`` of shape (n,) gives (4, 4); (N, n) gives (N, 4, 4), one array
     operation per link, never a Python loop over the N configurations.
     ``configurations`` holds named joint vectors (radians, or lengths for P).
+
+    A planar two-link arm (links of length 1 and 0.5, the second measured to the tool frame):
+
+    >>> arm = DHChain([Link(0, 0), Link(0, 1.0), Link(0, 0.5)], name="planar")
+    >>> np.round(arm.fk([np.pi / 2, -np.pi / 2, 0.0])[:3, 3], 12) + 0.0
+    array([0.5, 1. , 0. ])
     """
 
     links: Sequence[Link]

@@ -193,34 +193,58 @@ def _trans_axis(d: Any, axis: int) -> np.ndarray:
 
 
 def transx(d: Any) -> np.ndarray:
-    """Trans(X, d): translation along x by ``d``."""
+    """Trans(X, d): translation along x by ``d`` (a 4x4; d of shape (N,) gives (N, 4, 4)).
+
+    >>> transx(2.0) @ [0, 0, 0, 1]
+    array([2., 0., 0., 1.])
+    """
     return _trans_axis(d, 0)
 
 
 def transy(d: Any) -> np.ndarray:
-    """Trans(Y, d): translation along y by ``d``."""
+    """Trans(Y, d): translation along y by ``d``.
+
+    >>> transy(-1.0)[:3, 3]
+    array([ 0., -1.,  0.])
+    """
     return _trans_axis(d, 1)
 
 
 def transz(d: Any) -> np.ndarray:
-    """Trans(Z, d): translation along z by ``d``."""
+    """Trans(Z, d): translation along z by ``d``.
+
+    >>> transz([1.0, 2.0])[:, 2, 3]
+    array([1., 2.])
+    """
     return _trans_axis(d, 2)
 
 
 def trotx(angle: Any) -> np.ndarray:
-    """Rot(X, angle) as a 4x4 transform (no translation)."""
+    """Rot(X, angle) as a 4x4 transform (no translation).
+
+    >>> np.round(trotx(np.pi / 2) @ [0, 1, 0, 1], 12) + 0.0
+    array([0., 0., 1., 1.])
+    """
     R = rotx(angle)
     return homogeneous(R, np.zeros(R.shape[:-2] + (3,)))
 
 
 def troty(angle: Any) -> np.ndarray:
-    """Rot(Y, angle) as a 4x4 transform (no translation)."""
+    """Rot(Y, angle) as a 4x4 transform (no translation).
+
+    >>> np.round(troty(np.pi / 2) @ [0, 0, 1, 1], 12) + 0.0
+    array([1., 0., 0., 1.])
+    """
     R = roty(angle)
     return homogeneous(R, np.zeros(R.shape[:-2] + (3,)))
 
 
 def trotz(angle: Any) -> np.ndarray:
-    """Rot(Z, angle) as a 4x4 transform (no translation)."""
+    """Rot(Z, angle) as a 4x4 transform (no translation).
+
+    >>> np.round(trotz(np.pi / 2) @ [1, 0, 0, 1], 12) + 0.0
+    array([0., 1., 0., 1.])
+    """
     R = rotz(angle)
     return homogeneous(R, np.zeros(R.shape[:-2] + (3,)))
 
@@ -257,6 +281,11 @@ def compose_moving(*transforms: Any) -> np.ndarray:
 
     "First T1, then T2 about the axes that T1 produced, ..." multiplies on the
     right. Porter's local-frame product Rz(α1) Tz(l1) Ry(α2) ... is this order.
+
+    Turn 90° about x, then 90° about the *new* z (the old -y): e_y ends at -e_x.
+
+    >>> np.round(compose_moving(trotx(np.pi / 2), trotz(np.pi / 2)) @ [0, 1, 0, 0], 12) + 0.0
+    array([-1.,  0.,  0.,  0.])
     """
     if not transforms:
         raise ValueError("transforms: expected at least one transform, got none")
@@ -272,6 +301,11 @@ def compose_fixed(*transforms: Any) -> np.ndarray:
     "First T1, then T2 about the scene axes, ..." multiplies on the left, so the
     same list of motions gives the reverse product of :func:`compose_moving`
     when each later motion is re-expressed about the fixed axes.
+
+    Turn 90° about x (e_y goes to e_z), then 90° about the fixed z (e_z stays):
+
+    >>> np.round(compose_fixed(trotx(np.pi / 2), trotz(np.pi / 2)) @ [0, 1, 0, 0], 12) + 0.0
+    array([0., 0., 1., 0.])
     """
     if not transforms:
         raise ValueError("transforms: expected at least one transform, got none")
@@ -279,7 +313,11 @@ def compose_fixed(*transforms: Any) -> np.ndarray:
 
 
 def is_rotation(R: Any, tol: float = 1e-9) -> bool:
-    """True when ``R`` is a 3x3 (or batch of) orthonormal matrix with det +1."""
+    """True when ``R`` is a 3x3 (or batch of) orthonormal matrix with det +1.
+
+    >>> is_rotation(rotz(0.3)), is_rotation(np.diag([1.0, 1.0, -1.0]))
+    (True, False)
+    """
     try:
         as_rotation(R, "R", batch=True, tol=tol)
     except ValueError:
