@@ -43,7 +43,14 @@ s = {i: sp.Symbol(f"s{i}") for i in range(1, 6)}
 
 
 def rot(axis: str, t: sp.Expr) -> sp.Matrix:
-    """4x4 rotation about the local axis 'x', 'y' or 'z' by t."""
+    """4x4 rotation about the local axis 'x', 'y' or 'z' by t (sympy; maps the turned frame into the old one).
+
+    >>> rot("z", sp.pi / 2)[:3, :3]
+    Matrix([
+    [0, -1, 0],
+    [1,  0, 0],
+    [0,  0, 1]])
+    """
     C, S = sp.cos(t), sp.sin(t)
     R = {
         "x": [[1, 0, 0], [0, C, -S], [0, S, C]],
@@ -56,7 +63,11 @@ def rot(axis: str, t: sp.Expr) -> sp.Matrix:
 
 
 def trans(axis: str, d: sp.Expr) -> sp.Matrix:
-    """4x4 translation along the local axis 'x', 'y' or 'z' by d."""
+    """4x4 translation along the local axis 'x', 'y' or 'z' by d (sympy).
+
+    >>> trans("x", l4)[:3, 3].T
+    Matrix([[l4, 0, 0]])
+    """
     M = sp.eye(4)
     M["xyz".index(axis), 3] = d
     return M
@@ -68,7 +79,15 @@ MOTIONS = [("R", "z", a1), ("T", "z", l1), ("R", "y", a2), ("T", "x", q2), ("R",
 
 
 def local_product() -> sp.Matrix:
-    """F05 = Rz(α1) Tz(l1) Ry(α2) Tx(q2) Ry(α3) Tz(-l3) Rz(α4) Tx(l4) Rx(α5) (corrected)."""
+    """F05 = Rz(α1) Tz(l1) Ry(α2) Tx(q2) Ry(α3) Tz(-l3) Rz(α4) Tx(l4) Rx(α5) (corrected).
+
+    Moving axes: each factor acts about/along an axis of the frame reached so far (Porter's
+    local-frame product, with the ``Tx(q2)`` the print omits). Height of p5 at the zero pose:
+
+    >>> F = local_product()
+    >>> F[2, 3].subs({a1: 0, a2: 0, a3: 0, a4: 0, q2: 1})
+    l1 - l3
+    """
     M = sp.eye(4)
     for kind, axis, v in MOTIONS:
         M = M * (rot(axis, v) if kind == "R" else trans(axis, v))
@@ -76,7 +95,13 @@ def local_product() -> sp.Matrix:
 
 
 def printed_local_product() -> sp.Matrix:
-    """The local product as printed: Rz(α1) Tz(l1) Ry(α2) Ry(α3) Tz(-l3) Rz(α4) Tx(l4) Rx(α5) (no Tx(q2))."""
+    """The local product as printed: Rz(α1) Tz(l1) Ry(α2) Ry(α3) Tz(-l3) Rz(α4) Tx(l4) Rx(α5) (no Tx(q2)).
+
+    Without ``Tx(q2)`` the prismatic joint cannot move the hand:
+
+    >>> printed_local_product().has(q2), local_product().has(q2)
+    (False, True)
+    """
     M = sp.eye(4)
     for kind, axis, v in MOTIONS:
         if v is q2:
@@ -89,7 +114,13 @@ _ANGLE_INDEX = {a1: 1, a2: 2, a3: 3, a4: 4, a5: 5}
 
 
 def reduce_sc(expr: sp.Expr) -> sp.Expr:
-    """Expand and reduce a polynomial in ci, si modulo ci² + si² = 1 (a canonical form: ci of degree <= 1)."""
+    """Expand and reduce a polynomial in ci, si modulo ci² + si² = 1 (a canonical form: ci of degree <= 1).
+
+    >>> reduce_sc(c[1] ** 2 + s[1] ** 2)
+    1
+    >>> reduce_sc(c[2] ** 3)
+    -c2*s2**2 + c2
+    """
     e = sp.expand(expr)
     for i in range(1, 6):
         if e.has(c[i]):
@@ -107,6 +138,12 @@ def scene_product(lines: str = "current") -> sp.Matrix:
     ``lines="current"``: the rotation lines pass through the current joint point (p2 for α2,
     p3 for α3), the reading that matches the printed p5. ``lines="literal"``: y1 and y2 taken
     as lines through the origins p1 = p0 and p2, as the subscripts read literally.
+
+    The scene-frame product equals the local product (about 1 s):
+
+    >>> M = scene_product()
+    >>> sp.expand(M[2, 3] - closed_forms()["p5"][2])
+    0
     """
     F = sp.eye(4)  # the frame reached so far (its columns: the axes and the point, in the scene)
     M = sp.eye(4)  # the accumulated scene-frame product
@@ -135,7 +172,16 @@ def scene_product(lines: str = "current") -> sp.Matrix:
 
 
 def sc_values(q, l1_: float, l3_: float, l4_: float) -> dict:
-    """Substitution dict {ci: cos αi, si: sin αi, q2, l1, l3, l4} for a numeric configuration q."""
+    """Substitution dict {ci: cos αi, si: sin αi, q2, l1, l3, l4} for a numeric configuration q.
+
+    q = (α1, α2, q2, α3, α4, α5) in radians (the order of :mod:`puma_course.porter`).
+
+    >>> d = sc_values([0.0, 0.0, 2.0, 0.0, 0.0, 0.0], 1.0, 0.5, 0.3)
+    >>> d[c[1]], d[s[1]], d[q2], d[l3]
+    (1.0, 0.0, 2.0, 0.5)
+    >>> float(closed_forms()["p5"][0].subs(d))  # q2 + l4 at the zero angles
+    2.3
+    """
     import math
 
     angles = dict(zip((1, 2, 3, 4, 5), (q[0], q[1], q[3], q[4], q[5]), strict=True))
@@ -146,7 +192,11 @@ def sc_values(q, l1_: float, l3_: float, l4_: float) -> dict:
 
 
 def to_sc(expr: sp.Expr) -> sp.Expr:
-    """Rewrite cos(αi), sin(αi) as the symbols ci, si (Porter's notation) and expand."""
+    """Rewrite cos(αi), sin(αi) as the symbols ci, si (Porter's notation) and expand.
+
+    >>> to_sc(sp.cos(a1 + a2))
+    c1*c2 - s1*s2
+    """
     rep = {}
     for i, t in zip((1, 2, 3, 4, 5), (a1, a2, a3, a4, a5), strict=True):
         rep[sp.cos(t)] = c[i]
@@ -155,13 +205,21 @@ def to_sc(expr: sp.Expr) -> sp.Expr:
 
 
 def closed_forms() -> dict[str, list[sp.Expr]]:
-    """x5, y5, z5, p5 (the columns of the derived F05) in Porter's ci, si notation, expanded."""
+    """x5, y5, z5, p5 (the columns of the derived F05) in Porter's ci, si notation, expanded.
+
+    >>> closed_forms()["x5"][2]
+    -c2*c4*s3 - c3*c4*s2
+    """
     M = local_product()
     return {name: [to_sc(M[i, j]) for i in range(3)] for j, name in enumerate(("x5", "y5", "z5", "p5"))}
 
 
 def printed_closed_forms() -> dict[str, list[sp.Expr]]:
-    """x5, y5, z5, p5 transcribed exactly as printed, including the damaged z5[1] ('-s2(..) + s2(..)')."""
+    """x5, y5, z5, p5 transcribed exactly as printed, including the damaged z5[1] ('-s2(..) + s2(..)').
+
+    >>> printed_closed_forms()["z5"][1]
+    -c1*c4*s5 + s2*(c3*c5 - s3*s4*s5) - s2*(c3*s4*s5 + c5*s3)
+    """
     c1, c2, c3, c4, c5 = (c[i] for i in range(1, 6))
     s1, s2, s3, s4, s5 = (s[i] for i in range(1, 6))
     A = q2 - s3 * l3 + c3 * c4 * l4
@@ -187,14 +245,25 @@ def printed_closed_forms() -> dict[str, list[sp.Expr]]:
 
 
 def corrected_z5_2() -> sp.Expr:
-    """The second component of z5 following the pattern of y5[1]: s1(c2(..) + s2(..)) - c1 c4 s5."""
+    """The second component of z5 following the pattern of y5[1]: s1(c2(..) + s2(..)) - c1 c4 s5.
+
+    It agrees with the derived product, the printed entry does not:
+
+    >>> derived = closed_forms()["z5"][1]
+    >>> sp.expand(corrected_z5_2() - derived), sp.expand(printed_closed_forms()["z5"][1] - derived) == 0
+    (0, False)
+    """
     c1, c2, c3, c4, c5 = (c[i] for i in range(1, 6))
     s1, s2, s3, s4, s5 = (s[i] for i in range(1, 6))
     return s1 * (c2 * (s3 * c5 + c3 * s4 * s5) + s2 * (c3 * c5 - s3 * s4 * s5)) - c1 * c4 * s5
 
 
 def compare_closed_forms() -> dict[str, bool]:
-    """``{"x5[0]": True, ..., "z5[1]": False, ...}``: whether each printed entry equals the derived one."""
+    """``{"x5[0]": True, ..., "z5[1]": False, ...}``: whether each printed entry equals the derived one.
+
+    >>> [k for k, ok in compare_closed_forms().items() if not ok]
+    ['z5[1]']
+    """
     derived, printed = closed_forms(), printed_closed_forms()
     out = {}
     for name in ("x5", "y5", "z5", "p5"):
@@ -204,7 +273,12 @@ def compare_closed_forms() -> dict[str, bool]:
 
 
 def pose_symbols() -> dict[str, sp.Symbol]:
-    """Symbols x5_1..p5_3 (Porter's x_{5,1} etc.) for the entries of the given pose."""
+    """Symbols x5_1..p5_3 (Porter's x_{5,1} etc.) for the entries of the given pose.
+
+    >>> P = pose_symbols()
+    >>> len(P), P["p5_3"]
+    (12, p5_3)
+    """
     return {f"{v}5_{i}": sp.Symbol(f"{v}5_{i}") for v in "xyzp" for i in (1, 2, 3)}
 
 
@@ -213,6 +287,9 @@ def printed_ver1() -> dict[str, sp.Expr]:
 
     Keys: ``s4_eq8``, ``s4_eq8_p`` (the second form, with p5), ``tan_a1_eq9``, ``c5_eq11``,
     ``s5_eq11``, ``a5_eq12``, ``a6_eq12``, ``tan_a2_eq14``, ``q2_eq15``.
+
+    >>> printed_ver1()["s4_eq8"]
+    c1*x5_2 - s1*x5_1
     """
     P = pose_symbols()
     x51, x52, x53 = P["x5_1"], P["x5_2"], P["x5_3"]
