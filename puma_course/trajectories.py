@@ -148,6 +148,13 @@ class JointPath:
     wrapped distance between successive configurations (``step[0]`` from the
     first pose's choice to the second's); ``start_jump`` the distance from the
     starting configuration ``q0`` to ``q[0]`` (0 for :func:`naive` called without q0).
+
+    Usually made by :func:`follow` or :func:`naive`; by hand:
+
+    >>> jp = JointPath(q=np.array([[0.0, 0.0], [0.1, 0.0]]), choice=np.array([0, 0]), step=np.array([0.1]),
+    ...                start_jump=0.0)
+    >>> jp.max_step
+    0.1
     """
 
     q: np.ndarray
@@ -263,7 +270,16 @@ def porter_candidates(l1: float, l3: float, l4: float) -> Candidates:
     """Candidate function for Porter's chain: Ver.1 (:func:`puma_course.porter.ik_explicit_batch`).
 
     Porter's q = (α1, α2, q2, α3, α4, α5): angles in [0, 2π) and q2 (index 2) a length: use
-    ``revolute=PORTER_REVOLUTE`` with :func:`follow` and :func:`unwrap`.
+    ``revolute=PORTER_REVOLUTE`` with :func:`follow` and :func:`unwrap`. Invalid candidates
+    (no solution on that branch) come back as zeros with ``valid`` False, never NaN.
+
+    >>> from puma_course import porter
+    >>> q = np.array([0.3, 0.4, 1.0, 0.5, 0.6, 0.7])
+    >>> Q, valid = porter_candidates(1.0, 0.5, 0.3)(porter.fk(q, 1.0, 0.5, 0.3)[None])
+    >>> Q.shape, valid.tolist()
+    ((1, 4, 6), [[True, True, True, True]])
+    >>> np.round(Q[0, 0], 6) + 0.0  # the first candidate is the configuration we started from
+    array([0.3, 0.4, 1. , 0.5, 0.6, 0.7])
     """
     from . import porter  # imported on use: Porter's module is optional for the PUMA-560 part
 
