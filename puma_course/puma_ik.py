@@ -115,6 +115,16 @@ class IKBatch:
     earlier branch at a singularity; ``reachable`` (N,); ``reason`` (N,) an
     empty string or why the pose cannot be reached; ``flags`` (N, 8) bit mask of
     singularities. Entries of unreachable poses are 0 (never NaN) and invalid.
+
+    >>> from puma_course.robots import puma560
+    >>> arm = puma560()
+    >>> T_far = np.eye(4)
+    >>> T_far[:3, 3] = [2.0, 0.0, 0.0]
+    >>> b = ik_batch(np.stack([arm.fk(arm.q("qn")), T_far]))
+    >>> b.q.shape, b.valid.sum(axis=1).tolist(), b.reachable.tolist()
+    ((2, 8, 6), [8, 0], [True, False])
+    >>> b.reason[1][:13], float(np.abs(b.q[1]).max())
+    ('out of reach:', 0.0)
     """
 
     q: np.ndarray
