@@ -40,7 +40,19 @@ def draw_triad(
     alpha: float = 1.0,
     label: str | None = None,
 ) -> list:
-    """Draw the columns of the rotation ``R`` as arrows from ``origin``; one colour or x/y/z = red/green/blue."""
+    """Draw the columns of the rotation ``R`` as arrows from ``origin``; one colour or x/y/z = red/green/blue.
+
+    Returns the artists: three lines and their labels f1, f2, f3 (plus ``label``).
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig = plt.figure()
+    >>> ax = fig.add_subplot(projection="3d")
+    >>> arts = draw_triad(ax, [0.0, 0.0, 0.0], np.eye(3), length=1.0, label="target")
+    >>> len(arts), [float(v) for v in arts[0].get_data_3d()[0]]  # 3 lines + 3 texts + label; f1 along x
+    (7, [0.0, 1.0])
+    >>> plt.close(fig)
+    """
     o = as_array(origin, "origin", (3,))
     R = as_array(R, "R", (3, 3))
     artists = []
@@ -55,7 +67,17 @@ def draw_triad(
 
 
 def draw_state(ax: Any, points: Any, frame: Any, length: float = 0.5, alpha: float = 1.0) -> list:
-    """Draw one arm configuration: links s-e-w (3, 3) and the wrist frame at w."""
+    """Draw one arm configuration: links s-e-w (3, 3) and the wrist frame at w.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig = plt.figure()
+    >>> ax = fig.add_subplot(projection="3d")
+    >>> arts = draw_state(ax, [[0, 0, 0], [1.5, 0, 0], [2.5, 0, 0]], np.eye(3))
+    >>> len(arts)  # the link polyline + the triad's 3 lines and 3 labels
+    7
+    >>> plt.close(fig)
+    """
     P = as_array(points, "points", (3, 3))
     artists = list(draw_points(ax, P, color="0.35", lw=4.0, alpha=alpha))
     artists += draw_triad(ax, P[2], frame, length=length, alpha=alpha)
@@ -84,7 +106,16 @@ def plot_steps(
     figsize: tuple[float, float] = (9.0, 8.0),
     title: str | None = None,
 ):
-    """Four panels: the start and the arm with its wrist frame after steps 1, 2 and 3; returns ``fig``."""
+    """Four panels: the start and the arm with its wrist frame after steps 1, 2 and 3; returns ``fig``.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from puma_course.three_step import solve
+    >>> fig = plot_steps(solve([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]), 1.5, 1.0))
+    >>> [ax.get_title() for ax in fig.axes][:2]
+    ['start', 'step 1: base turns by δ0 about e_z']
+    >>> plt.close(fig)
+    """
     n = 12
     m = motion(sol, steps_per_phase=n)  # samples 0, n, 2n, 3n: the start and the ends of steps 1, 2, 3
     lims = _limits(sol, m, length)
@@ -119,6 +150,13 @@ def animate(
     Show it with ``HTML(anim.to_jshtml())``: it plays in JupyterLab with
     nothing to install. The figure is created with its ``dpi`` (set at creation
     so that closing the figure does not reset it).
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from puma_course.three_step import solve
+    >>> anim = animate(solve([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]), 1.5, 1.0), steps_per_phase=2)
+    >>> type(anim).__name__, len(list(anim.new_frame_seq()))  # 3 * 2 + 1 frames
+    ('FuncAnimation', 7)
     """
     m = motion(sol, steps_per_phase=steps_per_phase)
     lims = _limits(sol, m, length)
