@@ -154,9 +154,11 @@ def animate(
     >>> import matplotlib
     >>> matplotlib.use("Agg")
     >>> from puma_course.three_step import solve
-    >>> anim = animate(solve([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]), 1.5, 1.0), steps_per_phase=2)
-    >>> type(anim).__name__, len(list(anim.new_frame_seq()))  # 3 * 2 + 1 frames
-    ('FuncAnimation', 7)
+    >>> anim = animate(solve([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]), 1.5, 1.0), steps_per_phase=1)
+    >>> type(anim).__name__, len(list(anim.new_frame_seq()))  # 3 * 1 + 1 frames
+    ('FuncAnimation', 4)
+    >>> anim.to_jshtml().count("data:image/png")  # one embedded PNG per frame
+    4
     """
     m = motion(sol, steps_per_phase=steps_per_phase)
     lims = _limits(sol, m, length)
