@@ -176,7 +176,8 @@ class IKResult:
     def __repr__(self) -> str:
         lines = [f"IKResult: {len(self.q)} solution(s)" + (" [singular]" if self.singular else "")]
         for lab, row in zip(self.labels, self.q, strict=True):
-            lines.append(f"  {lab:<18} q = {np.array2string(np.round(row, 4) + 0.0, precision=4, suppress_small=True)}")
+            values = " ".join(f"{v:8.4f}" for v in np.round(row, 4) + 0.0)  # fixed width: rows line up
+            lines.append(f"  {lab:<18} q = [{values}]")
         return "\n".join(lines)
 
 
