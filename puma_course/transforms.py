@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import as_array, as_rotation
+from ._validate import as_array, as_rotation, as_transform
 
 __all__ = [
     "rotx",
@@ -270,8 +270,11 @@ def inverse_transform(T: Any) -> np.ndarray:
     >>> T = homogeneous(rotz(0.4), [1, 2, 3])
     >>> np.allclose(inverse_transform(T) @ T, np.eye(4))
     True
+
+    The formula holds only for a rigid transform, so ``T`` is checked as one
+    (last row 0 0 0 1, orthonormal rotation part); anything else raises ``ValueError``.
     """
-    T = as_array(T, "T", (4, 4), batch=True)
+    T = as_transform(T, "T", batch=True)
     Rt = np.swapaxes(T[..., :3, :3], -1, -2)
     return homogeneous(Rt, -np.einsum("...ij,...j->...i", Rt, T[..., :3, 3]))
 

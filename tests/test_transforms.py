@@ -99,6 +99,12 @@ def test_homogeneous_maps_child_into_parent_and_inverts():
     assert np.allclose(T @ [1, 0, 0, 1], [1, 3, 3, 1])
     assert np.allclose(tf.inverse_transform(T) @ T, np.eye(4))
     assert np.allclose(np.linalg.inv(T), tf.inverse_transform(T))
+    # by hand: R^T = Rz(-90°) and -R^T p = -(2, -1, 3), so the parent's origin sits at (-2, 1, -3) in the child
+    assert np.allclose(tf.inverse_transform(T)[:3, 3], [-2, 1, -3])
+    # a batch of rigid transforms: each inverse undoes its own transform
+    rng = np.random.default_rng(RNG_SEED)
+    Tb = tf.homogeneous(tf.rodrigues(rng.normal(size=(20, 3)), rng.uniform(-3, 3, 20)), rng.normal(size=(20, 3)))
+    assert np.allclose(tf.inverse_transform(Tb) @ Tb, np.eye(4), atol=1e-12)
 
 
 def test_translation_helpers():
@@ -164,6 +170,16 @@ def test_is_rotation():
         (lambda: tf.axis_angle(np.ones((3, 3))), "R: expected a rotation matrix"),
         (lambda: tf.transl([1, 2, None]), "p: expected"),
         (lambda: tf.compose_moving(), "transforms: expected at least one"),
+        (lambda: tf.compose_fixed(np.eye(3)), "transforms[0]: expected shape (4, 4)"),
+        # [[R^T, -R^T p], [0, 1]] is the inverse only of a rigid transform: anything else is refused
+        (lambda: tf.inverse_transform(np.ones((4, 4))), "T: expected the last row"),
+        (lambda: tf.inverse_transform(np.diag([2.0, 1.0, 1.0, 1.0])), "T (rotation part): expected a rotation"),
+        (lambda: tf.inverse_transform(np.diag([1.0, 1.0, -1.0, 1.0])), "reflection"),
+        (lambda: tf.trot([0, 0, 0], 1.0), "axis: expected a non-zero"),
+        (lambda: tf.trot([0, 0, 1], 1.0, point=[1, 2]), "point: expected shape (3,)"),
+        (lambda: tf.skew([1, 2]), "v: expected shape (3,)"),
+        (lambda: tf.zyz_from_rotation(np.ones((3, 3))), "R: expected a rotation matrix"),
+        (lambda: tf.rotation_from_zyz(float("nan"), 0.0, 0.0), "expected finite"),
     ],
 )
 def test_bad_input_raises_value_error_naming_the_argument(call, fragment):
