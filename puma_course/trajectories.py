@@ -111,6 +111,16 @@ def circle_path(center: Any, radius: float, normal: Any, R: Any, n: int, start: 
     return _poses(Rm, c + r * (np.cos(t) * e1 + np.sin(t) * e2))
 
 
+def _revolute(revolute: Any | None, m: int) -> np.ndarray:
+    """The revolute mask (m,) (default all True), or ValueError if it does not match the m joints."""
+    if revolute is None:
+        return np.ones(m, dtype=bool)
+    rev = np.asarray(revolute)
+    if rev.shape != (m,):
+        raise ValueError(f"revolute: expected a mask of shape ({m},) (one flag per joint), got shape {rev.shape}")
+    return rev.astype(bool)
+
+
 def step_distance(qa: Any, qb: Any, revolute: Any | None = None) -> np.ndarray:
     """Distance between joint vectors over the last axis: angle differences wrapped to (-π, π].
 
@@ -120,8 +130,12 @@ def step_distance(qa: Any, qb: Any, revolute: Any | None = None) -> np.ndarray:
     >>> round(float(step_distance([3.1, 0.0], [-3.1, 0.0])), 4)  # across ±π the step is small
     0.0832
     """
-    d = np.asarray(qa, dtype=float) - np.asarray(qb, dtype=float)
-    rev = np.ones(d.shape[-1], dtype=bool) if revolute is None else np.asarray(revolute, dtype=bool)
+    qa = as_array(qa, "qa", batch=True, what="joint values")
+    qb = as_array(qb, "qb", batch=True, what="joint values")
+    if qa.ndim == 0 or qb.ndim == 0 or qa.shape[-1] != qb.shape[-1]:
+        raise ValueError(f"qa, qb: expected joint vectors of the same length, got shapes {qa.shape} and {qb.shape}")
+    d = qa - qb
+    rev = _revolute(revolute, d.shape[-1])
     d = np.where(rev, np.pi - np.mod(np.pi - d, 2 * np.pi), d)
     return np.round(np.sqrt(np.sum(d * d, axis=-1)), 12)
 
@@ -133,7 +147,7 @@ def unwrap(q: Any, revolute: Any | None = None) -> np.ndarray:
     array([3.    , 3.2832])
     """
     q = as_array(q, "q", (None, None), what="a joint path of shape (n, m)")
-    rev = np.ones(q.shape[1], dtype=bool) if revolute is None else np.asarray(revolute, dtype=bool)
+    rev = _revolute(revolute, q.shape[1])
     out = q.copy()
     out[:, rev] = np.unwrap(q[:, rev], axis=0)
     return out
@@ -202,7 +216,7 @@ def follow(path_Ts: Any, ik_all: Candidates, q0: Any, *, revolute: Any | None = 
     Ts, Q, valid = _candidates(path_Ts, ik_all)
     m = Q.shape[-1]
     prev = as_array(q0, "q0", (m,), what=f"a starting configuration of shape ({m},)")
-    rev = np.ones(m, dtype=bool) if revolute is None else np.asarray(revolute, dtype=bool)
+    rev = _revolute(revolute, m)
     n = Q.shape[0]
     choice = np.empty(n, dtype=int)
     inf = np.where(valid, 0.0, np.inf)
@@ -238,7 +252,7 @@ def naive(path_Ts: Any, ik_all: Candidates, q0: Any | None = None, *, revolute: 
     choice = np.argmax(valid, axis=1)
     q = Q[np.arange(Q.shape[0]), choice]
     m = Q.shape[-1]
-    rev = np.ones(m, dtype=bool) if revolute is None else np.asarray(revolute, dtype=bool)
+    rev = _revolute(revolute, m)
     start = 0.0
     if q0 is not None:
         q0 = as_array(q0, "q0", (m,), what=f"a starting configuration of shape ({m},)")

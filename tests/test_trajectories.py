@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from puma_course import porter
 from puma_course import trajectories as tr
 from puma_course.robots import puma560
 from puma_course.transforms import rotx, rotz
@@ -157,7 +158,6 @@ def test_thousand_pose_path_is_vectorised_enough():
 
 # ---------------------------------------------------------------- Porter's chain
 def test_porter_follow_line_and_circle():
-    porter = pytest.importorskip("puma_course.porter")
     l1, l3, l4 = 1.0, 0.5, 0.3
     q0 = np.array([0.3, 0.4, 1.0, 0.5, 0.6, 0.7])
     T0 = porter.fk(q0, l1, l3, l4)
@@ -176,7 +176,6 @@ def test_porter_follow_line_and_circle():
 def test_porter_naive_jumps_where_the_planes_become_parallel():
     """x5 = y0 fixed and p4 crossing the plane y = 0 at x > 0: there s4 = cos α1 = 1, c4 = 0 (Porter's
     planes-parallel case), and the continuous solution moves from the branch c4 > 0 to c4 < 0."""
-    porter = pytest.importorskip("puma_course.porter")
     l1, l3, l4 = 1.0, 0.5, 0.3
     T0 = np.eye(4)
     T0[:3, :3] = rotz(np.pi / 2)
@@ -191,3 +190,33 @@ def test_porter_naive_jumps_where_the_planes_become_parallel():
     assert jp.max_step < 0.05 and nv.start_jump == 0.0
     assert nv.max_step > 3.0
     assert set(jp.choice.tolist()) == {0, 1}
+
+
+def _short_path() -> np.ndarray:
+    return tr.line_path(ARM.fk(ARM.q("qn")), [0.4, 0.2, 0.3], 3)
+
+
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda: tr.step_distance([0.0, 0.0], [0.0, 0.0, 0.0]), "^qa, qb: expected joint vectors of the same length"),
+        (lambda: tr.step_distance([np.nan, 0.0], [0.0, 0.0]), "^qa: expected finite"),
+        # a mask of the wrong length used to broadcast silently (or raise IndexError in unwrap and follow)
+        (
+            lambda: tr.step_distance([0.0, 7.0], [0.0, 0.0], revolute=[True]),
+            r"^revolute: expected a mask of shape \(2,\)",
+        ),
+        (lambda: tr.unwrap([1.0, 2.0, 3.0]), "^q: expected a joint path"),
+        (lambda: tr.unwrap([[1.0, 2.0]], revolute=[True]), r"^revolute: expected a mask of shape \(2,\)"),
+        (
+            lambda: tr.follow(_short_path(), tr.puma_candidates(ARM), ARM.q("qn"), revolute=[True] * 5),
+            r"^revolute: expected a mask of shape \(6,\)",
+        ),
+        (lambda: tr.naive(_short_path(), tr.puma_candidates(ARM), np.zeros(5)), r"^q0: expected .* shape \(6,\)"),
+        (lambda: tr.follow(np.eye(3), tr.puma_candidates(ARM), ARM.q("qn")), "^path_Ts: "),
+        (lambda: tr.porter_candidates(-1.0, 0.5, 0.3)(np.eye(4)[None]), "^l1: expected a positive length"),
+    ],
+)
+def test_bad_joint_path_input(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
