@@ -174,6 +174,46 @@ def test_zyz_wrist_angles_reproduce_the_target(elbow):
 
 
 # ---------------------------------------------------------------------------------------------
+# Eq. (1) as the module computes it (joint_points, wrist_position) against eq1 typed in here
+# ---------------------------------------------------------------------------------------------
+
+
+def test_joint_points_and_wrist_position_follow_eq1():
+    rng = np.random.default_rng(SEED + 4)
+    t = rng.uniform(-math.pi, math.pi, (40, 3))
+    P = ts.joint_points(t[:, 0], t[:, 1], t[:, 2], L1, L2)
+    W = ts.wrist_position(t[:, 0], t[:, 1], t[:, 2], L1, L2)
+    assert P.shape == (40, 3, 3) and W.shape == (40, 3)
+    for k, (t0, t1, t2) in enumerate(t):
+        assert np.allclose(P[k, 0], 0.0, atol=0)  # the shoulder is the origin
+        assert np.allclose(P[k, 1], elbow_eq1(t0, t1, L1), atol=1e-12)
+        assert np.allclose(P[k, 2], eq1(t0, t1, t2, L1, L2), atol=1e-12)
+        assert np.allclose(W[k], eq1(t0, t1, t2, L1, L2), atol=1e-12)
+    # hand-worked: θ0 = 90°, θ1 = 0, θ2 = 90° puts the elbow at (0, l1, 0) and the wrist l2 above it
+    assert np.allclose(ts.joint_points(math.pi / 2, 0.0, math.pi / 2, L1, L2), [[0, 0, 0], [0, L1, 0], [0, L1, L2]])
+    # scalars broadcast against a batch
+    assert np.allclose(ts.wrist_position(0.3, t[:, 1], 0.0, L1, L2)[:, 2], (L1 + L2) * np.sin(t[:, 1]))
+
+
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda: ts.joint_points(0.0, 0.0, 0.0, 0.0, 1.0), "^l1: expected a positive length"),
+        (lambda: ts.wrist_position(0.0, 0.0, 0.0, 1.0, -1.0), "^l2: expected a positive length"),
+        (lambda: ts.joint_points(np.nan, 0.0, 0.0, 1.0, 1.0), "^theta0: expected finite"),
+        (lambda: ts.joint_points(0.0, "up", 0.0, 1.0, 1.0), "^theta1: "),
+        (lambda: ts.arm_axis("x"), "^theta0: "),
+        (lambda: ts.arm_axis(np.inf), "^theta0: expected finite"),
+        (lambda: ts.as_state(3), "^start: expected None, an ArmState"),
+        (lambda: ts.as_state((0.0, 0.0, 0.0, [1, 0, 0], [0, 1, 0], [0, 0])), "^start f3: "),
+    ],
+)
+def test_eq1_helpers_bad_input(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+# ---------------------------------------------------------------------------------------------
 # The sign of a in eq. (4) and the step composition
 # ---------------------------------------------------------------------------------------------
 
