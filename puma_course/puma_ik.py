@@ -102,7 +102,10 @@ def joint_distance(q: Any, q_ref: Any) -> np.ndarray:
     >>> float(joint_distance([np.pi - 0.1, 0], [-np.pi + 0.1, 0]))  # across ±π: 0.2, not 2π - 0.2
     0.2
     """
-    d = wrap(np.asarray(q, dtype=float) - np.asarray(q_ref, dtype=float))
+    q, q_ref = np.asarray(q, dtype=float), np.asarray(q_ref, dtype=float)
+    if q.ndim == 0 or q_ref.ndim == 0 or q.shape[-1] != q_ref.shape[-1]:
+        raise ValueError(f"q, q_ref: expected joint vectors of the same length, got shapes {q.shape} and {q_ref.shape}")
+    d = wrap(q - q_ref)
     return np.round(np.sqrt(np.sum(d * d, axis=-1)), 15)
 
 

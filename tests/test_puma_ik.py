@@ -123,7 +123,8 @@ def test_hypothesis_round_trip(qlist):
 
 def test_sympy_position_norm_gives_the_equation_of_theta3():
     """Second derivation: |p|² of the symbolic 0T4 equals a2²+a3²+d3²+d4²+2 a2 (a3 c3 - d4 s3)."""
-    sp = pytest.importorskip("sympy")
+    import sympy as sp  # a dependency of the course (pyproject): a missing sympy must fail, not skip
+
     t = sp.symbols("t1:4", real=True)
     a2, a3, d3, d4 = sp.symbols("a2 a3 d3 d4", real=True)
 
@@ -302,6 +303,23 @@ def test_d3_zero_wrist_on_the_base_axis():
     for row in sol:
         assert _pose_error(arm, row, T) < 1e-9
     assert sol[0][0] == pytest.approx(q[0])  # θ1 taken from near
+
+
+# ---------------------------------------------------------------- the distance the tests above rely on
+def test_wrap_and_joint_distance_hand_worked():
+    """joint_distance is the yardstick of every 'the original is among the solutions' check above:
+    a distance that returned 0 would make them all pass, so it is pinned down by hand here."""
+    assert np.allclose(
+        wrap([np.pi, -np.pi, 3 * np.pi, 0.1 + 2 * np.pi, -0.1 - 4 * np.pi]), [np.pi, np.pi, np.pi, 0.1, -0.1]
+    )
+    assert wrap(-np.pi + 1e-9) == pytest.approx(-np.pi + 1e-9)  # just inside (-π, π]: unchanged
+    assert joint_distance([np.pi - 0.1, 0.0], [-np.pi + 0.1, 0.0]) == pytest.approx(0.2)  # across ±π
+    assert joint_distance([0.3, 0.0, 0.4], [0.0, 0.0, 0.0]) == pytest.approx(0.5)  # a 3-4-5 triangle
+    assert joint_distance(np.zeros(6) + 1.0, np.zeros(6)) == pytest.approx(np.sqrt(6.0))
+    d = joint_distance(np.zeros((4, 8, 6)), np.ones((4, 1, 6)))  # broadcast over branches
+    assert d.shape == (4, 8) and np.allclose(d, np.sqrt(6.0))
+    with pytest.raises(ValueError, match="q, q_ref: expected joint vectors of the same length"):
+        joint_distance(np.zeros(6), np.zeros(5))
 
 
 # ---------------------------------------------------------------- the result object and bad input
