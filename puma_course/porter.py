@@ -715,7 +715,12 @@ def angle(v: Any, w: Any, n: Any) -> float:
     >>> round(angle([1, 0, 0], [0, 1, 0], [0, 0, 1]), 12), round(angle([1, 0, 0], [0, 1, 0], [0, 0, -1]), 12)
     (1.570796326795, -1.570796326795)
     """
-    v, w, n = (np.asarray(x, dtype=float) for x in (v, w, n))
+    v, w, n = (as_array(x, name, (3,)) for x, name in ((v, "v"), (w, "w"), (n, "n")))
+    for x, name in ((v, "v"), (w, "w"), (n, "n")):
+        if not np.any(x):
+            raise ValueError(
+                f"{name}: expected a non-zero 3-vector (the angle is undefined for a zero vector), got zeros"
+            )
     return float(np.arctan2(np.dot(n, np.cross(v, w)), np.dot(v, w)))
 
 

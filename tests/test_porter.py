@@ -186,6 +186,16 @@ def test_angle_function_signed():
     assert P.angle([1, 0, 0], [0, 1, 0], [0, 0, -1]) == pytest.approx(-np.pi / 2)
     assert P.angle([1, 0, 0], [-1, 1e-300, 0], [0, 0, 1]) == pytest.approx(np.pi)
     assert P.angle([2, 0, 0], [1, 0, 1], [0, -1, 0]) == pytest.approx(np.pi / 4)
+    # the angle to or from a zero vector is undefined (it used to come back as 0 without a word)
+    for args, name in [
+        (([0, 0, 0], [1, 0, 0], [0, 0, 1]), "v"),
+        (([1, 0, 0], [0, 0, 0], [0, 0, 1]), "w"),
+        (([1, 0, 0], [0, 1, 0], [0, 0, 0]), "n"),
+    ]:
+        with pytest.raises(ValueError, match=f"^{name}: expected a non-zero 3-vector"):
+            P.angle(*args)
+    with pytest.raises(ValueError, match="^v: expected shape \\(3,\\)"):
+        P.angle([1, 0], [0, 1, 0], [0, 0, 1])
 
 
 # ----------------------------------------------------------------------------- singular cases
@@ -258,8 +268,12 @@ def test_singular_rules_without_near():
     np.testing.assert_allclose(S[:, 2], qmin, atol=1e-12)
     G = quiet(P.ik_geometric, T, *LEN)
     assert G.shape == (1, 6) and P.config_distance(S, G[0]).min() < 1e-9
-    # every member of the family reaches T: q from fk of the other q2 values too (a continuum)
+    # the solutions form a continuum in q2: asked for the one near q (q2 = 1.2, well above the minimum),
+    # the solver returns another member of the family, with its own q2, that reaches T as well
     assert q[2] > qmin + 0.1
+    Sn = quiet(P.ik_explicit, T, *LEN, near=q)
+    assert Sn[0][2] == pytest.approx(q[2], abs=1e-9) and np.abs(P.fk(Sn[0], *LEN) - T).max() < 1e-12
+    assert np.abs(Sn[0][2] - S[:, 2]).min() > 0.1  # a different member than the representatives
     # α1 free: the simplest representative has s4 = 0 (x5 in the arm plane), so α4 ∈ {0, π}
     S = quiet(P.ik_explicit, P.fk(SINGULAR["axis"][0], *LEN), *LEN)
     assert np.allclose(np.sin(S[:, 4]), 0.0, atol=1e-12)
