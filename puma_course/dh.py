@@ -123,6 +123,9 @@ class DHChain:
         self.links = tuple(self.links)
         if not self.links:
             raise ValueError("links: expected at least one Link, got none")
+        for i, lk in enumerate(self.links):
+            if not isinstance(lk, Link):
+                raise ValueError(f"links[{i}]: expected a Link(alpha_prev, a_prev, theta, d), got {type(lk).__name__}")
         self._alpha = np.array([lk.alpha_prev for lk in self.links], dtype=float)
         self._a = np.array([lk.a_prev for lk in self.links], dtype=float)
         self._d = np.array([lk.d for lk in self.links], dtype=float)

@@ -96,6 +96,12 @@ def test_table_and_repr():
         (lambda c: mdh(np.zeros(2), 0, np.zeros(3), 0), "broadcast"),
         (lambda c: Link(0, 0, kind="X"), "kind"),
         (lambda c: c.q("nope"), "name: expected one of"),
+        (lambda c: DHChain([]), "links: expected at least one Link"),
+        (lambda c: DHChain([Link(0, 0, 0), (0, 1, 0, 0)]), "links[1]: expected a Link"),  # was AttributeError
+        (lambda c: Link(float("nan"), 0, 0), "alpha_prev: expected finite"),
+        (lambda c: DHChain([Link(0, 0, 0)], configurations={"up": [0.0, 1.0]}), "configurations['up']"),
+        (lambda c: c.frames(np.zeros((2, 4))), "got an array of shape (2, 4)"),
+        (lambda c: c.link_matrices(float("inf")), "q: expected"),
     ],
 )
 def test_bad_input(call, fragment):
