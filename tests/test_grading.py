@@ -139,6 +139,8 @@ def test_question_bank_is_consistent():
                 ref = np.asarray(q.reference(*args), dtype=float)
                 assert np.all(np.isfinite(ref))
                 assert q.compare(ref, ref) is None
+                # ... and the comparison can fail: a clearly wrong answer (every entry off by 0.1) is refused
+                assert q.compare(ref + 0.1, ref) is not None, (ex.name, q.qid)
                 # every input can travel to the student's process as JSON
                 json.dumps([grading._jsonable(a) for a in args])
 
