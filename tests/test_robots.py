@@ -42,6 +42,11 @@ def test_puma_named_configurations():
     r = puma560()
     assert np.allclose(r.fk(r.q("qr"))[:3, 3], [-A3, D3, A2 + D4])  # straight up
     assert np.allclose(r.fk(r.q("qs"))[:3, 3], [A2 + D4, D3, A3])  # stretched along x
+    assert np.array_equal(r.q("qz"), np.zeros(6))
+    # nominal: upper arm 45° above horizontal (θ2 = -45°), forearm level (θ2 + θ3 = -90°), so the wrist
+    # is a2/√2 out and up from the shoulder, then d4 further out, lifted by a3
+    h = A2 / np.sqrt(2.0)
+    assert np.allclose(r.fk(r.q("qn"))[:3, 3], [h + D4, D3, h + A3])
 
 
 def test_puma_positions_match_hand_written_closed_form_on_random_batch():
