@@ -50,6 +50,7 @@ from typing import Any
 import numpy as np
 
 from ._validate import as_array, as_positive, as_transform
+from .transforms import wrap_angle
 
 __all__ = [
     "fk",
@@ -266,7 +267,7 @@ def config_distance(qa: Any, qb: Any) -> np.ndarray:
 
 def _dist(qa: np.ndarray, qb: np.ndarray) -> np.ndarray:
     d = qa - qb
-    d[..., ANGLES] = _wrap_pi(d[..., ANGLES])
+    d[..., ANGLES] = wrap_angle(d[..., ANGLES])  # ±π give the same distance either way
     return np.sqrt(np.sum(d * d, axis=-1))
 
 

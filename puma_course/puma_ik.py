@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from ._validate import as_array, as_transform
+from .transforms import wrap_angle
 
 __all__ = [
     "IKResult",
@@ -86,14 +87,7 @@ class SingularityWarning(UserWarning):
     """A pose reached at a singular configuration: some joints are not uniquely defined."""
 
 
-def wrap(angle: Any) -> np.ndarray:
-    """Wrap angles to (-π, π].
-
-    >>> wrap([np.pi, -np.pi, 3 * np.pi / 2]) / np.pi
-    array([ 1. ,  1. , -0.5])
-    """
-    a = np.asarray(angle, dtype=float)
-    return np.pi - np.mod(np.pi - a, 2 * np.pi)
+wrap = wrap_angle  # angles to (-π, π]; the package's one rule (transforms.wrap_angle)
 
 
 def joint_distance(q: Any, q_ref: Any) -> np.ndarray:

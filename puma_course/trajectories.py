@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from ._validate import as_array, as_positive, as_rotation, as_transform
+from .transforms import wrap_angle
 
 __all__ = [
     "line_path",
@@ -136,7 +137,7 @@ def step_distance(qa: Any, qb: Any, revolute: Any | None = None) -> np.ndarray:
         raise ValueError(f"qa, qb: expected joint vectors of the same length, got shapes {qa.shape} and {qb.shape}")
     d = qa - qb
     rev = _revolute(revolute, d.shape[-1])
-    d = np.where(rev, np.pi - np.mod(np.pi - d, 2 * np.pi), d)
+    d = np.where(rev, wrap_angle(d), d)
     return np.round(np.sqrt(np.sum(d * d, axis=-1)), 12)
 
 

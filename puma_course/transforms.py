@@ -41,6 +41,7 @@ __all__ = [
     "compose_moving",
     "is_rotation",
     "zyz_from_rotation",
+    "wrap_angle",
     "rotation_from_zyz",
 ]
 
@@ -357,3 +358,16 @@ def zyz_from_rotation(R: Any) -> tuple[float, float, float]:
     else:  # θ = π: R = Rz(φ - ψ) Ry(π)
         phi, psi = float(np.arctan2(-R[1, 0], -R[0, 0])), 0.0
     return np.array([phi, theta, psi])  # type: ignore[return-value]
+
+
+def wrap_angle(angle: Any) -> np.ndarray:
+    """Angles wrapped to (-π, π]: the one wrapping rule behind every joint-space distance.
+
+    Used by the inverse-kinematics modules to compare configurations (a step from
+    179° to -179° is 2°, not 358°). No validation: it sits on hot paths.
+
+    >>> wrap_angle([np.pi, -np.pi, 3 * np.pi / 2]) / np.pi
+    array([ 1. ,  1. , -0.5])
+    """
+    a = np.asarray(angle, dtype=float)
+    return np.pi - np.mod(np.pi - a, 2 * np.pi)
