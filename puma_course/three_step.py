@@ -32,6 +32,7 @@ True
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -309,7 +310,10 @@ def solve(
     singular: list[str] = []
 
     # ---- reachability: the triangle (l1, l2, l3) must close -------------------------------
-    l3 = float(np.linalg.norm(w))
+    # |w| with math.hypot (correctly rounded, no BLAS kernel involved), then snapped: a wrist
+    # within tol of the stretched (l1 + l2) or folded (|l1 - l2|) boundary is put on it, so
+    # θ2 is exactly 0 or ±π there whatever the last bit of the input or of the CPU.
+    l3 = math.hypot(float(w[0]), float(w[1]), float(w[2]))
     if l3 > l1 + l2 + tol:
         raise ValueError(
             f"w: unreachable, |w| = {l3:.6g} exceeds l1 + l2 = {l1 + l2:.6g} (the arm cannot stretch that far)"
@@ -319,16 +323,23 @@ def solve(
             f"w: unreachable, |w| = {l3:.6g} is less than |l1 - l2| = {abs(l1 - l2):.6g} "
             "(the arm cannot fold that tightly)"
         )
+    stretched = abs(l3 - (l1 + l2)) <= tol
+    folded = abs(l3 - abs(l1 - l2)) <= tol
+    if stretched:
+        l3 = l1 + l2
+    elif folded:
+        l3 = abs(l1 - l2)
 
     # ---- step 1: base angle (eq. 2, with atan2) --------------------------------------------
-    rho = float(np.hypot(w[0], w[1]))
-    if rho == 0.0:
+    rho = math.hypot(float(w[0]), float(w[1]))
+    if rho <= tol:
+        # w on the base axis (within tol): θ0 is free; the start value is kept (snapped, so the
+        # choice does not hinge on the sign of a 1e-17 rounding residue)
         theta0 = st.theta0
+        rho = 0.0
         singular.append("w lies on the base axis: theta0 is free, the start value theta0_bar is kept")
     else:
-        theta0 = float(np.arctan2(w[1], w[0]))
-        if rho < tol:
-            singular.append("w is within 1e-9 (l1 + l2) of the base axis: theta0 is ill-conditioned")
+        theta0 = math.atan2(float(w[1]), float(w[0]))
     delta0 = theta0 - st.theta0
     K_base = rodrigues(E_Z, delta0)
     F1 = K_base @ st.frame
@@ -341,12 +352,17 @@ def solve(
         theta2 = -sign * np.pi
         singular.append("w is at the shoulder (l1 = l2): theta1 is free, the start value theta1_bar is kept")
     else:
-        phi = float(np.arctan2(w[2], rho))
-        # 4 * area of the triangle with sides l1, l2, l3 (Heron, factored for accuracy)
-        q = (l1 + l2 + l3) * (-l1 + l2 + l3) * (l1 - l2 + l3) * (l1 + l2 - l3)
-        four_area = float(np.sqrt(max(q, 0.0)))
-        theta = float(np.arctan2(four_area, l3**2 + l1**2 - l2**2))  # cos θ as in eq. (5)
-        beta = float(np.arctan2(four_area, l1**2 + l2**2 - l3**2))  # interior angle at the elbow
+        phi = math.atan2(float(w[2]), rho)
+        if stretched:  # snapped: the triangle is flat, θ = 0 and the elbow is straight (β = π)
+            theta, beta = 0.0, math.pi
+        elif folded:  # snapped: flat the other way, β = 0; θ = 0 (l1 > l2) or π (l1 < l2)
+            theta, beta = (0.0 if l1 >= l2 else math.pi), 0.0
+        else:
+            # 4 * area of the triangle with sides l1, l2, l3 (Heron, factored)
+            q = (l1 + l2 + l3) * (-l1 + l2 + l3) * (l1 - l2 + l3) * (l1 + l2 - l3)
+            four_area = math.sqrt(max(q, 0.0))
+            theta = math.atan2(four_area, l3**2 + l1**2 - l2**2)  # cos θ as in eq. (5)
+            beta = math.atan2(four_area, l1**2 + l2**2 - l3**2)  # interior angle at the elbow
         theta1 = _wrap(phi + sign * theta)
         theta2 = -sign * (np.pi - beta) + 0.0  # no -0.0
     delta = (theta1 + theta2) - (st.theta1 + st.theta2)

@@ -344,6 +344,7 @@ def test_wrist_at_the_shoulder_with_equal_links():
 def test_stretched_and_folded_boundaries(elbow):
     d = np.array([1.0, 2.0, 2.0]) / 3.0  # a unit direction
     stretched = ts.solve((L1 + L2) * d, np.eye(3), L1, L2, elbow=elbow)
+    # exact: a wrist within tolerance of the stretched boundary is snapped onto it by design
     assert stretched.theta2 == 0.0 and stretched.theta == 0.0
     assert np.allclose(eq1(*stretched.joints, L1, L2), (L1 + L2) * d, atol=1e-12)
     folded = ts.solve((L1 - L2) * d, np.eye(3), L1, L2, elbow=elbow)
@@ -483,12 +484,30 @@ def test_plot_steps_and_animation_smoke():
     assert (width, height) == (160, 120)  # 4 x 3 inches at 40 dpi: the dpi was kept
 
 
-def test_wrist_next_to_the_base_axis_uses_atan2_and_flags_ill_conditioning():
+def test_wrist_next_to_the_base_axis_is_snapped_onto_it():
+    # Within the solver's tolerance 1e-9 (l1 + l2) of the base axis, w counts as on it: θ0 is
+    # free and the start value is kept, exactly (by design), instead of atan2 of two rounding
+    # residues whose signs decide a 90° swing of the base.
     w = np.array([1e-12, -1e-12, 2.0])
-    with pytest.warns(ts.ThreeStepWarning, match="ill-conditioned"):
-        sol = ts.solve(w, TARGET_EX, L1, L2)
-    assert math.isclose(sol.theta0, -math.pi / 4)
-    assert np.allclose(eq1(*sol.joints, L1, L2), w, atol=1e-12)
+    start = ts.ArmState(0.3, 0.0, 0.0)
+    with pytest.warns(ts.ThreeStepWarning, match="base axis"):
+        sol = ts.solve(w, TARGET_EX, L1, L2, start=start)
+    assert sol.theta0 == 0.3  # the start value, snapped by design
+    assert np.allclose(eq1(*sol.joints, L1, L2), w, atol=1e-9 * (L1 + L2))
+
+
+@pytest.mark.parametrize("ulps", [-2, -1, 1, 2])
+def test_boundary_answers_do_not_depend_on_the_last_bit(ulps):
+    # |w| one or two ulps either side of l1 + l2 (as different BLAS kernels produce) gives
+    # the same, snapped answer: θ = 0 and θ2 = 0 exactly.
+    d = np.array([1.0, 2.0, 2.0]) / 3.0
+    r = np.nextafter(L1 + L2, np.inf if ulps > 0 else -np.inf)
+    for _ in range(abs(ulps) - 1):
+        r = np.nextafter(r, np.inf if ulps > 0 else -np.inf)
+    sol = ts.solve(r * d, np.eye(3), L1, L2)
+    ref = ts.solve((L1 + L2) * d, np.eye(3), L1, L2)
+    assert sol.theta2 == 0.0 and sol.theta == 0.0  # snapped by design
+    assert sol.theta1 == ref.theta1 and sol.theta0 == ref.theta0
 
 
 def test_regular_targets_do_not_warn():
