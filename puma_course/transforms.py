@@ -14,11 +14,12 @@ Conventions (stated once for the whole course):
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
 
-from ._validate import as_array, as_rotation, as_transform
+from ._validate import MAX_MAGNITUDE, as_array, as_rotation, as_transform
 
 __all__ = [
     "rotx",
@@ -41,19 +42,23 @@ __all__ = [
     "compose_moving",
     "is_rotation",
     "zyz_from_rotation",
-    "wrap_angle",
     "rotation_from_zyz",
+    "rpy_from_rotation",
+    "rotation_from_rpy",
+    "wrap_angle",
+    "EULER_SINGULAR_TOL",
 ]
 
 
 def _angle(angle: Any, name: str = "angle") -> np.ndarray:
-    return as_array(angle, name, what="an angle in radians (a number, or an array of shape (N,))")
-
-
-def _rot(angle: Any, axis: int) -> np.ndarray:
-    t = _angle(angle)
+    t = as_array(angle, name, what="an angle in radians (a number, or an array of shape (N,))")
     if t.ndim > 1:
-        raise ValueError(f"angle: expected a number or an array of shape (N,), got an array of shape {t.shape}")
+        raise ValueError(f"{name}: expected a number or an array of shape (N,), got an array of shape {t.shape}")
+    return t
+
+
+def _rot(angle: Any, axis: int, name: str = "angle") -> np.ndarray:
+    t = _angle(angle, name)
     c, s = np.cos(t), np.sin(t)
     R = np.zeros(t.shape + (3, 3))
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
@@ -163,12 +168,18 @@ def axis_angle(R: Any) -> tuple[np.ndarray, Any]:
 def homogeneous(R: Any, p: Any) -> np.ndarray:
     """The 4x4 transform [[R, p], [0, 1]]; R (3, 3) or (N, 3, 3), p (3,) or (N, 3).
 
+    ``R`` must be a rotation (orthonormal, det +1): anything else would make a "transform"
+    that is not rigid, and :func:`inverse_transform` and every frame built on it would be wrong.
+
     >>> homogeneous(np.eye(3), [1, 2, 3])[:3, 3]
     array([1., 2., 3.])
     """
-    R = as_array(R, "R", (3, 3), batch=True)
-    p = as_array(p, "p", (3,), batch=True)
-    batch = np.broadcast_shapes(R.shape[:-2], p.shape[:-1])
+    R = as_rotation(R, "R", batch=True)
+    p = as_array(p, "p", (3,), batch=True, max_magnitude=MAX_MAGNITUDE)
+    try:
+        batch = np.broadcast_shapes(R.shape[:-2], p.shape[:-1])
+    except ValueError:
+        raise ValueError(f"R, p: expected batches of the same length, got shapes {R.shape} and {p.shape}") from None
     T = np.zeros(batch + (4, 4))
     T[..., :3, :3] = R
     T[..., :3, 3] = p
@@ -182,12 +193,14 @@ def transl(p: Any) -> np.ndarray:
     >>> transl([1, 0, 0]) @ [0, 0, 0, 1]
     array([1., 0., 0., 1.])
     """
-    p = as_array(p, "p", (3,), batch=True)
-    return homogeneous(np.eye(3), p)
+    p = as_array(p, "p", (3,), batch=True, max_magnitude=MAX_MAGNITUDE)
+    return homogeneous(np.broadcast_to(np.eye(3), p.shape[:-1] + (3, 3)), p)
 
 
 def _trans_axis(d: Any, axis: int) -> np.ndarray:
-    d = as_array(d, "d", what="a distance (a number, or an array of shape (N,))")
+    d = as_array(d, "d", what="a distance (a number, or an array of shape (N,))", max_magnitude=MAX_MAGNITUDE)
+    if d.ndim > 1:
+        raise ValueError(f"d: expected a number or an array of shape (N,), got an array of shape {d.shape}")
     p = np.zeros(d.shape + (3,))
     p[..., axis] = d
     return transl(p)
@@ -293,9 +306,9 @@ def compose_moving(*transforms: Any) -> np.ndarray:
     """
     if not transforms:
         raise ValueError("transforms: expected at least one transform, got none")
-    out = as_array(transforms[0], "transforms[0]", (4, 4), batch=True)
+    out = as_transform(transforms[0], "transforms[0]", batch=True)
     for k, T in enumerate(transforms[1:], start=1):
-        out = out @ as_array(T, f"transforms[{k}]", (4, 4), batch=True)
+        out = out @ as_transform(T, f"transforms[{k}]", batch=True)
     return out
 
 
@@ -313,7 +326,11 @@ def compose_fixed(*transforms: Any) -> np.ndarray:
     """
     if not transforms:
         raise ValueError("transforms: expected at least one transform, got none")
-    return compose_moving(*transforms[::-1])
+    checked = [as_transform(T, f"transforms[{k}]", batch=True) for k, T in enumerate(transforms)]
+    out = checked[-1]
+    for T in checked[-2::-1]:
+        out = out @ T
+    return out
 
 
 def is_rotation(R: Any, tol: float = 1e-9) -> bool:
@@ -330,44 +347,104 @@ def is_rotation(R: Any, tol: float = 1e-9) -> bool:
 
 
 def rotation_from_zyz(phi: Any, theta: Any, psi: Any) -> np.ndarray:
-    """Rz(φ) Ry(θ) Rz(ψ): the ZYZ Euler-angle rotation (moving-frame order).
+    """Rz(φ) Ry(θ) Rz(ψ): the ZYZ Euler-angle rotation (turns about the moving axes, in that order).
+
+    Angles broadcast: numbers give (3, 3), arrays of shape (N,) give (N, 3, 3).
 
     >>> np.allclose(rotation_from_zyz(0.1, 0.2, 0.3), rotz(0.1) @ roty(0.2) @ rotz(0.3))
     True
     """
-    return rotz(phi) @ roty(theta) @ rotz(psi)
+    return _rot(phi, 2, "phi") @ _rot(theta, 1, "theta") @ _rot(psi, 2, "psi")
 
 
-def zyz_from_rotation(R: Any) -> tuple[float, float, float]:
-    """ZYZ Euler angles (φ, θ, ψ) with θ in [0, π] such that Rz(φ) Ry(θ) Rz(ψ) = R.
+#: sin θ below this counts as the gimbal-lock case of an Euler-angle set (then only φ ± ψ is defined).
+EULER_SINGULAR_TOL = 1e-9
 
-    At θ = 0 or θ = π only φ ± ψ is defined; then ψ = 0 is chosen (the
-    representative), and the rotation is still reproduced exactly.
+
+def zyz_from_rotation(R: Any, *, psi: Any = 0.0) -> np.ndarray:
+    """ZYZ Euler angles (φ, θ, ψ), θ in [0, π], with Rz(φ) Ry(θ) Rz(ψ) = R; (3,) or (N, 3).
+
+    Singular when sin θ < :data:`EULER_SINGULAR_TOL` (gimbal lock: the first and last axes are
+    parallel). Then θ is snapped to exactly 0 or π, only φ + ψ (θ = 0) or φ − ψ (θ = π) is
+    defined, and ψ takes the value ``psi`` given (default 0): R is still reproduced exactly.
 
     >>> np.round(zyz_from_rotation(rotation_from_zyz(0.1, 0.2, 0.3)), 12)
     array([0.1, 0.2, 0.3])
+    >>> zyz_from_rotation(rotz(0.5))  # θ = 0: φ + ψ = 0.5, ψ = 0 chosen
+    array([0.5, 0. , 0. ])
     """
-    R = as_rotation(R, "R")
-    sin_t = np.hypot(R[0, 2], R[1, 2])
-    theta = float(np.arctan2(sin_t, R[2, 2]))
-    if sin_t > 1e-9:
-        phi = float(np.arctan2(R[1, 2], R[0, 2]))
-        psi = float(np.arctan2(R[2, 1], -R[2, 0]))
-    elif R[2, 2] > 0:  # θ = 0: R = Rz(φ + ψ)
-        phi, psi = float(np.arctan2(R[1, 0], R[0, 0])), 0.0
-    else:  # θ = π: R = Rz(φ - ψ) Ry(π)
-        phi, psi = float(np.arctan2(-R[1, 0], -R[0, 0])), 0.0
-    return np.array([phi, theta, psi])  # type: ignore[return-value]
+    R = as_rotation(R, "R", batch=True)
+    psi_rep = _angle(psi, "psi")
+    sin_t = np.hypot(R[..., 0, 2], R[..., 1, 2])
+    singular = sin_t < EULER_SINGULAR_TOL
+    up = R[..., 2, 2] > 0
+    theta = np.where(singular, np.where(up, 0.0, np.pi), np.arctan2(sin_t, R[..., 2, 2]))
+    phi = np.arctan2(R[..., 1, 2], R[..., 0, 2])
+    psi_out = np.arctan2(R[..., 2, 1], -R[..., 2, 0])
+    # gimbal lock: R = Rz(φ + ψ) (θ = 0) or Rz(φ - ψ) Ry(π) (θ = π); ψ is the representative given
+    total = np.where(up, np.arctan2(R[..., 1, 0], R[..., 0, 0]), np.arctan2(-R[..., 1, 0], -R[..., 0, 0]))
+    phi = np.where(singular, wrap_angle(np.where(up, total - psi_rep, total + psi_rep)), phi)
+    psi_out = np.where(singular, psi_rep, psi_out)
+    return np.stack(np.broadcast_arrays(phi, theta, psi_out), axis=-1) + 0.0
 
 
-def wrap_angle(angle: Any) -> np.ndarray:
-    """Angles wrapped to (-π, π]: the one wrapping rule behind every joint-space distance.
+def rotation_from_rpy(roll: Any, pitch: Any, yaw: Any) -> np.ndarray:
+    """Roll-pitch-yaw: Rz(yaw) Ry(pitch) Rx(roll), i.e. roll about the fixed x axis, then pitch
+    about the fixed y axis, then yaw about the fixed z axis (equivalently Z-Y-X about the moving axes).
 
-    Used by the inverse-kinematics modules to compare configurations (a step from
-    179° to -179° is 2°, not 358°). No validation: it sits on hot paths.
+    >>> np.allclose(rotation_from_rpy(0.1, 0.2, 0.3), rotz(0.3) @ roty(0.2) @ rotx(0.1))
+    True
+    """
+    return _rot(yaw, 2, "yaw") @ _rot(pitch, 1, "pitch") @ _rot(roll, 0, "roll")
+
+
+def rpy_from_rotation(R: Any, *, roll: Any = 0.0) -> np.ndarray:
+    """Roll-pitch-yaw angles (roll, pitch, yaw), pitch in [-π/2, π/2], with
+    Rz(yaw) Ry(pitch) Rx(roll) = R; (3,) or (N, 3).
+
+    Singular when cos(pitch) < :data:`EULER_SINGULAR_TOL` (pitch = ±90°, gimbal lock): pitch is
+    snapped to exactly ±π/2, only yaw − roll (pitch = +π/2) or yaw + roll (pitch = −π/2) is
+    defined, and roll takes the value ``roll`` given (default 0).
+
+    >>> np.round(rpy_from_rotation(rotation_from_rpy(0.1, 0.2, 0.3)), 12)
+    array([0.1, 0.2, 0.3])
+    >>> np.round(rpy_from_rotation(roty(np.pi / 2) @ rotx(0.4)), 12) + 0.0  # gimbal lock
+    array([ 0.        ,  1.57079633, -0.4       ])
+    """
+    R = as_rotation(R, "R", batch=True)
+    roll_rep = _angle(roll, "roll")
+    cos_p = np.hypot(R[..., 0, 0], R[..., 1, 0])
+    singular = cos_p < EULER_SINGULAR_TOL
+    down = R[..., 2, 0] < 0  # pitch = +π/2 when r31 = -sin(pitch) = -1
+    pitch = np.where(singular, np.where(down, np.pi / 2, -np.pi / 2), np.arctan2(-R[..., 2, 0], cos_p))
+    roll_out = np.arctan2(R[..., 2, 1], R[..., 2, 2])
+    yaw = np.arctan2(R[..., 1, 0], R[..., 0, 0])
+    # gimbal lock: with pitch = +π/2, R = [[0, s(r-y), c(r-y)], [0, c(r-y), -s(r-y)], [-1, 0, 0]]
+    # (so yaw - roll is fixed); with pitch = -π/2, yaw + roll is fixed
+    diff = np.where(down, np.arctan2(-R[..., 0, 1], R[..., 1, 1]), np.arctan2(-R[..., 0, 1], R[..., 1, 1]))
+    yaw = np.where(singular, wrap_angle(np.where(down, roll_rep + diff, diff - roll_rep)), yaw)
+    roll_out = np.where(singular, roll_rep, roll_out)
+    return np.stack(np.broadcast_arrays(roll_out, pitch, yaw), axis=-1) + 0.0
+
+
+_PI = math.pi
+_TWO_PI = 2.0 * math.pi
+
+
+def wrap_angle(angle: Any) -> Any:
+    """Angles wrapped to (-π, π]: the package's one wrapping rule (joint angles, joint distances).
+
+    A Python float gives a float (the hot scalar paths of the solvers), anything else an array.
+    No validation: it sits on hot paths; callers validate.
 
     >>> wrap_angle([np.pi, -np.pi, 3 * np.pi / 2]) / np.pi
     array([ 1. ,  1. , -0.5])
+    >>> wrap_angle(-math.pi), wrap_angle(3 * math.pi)  # -π and 3π are π: the interval is open at -π
+    (3.141592653589793, 3.141592653589793)
     """
+    if isinstance(angle, float):
+        w = _PI - (_PI - angle) % _TWO_PI
+        return w + _TWO_PI if w <= -_PI else w  # rounding may land on -π itself
     a = np.asarray(angle, dtype=float)
-    return np.pi - np.mod(np.pi - a, 2 * np.pi)
+    wa = _PI - np.mod(_PI - a, _TWO_PI)
+    return np.where(wa <= -_PI, wa + _TWO_PI, wa)

@@ -1,33 +1,21 @@
-"""The three-step wrist-frame inverse kinematics of a 6R PUMA with a spherical wrist.
+"""The three-step procedure of the source ("2.3 Kinematics", eqs. 1-5) for one target, and its animation.
 
-Source: section "2.3 Kinematics" of a Jupyter course (``002_4f9c5765fc8f1a1f.txt``).
-The arm has a base joint θ0 about e_z, a shoulder θ1 and an elbow θ2 about the
-horizontal axis ``a`` (eq. 4), an upper arm ℓ1 and a forearm ℓ2, the shoulder at
-the origin and a 3-DOF wrist whose centre is ``w`` (eq. 1). It is moved from a
-known state {θ̄0, θ̄1, θ̄2, F̄} to a target {w, F} in three rotations of the
+The arm is moved from a known state {θ̄0, θ̄1, θ̄2, F̄} to a target {w, F} in three rotations of the
 wrist frame:
 
-1. base: θ0 = atan2(w_y, w_x), rotation ``K_base = K(e_z, δ0)``, δ0 = θ0 - θ̄0 (eqs. 2-3);
+1. base: θ0 = atan2(w_y, w_x), rotation K_base = K(e_z, δ0), δ0 = θ0 - θ̄0 (eqs. 2-3);
 2. arm: θ from the law of cosines (eq. 5), θ1 = φ ± θ with φ = atan2(w_z, hypot(w_x, w_y)),
-   θ2 = ∓(π - β), rotation ``K_arm = K(a, δ)`` about a = (sin θ0, -cos θ0, 0),
+   θ2 = ∓(π - β), rotation K_arm = K(a, δ) about a = (sin θ0, -cos θ0, 0),
    δ = (θ1 + θ2) - (θ̄1 + θ̄2) (eq. 4);
-3. wrist: the composite rotation ``K_wrist = F F2^T`` that takes the step-2 frame F2
-   onto the target frame F (the source's missing "(???)" equation).
+3. wrist: the composite rotation K_wrist = F F2^T that takes the step-2 frame F2 onto the target
+   frame F (the source's missing "(???)" equation).
 
-Conventions. Radians. A wrist *frame* is a 3x3 rotation whose columns are the unit
-vectors f1, f2, f3 written in base coordinates; a rotation K acts on it from the
-left (``K @ F`` turns every column), so after the three steps
-``K_wrist @ K_arm @ K_base @ F̄ == F``. "Elbow up" puts the elbow above the line
-from the shoulder to the wrist centre (θ1 = φ + θ, θ2 ≤ 0); "elbow down" below it
-(θ1 = φ - θ, θ2 ≥ 0). Only the "front" solutions are returned (θ0 points the arm
-plane towards w); the reach-over-the-back pair θ0 + π is not considered, as in
-the source.
-
->>> sol = solve([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]), 1.5, 1.0)
->>> round(float(np.degrees(sol.theta0)), 6), round(float(np.degrees(sol.theta1)), 4)
-(45.0, 95.9034)
->>> np.allclose(wrist_position(sol.theta0, sol.theta1, sol.theta2, 1.5, 1.0), [0.5, 0.5, 2.0])
-True
+Conventions. Radians. A wrist *frame* is a 3x3 rotation whose columns are the unit vectors f1, f2,
+f3 in base coordinates; a rotation K acts on it from the left (K @ F turns every column), so after
+the three steps K_wrist @ K_arm @ K_base @ F̄ == F. "Elbow up" puts the elbow above the line from
+the shoulder to the wrist centre (θ1 = φ + θ, θ2 <= 0); "elbow down" below it. Only the "front"
+solutions are the source's (θ0 points the arm plane towards w); :class:`.arm.ThreeStepArm.ik`
+also gives the reach over the back.
 """
 
 from __future__ import annotations
@@ -40,26 +28,18 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import as_array, as_positive, as_rotation
-from .transforms import axis_angle, rodrigues, zyz_from_rotation
+from ..._validate import as_array, as_choice, as_count, as_rotation
+from ...transforms import axis_angle, rodrigues, wrap_angle, zyz_from_rotation
+from .._ops import ARRAY, SCALAR
+from ..ik import KinematicsWarning
+from .geometry import arm_axis, base_angle, points_eq1, triangle
 
-__all__ = [
-    "ArmState",
-    "ThreeStepSolution",
-    "Motion",
-    "ThreeStepWarning",
-    "solve",
-    "motion",
-    "joint_points",
-    "wrist_position",
-    "arm_axis",
-    "as_state",
-]
+__all__ = ["ArmState", "ThreeStepSolution", "Motion", "ThreeStepWarning", "solve_three_steps", "motion", "as_state"]
 
 E_Z = np.array([0.0, 0.0, 1.0])
 
 
-class ThreeStepWarning(UserWarning):
+class ThreeStepWarning(KinematicsWarning):
     """A singular target: a joint angle was not determined and a representative was kept."""
 
 
@@ -142,57 +122,12 @@ def as_state(start: Any) -> ArmState:
     )
 
 
-def arm_axis(theta0: Any) -> np.ndarray:
-    """The shoulder/elbow axis a = (sin θ0, -cos θ0, 0) of eq. (4); (3,) or (N, 3).
-
-    a = r̂ x e_z with r̂ = (cos θ0, sin θ0, 0) the horizontal direction of the arm
-    plane, so a positive turn about ``a`` lifts r̂ towards e_z: it *increases* θ1.
-
-    >>> np.round(rodrigues(arm_axis(0.0), np.pi / 2) @ [1, 0, 0], 12) + 0.0
-    array([0., 0., 1.])
-    """
-    t = as_array(theta0, "theta0", what="an angle in radians (a number or an array of shape (N,))")
-    return np.stack([np.sin(t), -np.cos(t), np.zeros_like(t)], axis=-1)
-
-
-def joint_points(theta0: Any, theta1: Any, theta2: Any, l1: float, l2: float) -> np.ndarray:
-    """Shoulder s, elbow e and wrist centre w of eq. (1), stacked as rows: (3, 3) or (N, 3, 3).
-
-    s = 0, e = ℓ1 (cos θ0 cos θ1, sin θ0 cos θ1, sin θ1), w = e + ℓ2 (cos θ0 c12, sin θ0 c12, s12)
-    with c12 = cos(θ1 + θ2), s12 = sin(θ1 + θ2). Angles broadcast (batch axis first).
-
-    >>> joint_points(0.0, 0.0, 0.0, 1.5, 1.0)[:, 0]
-    array([0. , 1.5, 2.5])
-    """
-    l1 = as_positive(l1, "l1")
-    l2 = as_positive(l2, "l2")
-    what = "an angle in radians (a number or an array of shape (N,))"
-    t0, t1, t2 = (as_array(v, n, what=what) for v, n in ((theta0, "theta0"), (theta1, "theta1"), (theta2, "theta2")))
-    t0, t1, t2 = np.broadcast_arrays(t0, t1, t2)
-    c0, s0 = np.cos(t0), np.sin(t0)
-    r_e, z_e = l1 * np.cos(t1), l1 * np.sin(t1)
-    r_w, z_w = r_e + l2 * np.cos(t1 + t2), z_e + l2 * np.sin(t1 + t2)
-    P = np.zeros(t0.shape + (3, 3))
-    P[..., 1, :] = np.stack([c0 * r_e, s0 * r_e, z_e], axis=-1)
-    P[..., 2, :] = np.stack([c0 * r_w, s0 * r_w, z_w], axis=-1)
-    return P
-
-
-def wrist_position(theta0: Any, theta1: Any, theta2: Any, l1: float, l2: float) -> np.ndarray:
-    """The wrist centre w of eq. (1); (3,) or (N, 3).
-
-    >>> np.round(wrist_position(np.pi / 2, np.pi / 2, 0.0, 1.5, 1.0), 12) + 0.0
-    array([0. , 0. , 2.5])
-    """
-    return joint_points(theta0, theta1, theta2, l1, l2)[..., 2, :]
-
-
 @dataclass(frozen=True, eq=False)
 class ThreeStepSolution:
     """Everything the three-step procedure produces (angles in radians, frames as columns f1 f2 f3).
 
     ``K_wrist @ K_arm @ K_base @ start.frame == target`` and
-    ``wrist_position(theta0, theta1, theta2, l1, l2) == w``. ``wrist_zyz`` are
+    ``arm.wrist_position(theta0, theta1, theta2) == w``. ``wrist_zyz`` are
     ZYZ angles (φ, ϑ, ψ) of the target frame *relative to the step-2 frame*:
     F2^T F = Rz(φ) Ry(ϑ) Rz(ψ), i.e. F = F2 Rz(φ) Ry(ϑ) Rz(ψ) (turns about the
     wrist's own moving axes, the way a ZYZ spherical wrist turns). ``singular``
@@ -247,7 +182,7 @@ class ThreeStepSolution:
 
         lines = [
             f"elbow {self.elbow}: w = {vec(self.w)}, l1 = {self.l1:g}, l2 = {self.l2:g}, "
-            f"l3 = |w| = {round(float(np.linalg.norm(self.w)), digits):g}",
+            f"l3 = |w| = {round(math.hypot(*(float(v) for v in self.w)), digits):g}",
             f"step 1  theta0 = {ang(self.theta0)}   delta0 = {ang(self.delta0)}",
             f"step 2  phi    = {ang(self.phi)}   theta  = {ang(self.theta)}",
             f"        theta1 = {ang(self.theta1)}   theta2 = {ang(self.theta2)}",
@@ -260,60 +195,33 @@ class ThreeStepSolution:
         return "\n".join(lines)
 
 
-def _wrap(x: float) -> float:
-    """Wrap an angle to (-π, π] (so that -π and π print the same everywhere)."""
-    y = float(np.arctan2(np.sin(x), np.cos(x)))
-    return np.pi if y <= -np.pi + 1e-12 else y
-
-
-def solve(
-    w: Any,
-    target: Any,
-    l1: float,
-    l2: float,
-    elbow: str = "up",
-    start: Any = None,
+def solve_three_steps(
+    w: Any, target: Any, l1: float, l2: float, elbow: str = "up", start: Any = None
 ) -> ThreeStepSolution:
-    """Solve the three-step inverse problem: move {θ̄0, θ̄1, θ̄2, F̄} to {w, F} (source eqs. 1-5).
+    """The three-step procedure for one target {w, F} from the state ``start`` (lengths already checked).
 
-    ``w`` is the wrist centre (3,), ``target`` the target wrist frame F (3x3
-    rotation, columns f1 f2 f3), ``l1``/``l2`` the upper arm and forearm,
-    ``elbow`` ``"up"`` (θ1 = φ + θ, θ2 ≤ 0) or ``"down"`` (θ1 = φ - θ, θ2 ≥ 0),
-    ``start`` the known state (see :func:`as_state`; default the straight arm
-    {0, 0, 0, e_x, e_y, e_z}).
+    Step 1 uses θ0 = atan2(w_y, w_x) (eq. 2 with its quadrant restored). Step 2 computes θ of
+    eq. (5) and the elbow's interior angle β from the triangle (ℓ1, ℓ2, ℓ3 = |w|); then
+    θ2 = ∓(π - β). Step 3 is K_wrist = F F2^T.
 
-    Step 1 uses θ0 = atan2(w_y, w_x) (eq. 2 with its quadrant restored). Step 2
-    computes θ of eq. (5), cos θ = (ℓ3² + ℓ1² - ℓ2²) / (2 ℓ1 ℓ3), ℓ3 = |w|, and
-    the elbow's interior angle β, cos β = (ℓ1² + ℓ2² - ℓ3²) / (2 ℓ1 ℓ2), both as
-    atan2 of (4·area of the triangle, numerator) for accuracy near a stretched
-    arm; then θ2 = ∓(π - β). Step 3 is K_wrist = F F2^T.
-
-    Singular targets: w on the base axis (w_x = w_y = 0) leaves θ0 free; θ̄0 is
-    kept, ``singular`` says so and a :class:`ThreeStepWarning` is issued. w at
-    the shoulder (possible only when ℓ1 = ℓ2) leaves θ1 free; θ̄1 is kept.
-    Unreachable w, a target that is not a rotation, non-positive lengths or an
-    unknown ``elbow`` raise ``ValueError``.
-
-    >>> sol = solve([0.0, 2.5, 0.0], np.eye(3), 1.5, 1.0)
-    >>> round(float(sol.theta0), 12), round(float(sol.theta1), 12), round(float(sol.theta2), 12)
-    (1.570796326795, 0.0, 0.0)
+    Boundaries are decided with the tolerance 1e-9 (ℓ1 + ℓ2) and snapped: a wrist that close to
+    the stretched or folded reach is put on it (θ2 exactly 0 or ±π); that close to the base axis,
+    θ0 is free and the start value is kept; at the shoulder (possible only when ℓ1 = ℓ2) θ1 is
+    free and the start value is kept. Singular targets warn (:class:`ThreeStepWarning`) and say
+    so in ``singular``. Unreachable w, a target that is not a rotation or an unknown ``elbow``
+    raise ``ValueError``.
     """
     w = as_array(w, "w", (3,), what="a wrist-centre position of shape (3,)")
     F = as_rotation(target, "target")
-    l1 = as_positive(l1, "l1")
-    l2 = as_positive(l2, "l2")
-    if elbow not in ("up", "down"):
-        raise ValueError(f"elbow: expected 'up' or 'down', got {elbow!r}")
+    elbow = as_choice(elbow, "elbow", ("up", "down"))
     st = as_state(start)
     sign = 1.0 if elbow == "up" else -1.0
     tol = 1e-9 * (l1 + l2)
     singular: list[str] = []
+    wx, wy, wz = (float(v) for v in w)
 
     # ---- reachability: the triangle (l1, l2, l3) must close -------------------------------
-    # |w| with math.hypot (correctly rounded, no BLAS kernel involved), then snapped: a wrist
-    # within tol of the stretched (l1 + l2) or folded (|l1 - l2|) boundary is put on it, so
-    # θ2 is exactly 0 or ±π there whatever the last bit of the input or of the CPU.
-    l3 = math.hypot(float(w[0]), float(w[1]), float(w[2]))
+    l3 = math.hypot(wx, wy, wz)  # correctly rounded, no BLAS kernel involved
     if l3 > l1 + l2 + tol:
         raise ValueError(
             f"w: unreachable, |w| = {l3:.6g} exceeds l1 + l2 = {l1 + l2:.6g} (the arm cannot stretch that far)"
@@ -323,48 +231,26 @@ def solve(
             f"w: unreachable, |w| = {l3:.6g} is less than |l1 - l2| = {abs(l1 - l2):.6g} "
             "(the arm cannot fold that tightly)"
         )
-    stretched = abs(l3 - (l1 + l2)) <= tol
-    folded = abs(l3 - abs(l1 - l2)) <= tol
-    if stretched:
-        l3 = l1 + l2
-    elif folded:
-        l3 = abs(l1 - l2)
 
     # ---- step 1: base angle (eq. 2, with atan2) --------------------------------------------
-    rho = math.hypot(float(w[0]), float(w[1]))
-    if rho <= tol:
-        # w on the base axis (within tol): θ0 is free; the start value is kept (snapped, so the
-        # choice does not hinge on the sign of a 1e-17 rounding residue)
-        theta0 = st.theta0
-        rho = 0.0
+    theta0, rho, on_axis = base_angle(SCALAR, wx, wy, tol, st.theta0)
+    if on_axis:
         singular.append("w lies on the base axis: theta0 is free, the start value theta0_bar is kept")
-    else:
-        theta0 = math.atan2(float(w[1]), float(w[0]))
     delta0 = theta0 - st.theta0
     K_base = rodrigues(E_Z, delta0)
     F1 = K_base @ st.frame
 
     # ---- step 2: shoulder and elbow (eq. 5 and the law of cosines) ---------------------------
-    if l3 < tol:
-        # w at the shoulder (l1 = l2): the elbow folds flat, θ1 is free.
-        phi, theta, beta = 0.0, np.pi / 2, 0.0
+    if l3 < tol:  # w at the shoulder (l1 = l2): the elbow folds flat, θ1 is free
+        phi, theta, beta = 0.0, math.pi / 2, 0.0
         theta1 = st.theta1
-        theta2 = -sign * np.pi
+        theta2 = -sign * math.pi
         singular.append("w is at the shoulder (l1 = l2): theta1 is free, the start value theta1_bar is kept")
     else:
-        phi = math.atan2(float(w[2]), rho)
-        if stretched:  # snapped: the triangle is flat, θ = 0 and the elbow is straight (β = π)
-            theta, beta = 0.0, math.pi
-        elif folded:  # snapped: flat the other way, β = 0; θ = 0 (l1 > l2) or π (l1 < l2)
-            theta, beta = (0.0 if l1 >= l2 else math.pi), 0.0
-        else:
-            # 4 * area of the triangle with sides l1, l2, l3 (Heron, factored)
-            q = (l1 + l2 + l3) * (-l1 + l2 + l3) * (l1 - l2 + l3) * (l1 + l2 - l3)
-            four_area = math.sqrt(max(q, 0.0))
-            theta = math.atan2(four_area, l3**2 + l1**2 - l2**2)  # cos θ as in eq. (5)
-            beta = math.atan2(four_area, l1**2 + l2**2 - l3**2)  # interior angle at the elbow
-        theta1 = _wrap(phi + sign * theta)
-        theta2 = -sign * (np.pi - beta) + 0.0  # no -0.0
+        phi = math.atan2(wz, rho)
+        _, theta, beta, _, _ = triangle(SCALAR, l1, l2, l3, tol)
+        theta1 = wrap_angle(phi + sign * theta)
+        theta2 = -sign * (math.pi - beta) + 0.0  # no -0.0
     delta = (theta1 + theta2) - (st.theta1 + st.theta2)
     a = arm_axis(theta0)
     K_arm = rodrigues(a, delta)
@@ -374,38 +260,19 @@ def solve(
     K_wrist = F @ F2.T
     F3 = K_wrist @ F2
     axis, angle = axis_angle(K_wrist)
-    zyz = np.array([_wrap(x) if i != 1 else x for i, x in enumerate(zyz_from_rotation(F2.T @ F))])
+    zyz = zyz_from_rotation(F2.T @ F)
+    zyz[[0, 2]] = wrap_angle(zyz[[0, 2]])
 
     if singular:
-        warnings.warn("; ".join(singular), ThreeStepWarning, stacklevel=2)
+        warnings.warn("; ".join(singular), ThreeStepWarning, stacklevel=3)
 
     return ThreeStepSolution(
-        w=_frozen(w),
-        target=_frozen(F),
-        l1=l1,
-        l2=l2,
-        elbow=elbow,
-        start=st,
-        theta0=theta0,
-        phi=phi,
-        theta=theta,
-        beta=beta,
-        theta1=float(theta1),
-        theta2=float(theta2),
-        delta0=float(delta0),
-        delta=float(delta),
-        a=_frozen(a),
-        K_base=_frozen(K_base),
-        K_arm=_frozen(K_arm),
-        K_wrist=_frozen(K_wrist),
-        frame_step1=_frozen(F1),
-        frame_step2=_frozen(F2),
-        frame_step3=_frozen(F3),
-        axis=_frozen(axis),
-        angle=float(angle),
-        wrist_zyz=_frozen(zyz),
-        singular=tuple(singular),
-    )
+        w=_frozen(w), target=_frozen(F), l1=l1, l2=l2, elbow=elbow, start=st, theta0=theta0, phi=phi, theta=theta,
+        beta=beta, theta1=float(theta1), theta2=float(theta2), delta0=float(delta0), delta=float(delta),
+        a=_frozen(a), K_base=_frozen(K_base), K_arm=_frozen(K_arm), K_wrist=_frozen(K_wrist), frame_step1=_frozen(F1),
+        frame_step2=_frozen(F2), frame_step3=_frozen(F3), axis=_frozen(axis), angle=float(angle),
+        wrist_zyz=_frozen(zyz), singular=tuple(singular),
+    )  # fmt: skip
 
 
 @dataclass(frozen=True, eq=False)
@@ -448,16 +315,17 @@ def motion(result: ThreeStepSolution, steps_per_phase: int = 12) -> Motion:
     arm still and turns the frame by K(axis, s·angle) F2. Vectorised over the
     samples; the first sample is the start, the last the target.
 
-    >>> sol = solve([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]), 1.5, 1.0)
+    >>> from puma_course.kinematics import ThreeStepArm
+    >>> sol = ThreeStepArm(1.5, 1.0).three_step([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]))
     >>> m = motion(sol, steps_per_phase=4)
     >>> m.points.shape, np.allclose(m.frames[-1], sol.target), np.allclose(m.path[-1], sol.w)
     ((13, 3, 3), True, True)
     """
     if not isinstance(result, ThreeStepSolution):
-        raise ValueError(f"result: expected the ThreeStepSolution returned by solve(), got {type(result).__name__}")
-    if isinstance(steps_per_phase, bool) or not isinstance(steps_per_phase, (int, np.integer)) or steps_per_phase < 1:
-        raise ValueError(f"steps_per_phase: expected a positive integer, got {steps_per_phase!r}")
-    n = int(steps_per_phase)
+        raise ValueError(
+            f"result: expected the ThreeStepSolution returned by ThreeStepArm.three_step(), got {type(result).__name__}"
+        )
+    n = as_count(steps_per_phase, "steps_per_phase", minimum=1)
     r = result
     st = r.start
     s = np.arange(1, n + 1) / n
@@ -478,7 +346,10 @@ def motion(result: ThreeStepSolution, steps_per_phase: int = 12) -> Motion:
     frames[-1] = r.frame_step3  # the exact target (not K(axis, angle) F2 rounded)
 
     joints = np.stack([th0, th1, th2], axis=-1)
-    points = joint_points(th0, th1, th2, r.l1, r.l2)
+    ex, ey, ez, wx, wy, wz = points_eq1(ARRAY, th0, th1, th2, r.l1, r.l2)
+    points = np.zeros((len(s_all), 3, 3))
+    points[:, 1] = np.stack([ex, ey, ez], axis=-1)
+    points[:, 2] = np.stack([wx, wy, wz], axis=-1)
     return Motion(
         points=_frozen(points),
         frames=_frozen(frames),

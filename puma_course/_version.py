@@ -1,0 +1,3 @@
+"""The package's version, in one place (pyproject.toml reads it; CHANGELOG.md records it)."""
+
+__version__ = "0.2.0"

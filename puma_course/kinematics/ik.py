@@ -1,0 +1,333 @@
+"""The one inverse-kinematics result type shared by every robot, and the rules around it.
+
+Policy (the same for every robot of the course):
+
+* ``robot.ik(T)`` returns an :class:`IKSolutions`: every configuration reaching T, one row
+  each, with a branch label and the singularities it sits at. An **unreachable pose is not an
+  error**: the result has ``success`` False, no rows, and a ``reason`` in words; it never
+  contains NaN. Bad input (not a rigid transform, NaN, complex, ...) raises ``ValueError``.
+* ``robot.ik_batch(Ts)`` returns an :class:`IKBatch`: every branch for N poses at once,
+  a ``valid`` mask, and zeros (never NaN) where a branch does not exist.
+* Revolute joints come back wrapped to (-π, π] (:func:`puma_course.transforms.wrap_angle`).
+* At a singular pose one representative per branch is returned (the one nearest ``near``
+  when given); each row names its singularities with machine-readable keys whose sentences
+  are in :attr:`IKSolutions.messages`, and ``ik`` emits a :class:`SingularityWarning`.
+"""
+
+from __future__ import annotations
+
+import html
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .._validate import as_array
+from ..transforms import wrap_angle
+
+__all__ = [
+    "KinematicsWarning",
+    "SingularityWarning",
+    "IKSolutions",
+    "IKBatch",
+    "joint_distance",
+    "nearest_index",
+    "dedupe_mask",
+    "keys_from_bits",
+]
+
+
+class KinematicsWarning(UserWarning):
+    """Base of the package's kinematics warnings."""
+
+
+class SingularityWarning(KinematicsWarning):
+    """A pose reached at a singular configuration: some joints are not uniquely defined, a
+    representative was chosen (see the solutions' ``flags`` and ``messages``)."""
+
+
+def _revolute_mask(revolute: Any, n: int) -> np.ndarray:
+    if revolute is None:
+        return np.ones(n, dtype=bool)
+    mask = np.asarray(revolute)
+    if mask.dtype != bool or mask.shape != (n,):
+        raise ValueError(
+            f"revolute: expected a boolean mask of shape ({n},) (one flag per joint), "
+            f"got dtype {mask.dtype} and shape {mask.shape}"
+        )
+    return mask
+
+
+def joint_distance(q: Any, q_ref: Any, revolute: Any = None) -> np.ndarray:
+    """Euclidean distance between joint vectors over the last axis, angle differences wrapped.
+
+    ``revolute`` (boolean mask, default all True) says which joints are angles: their
+    differences are wrapped to (-π, π] (a step from 179° to -179° is 2°); the others (lengths)
+    are compared as they are. Broadcasts over leading axes.
+
+    >>> float(joint_distance([np.pi - 0.1, 0], [-np.pi + 0.1, 0]))  # across ±π: 0.2, not 2π - 0.2
+    0.2
+    >>> float(joint_distance([0.0, 3.0], [0.0, 0.0], revolute=[True, False]))  # a length: not wrapped
+    3.0
+    """
+    qa = as_array(q, "q", what="joint vectors")
+    qb = as_array(q_ref, "q_ref", what="joint vectors")
+    if qa.ndim == 0 or qb.ndim == 0 or qa.shape[-1] != qb.shape[-1]:
+        raise ValueError(f"q, q_ref: expected joint vectors of the same length, got shapes {qa.shape} and {qb.shape}")
+    rev = _revolute_mask(revolute, qa.shape[-1])
+    try:
+        d = qa - qb
+    except ValueError:
+        raise ValueError(f"q, q_ref: expected shapes that broadcast, got {qa.shape} and {qb.shape}") from None
+    d = np.where(rev, wrap_angle(d), d)
+    return np.round(np.sqrt(np.einsum("...j,...j->...", d, d)), 15)
+
+
+def nearest_index(Q: np.ndarray, q_ref: np.ndarray, revolute: np.ndarray, valid: np.ndarray | None = None) -> Any:
+    """Index of the row of Q (..., k, n) nearest to q_ref (..., n), ignoring rows where ``valid`` is False.
+
+    No validation (used in loops); ties go to the first row.
+
+    >>> int(nearest_index(np.array([[0.0, 0.0], [3.0, 0.0]]), np.array([-3.0, 0.0]), np.array([True, True])))
+    1
+    """
+    d = Q - q_ref[..., None, :]
+    d = np.where(revolute, wrap_angle(d), d)
+    cost = np.einsum("...kj,...kj->...k", d, d)
+    if valid is not None:
+        cost = np.where(valid, cost, np.inf)
+    return np.argmin(cost, axis=-1)
+
+
+def dedupe_mask(Q: np.ndarray, revolute: np.ndarray, tol: float = 1e-9) -> np.ndarray:
+    """Mask of the rows of Q (k, n) that do not repeat an earlier row (within ``tol``, angles wrapped).
+
+    >>> dedupe_mask(np.array([[0.0, 1.0], [2 * np.pi, 1.0], [0.5, 1.0]]), np.array([True, True])).tolist()
+    [True, False, True]
+    """
+    if len(Q) < 2:
+        return np.ones(len(Q), dtype=bool)
+    D = Q[:, None, :] - Q[None, :, :]
+    D = np.where(revolute, wrap_angle(D), D)
+    close = np.sqrt(np.einsum("ijk,ijk->ij", D, D)) <= tol
+    return ~np.any(np.tril(close, k=-1), axis=1)
+
+
+def keys_from_bits(bits: int, flag_keys: Sequence[str]) -> tuple[str, ...]:
+    """The keys whose bits are set in ``bits`` (bit i stands for ``flag_keys[i]``).
+
+    >>> keys_from_bits(5, ("shoulder", "elbow", "wrist"))
+    ('shoulder', 'wrist')
+    """
+    return tuple(k for i, k in enumerate(flag_keys) if int(bits) >> i & 1)
+
+
+@dataclass(frozen=True, eq=False)
+class IKSolutions(Sequence[np.ndarray]):
+    """Every configuration reaching one pose: behaves like the (k, n) array ``q``.
+
+    ``labels[i]`` names the branch of ``q[i]``; ``flags[i]`` the singularities it sits at
+    (machine-readable keys, explained in ``messages``). ``success`` is False only when no
+    configuration reaches the pose; ``reason`` then says why (and ``q`` has no rows).
+
+    >>> sol = IKSolutions(np.zeros((1, 2)), ("elbow up",), (("elbow",),), {"elbow": "the arm is stretched"})
+    >>> len(sol), sol.success, sol.singular, sol.messages["elbow"]
+    (1, True, ('elbow',), 'the arm is stretched')
+    >>> none = IKSolutions(np.zeros((0, 2)), (), (), success=False, reason="out of reach")
+    >>> none.success, none.reason, len(none)
+    (False, 'out of reach', 0)
+    """
+
+    q: np.ndarray
+    labels: tuple[str, ...] = ()
+    flags: tuple[tuple[str, ...], ...] = ()
+    messages: Mapping[str, str] = field(default_factory=dict)
+    success: bool = True
+    reason: str = ""
+    robot: str = ""
+    method: str = ""
+    revolute: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        q = np.array(self.q, dtype=float)
+        if q.ndim != 2:
+            raise ValueError(f"q: expected solutions of shape (k, n), got an array of shape {q.shape}")
+        k = len(q)
+        labels = tuple(self.labels) if self.labels else tuple(f"solution {i + 1}" for i in range(k))
+        flags = tuple(tuple(f) for f in self.flags) if self.flags else ((),) * k
+        if len(labels) != k or len(flags) != k:
+            raise ValueError(f"labels, flags: expected one per solution ({k}), got {len(labels)} and {len(flags)}")
+        q.setflags(write=False)
+        object.__setattr__(self, "q", q)
+        object.__setattr__(self, "labels", labels)
+        object.__setattr__(self, "flags", flags)
+        object.__setattr__(self, "messages", dict(self.messages))
+        object.__setattr__(self, "revolute", _revolute_mask(self.revolute, q.shape[1]))
+
+    # ---- array-like -------------------------------------------------------------------
+    def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
+        return self.q.copy() if dtype is None else self.q.astype(dtype)
+
+    def __len__(self) -> int:
+        return len(self.q)
+
+    def __getitem__(self, i: Any) -> Any:
+        if not self.success:
+            raise IndexError(f"no solution to index: {self.reason}")
+        return self.q[i]
+
+    def __iter__(self) -> Iterator[np.ndarray]:
+        return iter(self.q)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """(k, n): k solutions of n joints."""
+        return tuple(self.q.shape)
+
+    # ---- singularities ----------------------------------------------------------------
+    @property
+    def singular(self) -> tuple[str, ...]:
+        """Every singularity key met by any solution, in first-seen order."""
+        seen: list[str] = []
+        for f in self.flags:
+            seen += [k for k in f if k not in seen]
+        return tuple(seen)
+
+    @property
+    def is_singular(self) -> bool:
+        """True when any solution sits at a singularity."""
+        return bool(self.singular)
+
+    # ---- choosing -----------------------------------------------------------------------
+    def nearest(self, q_ref: Any) -> np.ndarray:
+        """The solution closest to ``q_ref`` (wrapped joint distance); ValueError if there is none."""
+        ref = as_array(q_ref, "q_ref", (self.q.shape[1],), what=f"a joint vector of shape ({self.q.shape[1]},)")
+        if not self.success or len(self.q) == 0:
+            raise ValueError(f"q_ref: there is no solution to choose from ({self.reason or 'empty'})")
+        assert self.revolute is not None
+        return self.q[int(nearest_index(self.q, ref, self.revolute))].copy()
+
+    def sorted_by(self, q_ref: Any) -> IKSolutions:
+        """The same solutions sorted by distance to ``q_ref``, nearest first (stable)."""
+        ref = as_array(q_ref, "q_ref", (self.q.shape[1],), what=f"a joint vector of shape ({self.q.shape[1]},)")
+        return self._sorted(ref)
+
+    def _sorted(self, ref: np.ndarray) -> IKSolutions:
+        """:meth:`sorted_by` for a validated reference (the hot path of every ``ik(T, near=...)``)."""
+        if len(self.q) < 2:
+            return self
+        assert self.revolute is not None
+        d = self.q - ref
+        d = np.where(self.revolute, wrap_angle(d), d)
+        order = np.argsort(np.round(np.einsum("kj,kj->k", d, d), 28), kind="stable").tolist()
+        if order == list(range(len(order))):
+            return self
+        new = object.__new__(IKSolutions)  # the fields are already checked: skip __post_init__
+        q = self.q[order]
+        q.setflags(write=False)
+        for name, value in vars(self).items():
+            object.__setattr__(new, name, value)
+        object.__setattr__(new, "q", q)
+        object.__setattr__(new, "labels", tuple(self.labels[i] for i in order))
+        object.__setattr__(new, "flags", tuple(self.flags[i] for i in order))
+        return new
+
+    # ---- display ------------------------------------------------------------------------
+    def __repr__(self) -> str:
+        what = f"{self.robot} " if self.robot else ""
+        how = f" ({self.method})" if self.method else ""
+        if not self.success:
+            return f"IKSolutions: {what}pose unreachable{how}: {self.reason}"
+        lines = [f"IKSolutions: {what}{len(self.q)} solution(s){how}" + (" [singular]" if self.singular else "")]
+        width = max((len(lab) for lab in self.labels), default=0)
+        for lab, row, f in zip(self.labels, self.q, self.flags, strict=True):
+            values = " ".join(f"{v:8.4f}" for v in np.round(row, 4) + 0.0)  # fixed width: rows line up
+            note = f"  singular: {', '.join(f)}" if f else ""
+            lines.append(f"  {lab:<{width}}  q = [{values}]{note}")
+        lines += [f"  {k}: {self.messages[k]}" for k in self.singular if k in self.messages]
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        if not self.success:
+            return f"<p><b>Unreachable</b>: {html.escape(self.reason)}</p>"
+        assert self.revolute is not None
+        head = "".join(f"<th>q{j + 1}{' [deg]' if r else ''}</th>" for j, r in enumerate(self.revolute))
+        rows = []
+        for lab, row, f in zip(self.labels, self.q, self.flags, strict=True):
+            cells = "".join(
+                f"<td>{np.degrees(v) if r else v:.3f}</td>" for v, r in zip(row, self.revolute, strict=True)
+            )
+            rows.append(f"<tr><td>{html.escape(lab)}</td>{cells}<td>{html.escape(', '.join(f))}</td></tr>")
+        notes = "".join(
+            f"<li><b>{html.escape(k)}</b>: {html.escape(self.messages.get(k, ''))}</li>" for k in self.singular
+        )
+        return (
+            f"<table><caption>{html.escape(self.robot)} IK: {len(self.q)} solution(s)</caption>"
+            f"<thead><tr><th>branch</th>{head}<th>singular</th></tr></thead><tbody>{''.join(rows)}</tbody></table>"
+            + (f"<ul>{notes}</ul>" if notes else "")
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class IKBatch:
+    """Every branch for N poses (see ``robot.ik_batch``).
+
+    ``q`` (N, k, n): branch j of pose i, in the fixed branch order ``labels`` (k); revolute
+    joints wrapped to (-π, π]. ``valid`` (N, k): the branch reaches the pose and is not a
+    duplicate of an earlier branch at a singularity. ``flags`` (N, k): bit masks of
+    singularities, bit b standing for ``flag_keys[b]`` (sentences in ``messages``).
+    ``reason`` (N,): "" or why the pose cannot be reached. Entries of missing branches are 0,
+    never NaN.
+    """
+
+    q: np.ndarray
+    valid: np.ndarray
+    labels: tuple[str, ...]
+    flags: np.ndarray
+    flag_keys: tuple[str, ...]
+    messages: Mapping[str, str]
+    reason: np.ndarray
+    robot: str = ""
+    method: str = ""
+    revolute: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        N, k, n = self.q.shape
+        if self.valid.shape != (N, k) or self.flags.shape != (N, k) or len(self.labels) != k:
+            raise ValueError("valid, flags, labels: expected shapes (N, k), (N, k) and k matching q (N, k, n)")
+        object.__setattr__(self, "revolute", _revolute_mask(self.revolute, n))
+
+    def __len__(self) -> int:
+        return int(self.q.shape[0])
+
+    @property
+    def reachable(self) -> np.ndarray:
+        """(N,) True where the pose can be reached."""
+        return self.reason == ""
+
+    def keys(self, i: int, j: int) -> tuple[str, ...]:
+        """The singularity keys of branch ``j`` of pose ``i``."""
+        return keys_from_bits(int(self.flags[i, j]), self.flag_keys)
+
+    def solutions(self, i: int) -> IKSolutions:
+        """Pose ``i`` as an :class:`IKSolutions` (its valid branches, in branch order)."""
+        keep = np.flatnonzero(self.valid[i])
+        if not self.reachable[i]:
+            return IKSolutions(
+                np.zeros((0, self.q.shape[2])), (), (), self.messages, False, str(self.reason[i]),
+                self.robot, self.method, self.revolute,
+            )  # fmt: skip
+        flags = tuple(self.keys(i, int(j)) for j in keep)
+        present = {k for f in flags for k in f}
+        return IKSolutions(
+            self.q[i, keep],
+            tuple(self.labels[j] for j in keep),
+            flags,
+            {k: v for k, v in self.messages.items() if k in present},
+            True,
+            "",
+            self.robot,
+            self.method,
+            self.revolute,
+        )
