@@ -159,7 +159,7 @@ class MK3(DHChain):
 
         >>> from puma_course.transforms import rotx
         >>> arm = MK3()
-        >>> T = arm.fk([0.3, 1.0, -0.6, 0.2, 0.4])
+        >>> T = arm.fk([0.3, 1.6, 1.2, 0.2, 0.4])  # the arm bent back over its base: four solutions
         >>> len(arm.ik(T))
         4
         >>> T[:3, :3] = T[:3, :3] @ rotx(0.2)  # turn z5 out of the arm plane
@@ -178,7 +178,7 @@ class MK3(DHChain):
         """All four branches for N poses (N, 4, 4), vectorised: an :class:`~.ik.IKBatch`.
 
         >>> arm = MK3()
-        >>> b = arm.ik_batch(arm.fk([[0.3, 1.0, -0.6, 0.2, 0.4], [0.0, 0.2, 0.2, 0.2, 0.2]]))
+        >>> b = arm.ik_batch(arm.fk([[0.3, 1.6, 1.2, 0.2, 0.4], [0.0, 0.2, 0.2, 0.2, 0.2]]))
         >>> b.q.shape, b.valid.sum(axis=1).tolist()  # the second pose is too far to reach over the back
         ((2, 4, 5), [4, 2])
         """
