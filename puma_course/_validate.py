@@ -59,6 +59,8 @@ def describe(value: Any) -> str:
         return f"complex numbers ({np.array2string(arr.ravel()[:3], precision=3)}...)"[:120]
     if arr.dtype == object or arr.dtype.kind in "USVb":
         return f"{type(value).__name__} {value!r}"[:120]
+    if arr.ndim == 0:
+        return f"the number {value!r}"
     return f"an array of shape {arr.shape}"
 
 

@@ -311,7 +311,7 @@ class DHChain(Robot):
             for r in self.table()
         )
         return (
-            f"<table><caption>{html.escape(self.name)}: modified DH (Craig), lengths in {unit}</caption>"
+            f"<table><caption>{html.escape(self.name, quote=False)}: modified DH (Craig), lengths in {unit}</caption>"
             "<thead><tr><th>i</th><th>α<sub>i-1</sub> [deg]</th><th>a<sub>i-1</sub></th>"
             "<th>θ<sub>i</sub></th><th>d<sub>i</sub></th></tr></thead>"
             f"<tbody>{cells}</tbody></table>"

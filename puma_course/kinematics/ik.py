@@ -263,7 +263,7 @@ class IKSolutions(Sequence[np.ndarray]):
             f"<li><b>{html.escape(k)}</b>: {html.escape(self.messages.get(k, ''))}</li>" for k in self.singular
         )
         return (
-            f"<table><caption>{html.escape(self.robot)} IK: {len(self.q)} solution(s)</caption>"
+            f"<table><caption>{html.escape(self.robot, quote=False)} IK: {len(self.q)} solution(s)</caption>"
             f"<thead><tr><th>branch</th>{head}<th>singular</th></tr></thead><tbody>{''.join(rows)}</tbody></table>"
             + (f"<ul>{notes}</ul>" if notes else "")
         )

@@ -302,7 +302,6 @@ class Puma560(DHChain):
             return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, _reason(terms, 0, L), self.name,
                                "closed form", self.revolute)  # fmt: skip
         sh_sing, el_sing, axis = terms[6], terms[7], terms[8]
-        pose_keys = tuple(k for k, on in (("shoulder", sh_sing), ("elbow", el_sing), ("base_axis", axis)) if on)
         rows, labels, flags = [], [], []
         for ish, sh in enumerate((1.0, -1.0)):
             if ish and sh_sing:
@@ -318,8 +317,9 @@ class Puma560(DHChain):
                         continue
                     rows.append((t1, t2, t3, t4, t5, t6))
                     labels.append(BRANCH_LABELS[4 * ish + 2 * iel + iwr])
-                    flags.append(pose_keys + ("wrist",) * sing + ("joint2_axis",) * j2 if sing or j2 else pose_keys)
-        keys = FLAG_KEYS if (pose_keys or any(flags)) else ()
+                    on = (sh_sing, el_sing, sing, axis, j2)
+                    flags.append(tuple(k for k, f in zip(FLAG_KEYS, on, strict=True) if f) if any(on) else ())
+        keys = FLAG_KEYS if any(flags) else ()
         sol = IKSolutions(wrap_angle(np.array(rows)), tuple(labels), tuple(flags),
                           {k: MESSAGES[k] for k in keys if any(k in f for f in flags)}, True, "", self.name,
                           "closed form", self.revolute)  # fmt: skip

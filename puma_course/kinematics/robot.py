@@ -156,7 +156,7 @@ class Robot(ABC):
         )
         configs = ", ".join(html.escape(k) for k in self.configurations)
         return (
-            f"<table><caption>{html.escape(self.name)}</caption>"
+            f"<table><caption>{html.escape(self.name, quote=False)}</caption>"
             f"<thead><tr><th>parameter</th><th>value</th></tr></thead><tbody>{rows}</tbody></table>"
             f"<p>joints: {joints}<br>named configurations: {configs or 'none'}</p>"
         )

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._validate import as_length
+from ..._validate import as_array, as_length
 from ...transforms import EULER_SINGULAR_TOL, wrap_angle, zyz_from_rotation
 from .._ops import ARRAY, SCALAR
 from ..dh import frame_array, split_q
@@ -100,8 +100,15 @@ class ThreeStepArm(Robot):
         >>> ThreeStepArm(1.5, 1.0).joint_points(0.0, 0.0, 0.0)[:, 0]
         array([0. , 1.5, 2.5])
         """
-        q = np.zeros(np.broadcast_shapes(np.shape(theta0), np.shape(theta1), np.shape(theta2)) + (6,))
-        q[..., 0], q[..., 1], q[..., 2] = theta0, theta1, theta2
+        what = "an angle in radians (a number or an array of shape (N,))"
+        t = [as_array(v, n, what=what) for v, n in ((theta0, "theta0"), (theta1, "theta1"), (theta2, "theta2"))]
+        try:
+            t = list(np.broadcast_arrays(*t))
+        except ValueError:
+            shapes = [x.shape for x in t]
+            raise ValueError(f"theta0, theta1, theta2: expected shapes that broadcast, got {shapes}") from None
+        q = np.zeros(t[0].shape + (6,))
+        q[..., 0], q[..., 1], q[..., 2] = t
         return self.points(q)
 
     def wrist_position(self, theta0: Any, theta1: Any, theta2: Any) -> np.ndarray:

@@ -8,10 +8,7 @@ properties (orthonormal, det 1, K a = a); and round trips on random targets.
 
 from __future__ import annotations
 
-import base64
 import math
-import re
-import struct
 import warnings
 
 import numpy as np
@@ -19,13 +16,27 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from puma_course import three_step as ts
-from puma_course.transforms import rotx, roty, rotz
+from puma_course.kinematics import ThreeStepArm
+from puma_course.kinematics import three_step as ts
+from puma_course.transforms import rodrigues, rotx, roty, rotz
 
 SEED = 20261122
 L1, L2 = 1.5, 1.0
 W_EX = np.array([0.5, 0.5, 2.0])
 TARGET_EX = np.column_stack([[-1.0, 0, 0], [0, 1.0, 0], [0, 0, -1.0]])  # (f1, f2, f3) = (-e_x, e_y, -e_z)
+
+
+def solve(w, target, l1, l2, elbow="up", start=None):
+    """The source's three-step procedure (ThreeStepArm.three_step) for the arm (l1, l2)."""
+    return ThreeStepArm(l1, l2).three_step(w, target, elbow=elbow, start=start)
+
+
+def joint_points(t0, t1, t2, l1, l2):
+    return ThreeStepArm(l1, l2).joint_points(t0, t1, t2)
+
+
+def wrist_position(t0, t1, t2, l1, l2):
+    return ThreeStepArm(l1, l2).wrist_position(t0, t1, t2)
 
 
 def eq1(t0: float, t1: float, t2: float, l1: float, l2: float) -> np.ndarray:
@@ -99,7 +110,7 @@ def test_hand_numbers_themselves():
 @pytest.mark.parametrize("elbow, sign", [("up", 1.0), ("down", -1.0)])
 def test_exercise_1_angles_by_hand(elbow, sign):
     h = hand_numbers()
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2, elbow=elbow)
+    sol = solve(W_EX, TARGET_EX, L1, L2, elbow=elbow)
     assert sol.singular == ()
     assert math.isclose(sol.theta0, h["theta0"], abs_tol=1e-12)
     assert math.isclose(sol.delta0, h["theta0"], abs_tol=1e-12)  # start θ̄0 = 0
@@ -116,8 +127,8 @@ def test_exercise_1_angles_by_hand(elbow, sign):
 
 
 def test_exercise_1_the_two_branches_by_number():
-    up = ts.solve(W_EX, TARGET_EX, L1, L2, elbow="up")
-    down = ts.solve(W_EX, TARGET_EX, L1, L2, elbow="down")
+    up = solve(W_EX, TARGET_EX, L1, L2, elbow="up")
+    down = solve(W_EX, TARGET_EX, L1, L2, elbow="down")
     assert math.isclose(math.degrees(up.theta1), 95.9034, abs_tol=1e-4)
     assert math.isclose(math.degrees(up.theta2), -65.3757, abs_tol=1e-4)
     assert math.isclose(math.degrees(down.theta1), 45.1542, abs_tol=1e-4)
@@ -126,7 +137,7 @@ def test_exercise_1_the_two_branches_by_number():
 
 @pytest.mark.parametrize("elbow", ["up", "down"])
 def test_elbow_up_is_above_the_shoulder_wrist_line(elbow):
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2, elbow=elbow)
+    sol = solve(W_EX, TARGET_EX, L1, L2, elbow=elbow)
     e = elbow_eq1(sol.theta0, sol.theta1, L1)
     r_hat = np.array([math.cos(sol.theta0), math.sin(sol.theta0), 0.0])
     # in the arm plane (r, z): cross(w, e) > 0 means e lies above the line from s to w
@@ -135,7 +146,7 @@ def test_elbow_up_is_above_the_shoulder_wrist_line(elbow):
 
 
 def test_exercise_1_rotations_by_hand():
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2, elbow="up")
+    sol = solve(W_EX, TARGET_EX, L1, L2, elbow="up")
     c = math.sqrt(0.5)
     assert np.allclose(sol.K_base, [[c, -c, 0], [c, c, 0], [0, 0, 1]], atol=1e-12)  # Rz(45°)
     assert np.allclose(sol.a, [c, -c, 0], atol=1e-12)  # (sin 45°, -cos 45°, 0)
@@ -156,7 +167,7 @@ def test_exercise_1_rotations_by_hand():
 
 def test_composite_is_unique_and_equals_target_times_step2_transpose():
     # K F2 = F has the unique solution K = F F2^{-1} = F F2^T: check column by column
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2)
+    sol = solve(W_EX, TARGET_EX, L1, L2)
     for i in range(3):
         assert np.allclose(sol.K_wrist @ sol.frame_step2[:, i], TARGET_EX[:, i], atol=1e-12)
     assert np.allclose(sol.K_wrist, sum(np.outer(TARGET_EX[:, i], sol.frame_step2[:, i]) for i in range(3)))
@@ -164,7 +175,7 @@ def test_composite_is_unique_and_equals_target_times_step2_transpose():
 
 @pytest.mark.parametrize("elbow", ["up", "down"])
 def test_zyz_wrist_angles_reproduce_the_target(elbow):
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2, elbow=elbow)
+    sol = solve(W_EX, TARGET_EX, L1, L2, elbow=elbow)
     phi, theta, psi = sol.wrist_zyz
     assert 0 <= theta <= math.pi
     W = rotz(phi) @ roty(theta) @ rotz(psi)
@@ -181,8 +192,8 @@ def test_zyz_wrist_angles_reproduce_the_target(elbow):
 def test_joint_points_and_wrist_position_follow_eq1():
     rng = np.random.default_rng(SEED + 4)
     t = rng.uniform(-math.pi, math.pi, (40, 3))
-    P = ts.joint_points(t[:, 0], t[:, 1], t[:, 2], L1, L2)
-    W = ts.wrist_position(t[:, 0], t[:, 1], t[:, 2], L1, L2)
+    P = joint_points(t[:, 0], t[:, 1], t[:, 2], L1, L2)
+    W = wrist_position(t[:, 0], t[:, 1], t[:, 2], L1, L2)
     assert P.shape == (40, 3, 3) and W.shape == (40, 3)
     for k, (t0, t1, t2) in enumerate(t):
         assert np.allclose(P[k, 0], 0.0, atol=0)  # the shoulder is the origin
@@ -190,18 +201,18 @@ def test_joint_points_and_wrist_position_follow_eq1():
         assert np.allclose(P[k, 2], eq1(t0, t1, t2, L1, L2), atol=1e-12)
         assert np.allclose(W[k], eq1(t0, t1, t2, L1, L2), atol=1e-12)
     # hand-worked: θ0 = 90°, θ1 = 0, θ2 = 90° puts the elbow at (0, l1, 0) and the wrist l2 above it
-    assert np.allclose(ts.joint_points(math.pi / 2, 0.0, math.pi / 2, L1, L2), [[0, 0, 0], [0, L1, 0], [0, L1, L2]])
+    assert np.allclose(joint_points(math.pi / 2, 0.0, math.pi / 2, L1, L2), [[0, 0, 0], [0, L1, 0], [0, L1, L2]])
     # scalars broadcast against a batch
-    assert np.allclose(ts.wrist_position(0.3, t[:, 1], 0.0, L1, L2)[:, 2], (L1 + L2) * np.sin(t[:, 1]))
+    assert np.allclose(wrist_position(0.3, t[:, 1], 0.0, L1, L2)[:, 2], (L1 + L2) * np.sin(t[:, 1]))
 
 
 @pytest.mark.parametrize(
     "call, match",
     [
-        (lambda: ts.joint_points(0.0, 0.0, 0.0, 0.0, 1.0), "^l1: expected a positive length"),
-        (lambda: ts.wrist_position(0.0, 0.0, 0.0, 1.0, -1.0), "^l2: expected a positive length"),
-        (lambda: ts.joint_points(np.nan, 0.0, 0.0, 1.0, 1.0), "^theta0: expected finite"),
-        (lambda: ts.joint_points(0.0, "up", 0.0, 1.0, 1.0), "^theta1: "),
+        (lambda: joint_points(0.0, 0.0, 0.0, 0.0, 1.0), "^l1: expected a positive length"),
+        (lambda: wrist_position(0.0, 0.0, 0.0, 1.0, -1.0), "^l2: expected a positive length"),
+        (lambda: joint_points(np.nan, 0.0, 0.0, 1.0, 1.0), "^theta0: expected finite"),
+        (lambda: joint_points(0.0, "up", 0.0, 1.0, 1.0), "^theta1: "),
         (lambda: ts.arm_axis("x"), "^theta0: "),
         (lambda: ts.arm_axis(np.inf), "^theta0: expected finite"),
         (lambda: ts.as_state(3), "^start: expected None, an ArmState"),
@@ -221,13 +232,13 @@ def test_eq1_helpers_bad_input(call, match):
 def test_turning_about_a_increases_theta1():
     rng = np.random.default_rng(SEED)
     for t0, t1, d in rng.uniform(-3, 3, size=(50, 3)):
-        K = ts.rodrigues(ts.arm_axis(t0), d)
+        K = rodrigues(ts.arm_axis(t0), d)
         assert np.allclose(K @ elbow_eq1(t0, t1, L1), elbow_eq1(t0, t1 + d, L1), atol=1e-12)
         # and the whole arm: both points turn together when θ1 grows by d
         t2 = rng.uniform(-3, 3)
         assert np.allclose(K @ eq1(t0, t1, t2, L1, L2), eq1(t0, t1 + d, t2, L1, L2), atol=1e-12)
     # the opposite sign of a would turn the arm the other way
-    K_wrong = ts.rodrigues(-ts.arm_axis(0.3), 0.5)
+    K_wrong = rodrigues(-ts.arm_axis(0.3), 0.5)
     assert not np.allclose(K_wrong @ elbow_eq1(0.3, 0.1, L1), elbow_eq1(0.3, 0.6, L1))
 
 
@@ -238,7 +249,7 @@ def test_step_rotations_equal_the_change_of_forearm_orientation():
         start = rng.uniform(-math.pi, math.pi, 3)
         goal = rng.uniform(-math.pi, math.pi, 3)
         w = eq1(*goal, L1, L2)
-        sol = ts.solve(w, np.eye(3), L1, L2, start=(start[0], start[1], start[2], np.eye(3)))
+        sol = solve(w, np.eye(3), L1, L2, start=(start[0], start[1], start[2], np.eye(3)))
         expected = forearm_orientation(sol.theta0, sol.theta1, sol.theta2) @ forearm_orientation(*start).T
         assert np.allclose(sol.K_arm @ sol.K_base, expected, atol=1e-12)
 
@@ -259,14 +270,14 @@ def test_random_targets_round_trip(elbow):
             continue
         F = random_rotation(rng)
         start = ts.ArmState(*rng.uniform(-math.pi, math.pi, 3), random_rotation(rng))
-        sol = ts.solve(w, F, l1, l2, elbow=elbow, start=start)
+        sol = solve(w, F, l1, l2, elbow=elbow, start=start)
         assert np.allclose(eq1(sol.theta0, sol.theta1, sol.theta2, l1, l2), w, atol=1e-9)
         assert np.abs(sol.K_wrist @ sol.K_arm @ sol.K_base @ start.frame - F).max() < 1e-12
         for K in (sol.K_base, sol.K_arm, sol.K_wrist, sol.frame_step1, sol.frame_step2, sol.frame_step3):
             assert_rotation(K, atol=1e-11)
         W = rotz(sol.wrist_zyz[0]) @ roty(sol.wrist_zyz[1]) @ rotz(sol.wrist_zyz[2])
         assert np.allclose(sol.frame_step2 @ W, F, atol=1e-9)
-        assert np.allclose(ts.rodrigues(sol.axis, sol.angle), sol.K_wrist, atol=1e-9)
+        assert np.allclose(rodrigues(sol.axis, sol.angle), sol.K_wrist, atol=1e-9)
         assert -math.pi < sol.theta1 <= math.pi
 
 
@@ -286,7 +297,7 @@ def test_hypothesis_the_wrist_centre_is_reached(t0, t1, t2, l1, l2, elbow):
     w = eq1(t0, t1, t2, l1, l2)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ts.ThreeStepWarning)
-        sol = ts.solve(w, rotx(t0) @ rotz(t2), l1, l2, elbow=elbow)
+        sol = solve(w, rotx(t0) @ rotz(t2), l1, l2, elbow=elbow)
     assert np.all(np.isfinite(sol.joints))
     assert np.allclose(eq1(sol.theta0, sol.theta1, sol.theta2, l1, l2), w, atol=1e-8 * (l1 + l2))
     # the two branches: up has θ2 <= 0, down θ2 >= 0
@@ -304,11 +315,11 @@ def test_start_formats_agree():
         (*t, F0),
         (*t, F0[:, 0], F0[:, 1], F0[:, 2]),
     ]
-    sols = [ts.solve(W_EX, TARGET_EX, L1, L2, start=s) for s in forms]
+    sols = [solve(W_EX, TARGET_EX, L1, L2, start=s) for s in forms]
     for s in sols[1:]:
         assert np.array_equal(s.K_wrist, sols[0].K_wrist)
         assert s.delta0 == sols[0].delta0 and s.delta == sols[0].delta
-    default = ts.solve(W_EX, TARGET_EX, L1, L2)
+    default = solve(W_EX, TARGET_EX, L1, L2)
     assert np.array_equal(default.start.frame, np.eye(3)) and default.start.joints.tolist() == [0, 0, 0]
 
 
@@ -320,7 +331,7 @@ def test_start_formats_agree():
 def test_wrist_on_the_base_axis_keeps_the_start_base_angle_and_warns():
     start = ts.ArmState(0.7, 0.0, 0.0, np.eye(3))
     with pytest.warns(ts.ThreeStepWarning, match="base axis"):
-        sol = ts.solve([0.0, 0.0, 2.0], TARGET_EX, L1, L2, start=start)
+        sol = solve([0.0, 0.0, 2.0], TARGET_EX, L1, L2, start=start)
     assert sol.theta0 == 0.7 and sol.delta0 == 0.0
     assert any("base axis" in s for s in sol.singular)
     assert np.allclose(sol.K_base, np.eye(3))
@@ -328,13 +339,13 @@ def test_wrist_on_the_base_axis_keeps_the_start_base_angle_and_warns():
     assert np.abs(sol.K_wrist @ sol.K_arm @ sol.K_base - TARGET_EX).max() < 1e-12
     # straight down too
     with pytest.warns(ts.ThreeStepWarning):
-        down = ts.solve([0.0, 0.0, -1.0], TARGET_EX, L1, L2, elbow="down")
+        down = solve([0.0, 0.0, -1.0], TARGET_EX, L1, L2, elbow="down")
     assert np.allclose(eq1(down.theta0, down.theta1, down.theta2, L1, L2), [0, 0, -1], atol=1e-12)
 
 
 def test_wrist_at_the_shoulder_with_equal_links():
     with pytest.warns(ts.ThreeStepWarning, match="shoulder"):
-        sol = ts.solve([0.0, 0.0, 0.0], np.eye(3), 1.0, 1.0, start=(0.0, 0.3, 0.0, np.eye(3)))
+        sol = solve([0.0, 0.0, 0.0], np.eye(3), 1.0, 1.0, start=(0.0, 0.3, 0.0, np.eye(3)))
     assert sol.theta1 == 0.3 and math.isclose(abs(sol.theta2), math.pi)
     assert np.all(np.isfinite(sol.joints))
     assert np.allclose(eq1(sol.theta0, sol.theta1, sol.theta2, 1.0, 1.0), 0.0, atol=1e-12)
@@ -343,27 +354,27 @@ def test_wrist_at_the_shoulder_with_equal_links():
 @pytest.mark.parametrize("elbow", ["up", "down"])
 def test_stretched_and_folded_boundaries(elbow):
     d = np.array([1.0, 2.0, 2.0]) / 3.0  # a unit direction
-    stretched = ts.solve((L1 + L2) * d, np.eye(3), L1, L2, elbow=elbow)
+    stretched = solve((L1 + L2) * d, np.eye(3), L1, L2, elbow=elbow)
     # exact: a wrist within tolerance of the stretched boundary is snapped onto it by design
     assert stretched.theta2 == 0.0 and stretched.theta == 0.0
     assert np.allclose(eq1(*stretched.joints, L1, L2), (L1 + L2) * d, atol=1e-12)
-    folded = ts.solve((L1 - L2) * d, np.eye(3), L1, L2, elbow=elbow)
+    folded = solve((L1 - L2) * d, np.eye(3), L1, L2, elbow=elbow)
     assert math.isclose(abs(folded.theta2), math.pi, abs_tol=1e-12)
     assert np.allclose(eq1(*folded.joints, L1, L2), (L1 - L2) * d, atol=1e-12)
 
 
 def test_composite_of_zero_and_half_turn():
-    plain = ts.solve(W_EX, np.eye(3), L1, L2)
-    same = ts.solve(W_EX, plain.frame_step2, L1, L2)  # no wrist motion needed
+    plain = solve(W_EX, np.eye(3), L1, L2)
+    same = solve(W_EX, plain.frame_step2, L1, L2)  # no wrist motion needed
     assert same.angle == pytest.approx(0.0, abs=1e-7)
     assert np.allclose(same.K_wrist, np.eye(3), atol=1e-12)
     half = plain.frame_step2 @ rotx(math.pi)  # a half turn about f1 of the step-2 frame
-    sol = ts.solve(W_EX, half, L1, L2)
+    sol = solve(W_EX, half, L1, L2)
     assert sol.angle == pytest.approx(math.pi)
     assert np.allclose(abs(sol.axis @ plain.frame_step2[:, 0]), 1.0)
     m = ts.motion(sol, steps_per_phase=5)
     assert np.allclose(m.frames[-1], half, atol=1e-12)
-    assert np.allclose(ts.rodrigues(sol.axis, sol.angle) @ sol.frame_step2, half, atol=1e-9)
+    assert np.allclose(rodrigues(sol.axis, sol.angle) @ sol.frame_step2, half, atol=1e-9)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -374,7 +385,7 @@ def test_composite_of_zero_and_half_turn():
 @pytest.mark.parametrize("elbow", ["up", "down"])
 def test_motion_starts_at_start_and_ends_at_target(elbow):
     start = ts.ArmState(-0.5, 0.3, 0.4, rotx(0.3) @ rotz(1.0))
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2, elbow=elbow, start=start)
+    sol = solve(W_EX, TARGET_EX, L1, L2, elbow=elbow, start=start)
     n = 10
     m = ts.motion(sol, steps_per_phase=n)
     T = 3 * n + 1
@@ -404,11 +415,11 @@ def test_motion_starts_at_start_and_ends_at_target(elbow):
 
 
 def test_motion_frames_follow_the_step_rotations():
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2)
+    sol = solve(W_EX, TARGET_EX, L1, L2)
     m = ts.motion(sol, steps_per_phase=4)
     # halfway through phase 2 the frame is K(a, δ/2) F1, i.e. the forearm orientation at half the joints
     mid = m.frames[4 + 2]
-    assert np.allclose(mid, ts.rodrigues(sol.a, sol.delta / 2) @ sol.frame_step1, atol=1e-12)
+    assert np.allclose(mid, rodrigues(sol.a, sol.delta / 2) @ sol.frame_step1, atol=1e-12)
     assert np.allclose(mid, forearm_orientation(*m.joints[6]), atol=1e-12)
 
 
@@ -429,7 +440,8 @@ def test_motion_frames_follow_the_step_rotations():
         ({"target": np.eye(4)}, "^target: "),
         ({"l1": 0.0}, "^l1: "),
         ({"l2": -1.0}, "^l2: "),
-        ({"elbow": "left"}, "^elbow: .*'up' or 'down'"),
+        ({"elbow": "left"}, "^elbow: .*'up', 'down'"),
+        ({"elbow": np.array(["up", "down"])}, "^elbow: "),  # was numpy's truth-value error
         ({"elbow": 1}, "^elbow: "),
         ({"start": (0.0, 0.0)}, "^start: "),
         ({"start": {"theta3": 0.0}}, "^start: .*theta3"),
@@ -440,11 +452,11 @@ def test_motion_frames_follow_the_step_rotations():
 def test_bad_input_raises_with_a_reason(kwargs, match):
     args = {"w": W_EX, "target": TARGET_EX, "l1": L1, "l2": L2, **kwargs}
     with pytest.raises(ValueError, match=match):
-        ts.solve(**args)
+        solve(**args)
 
 
 def test_motion_bad_input():
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2)
+    sol = solve(W_EX, TARGET_EX, L1, L2)
     for bad in (0, -3, 2.5, True):
         with pytest.raises(ValueError, match="steps_per_phase"):
             ts.motion(sol, steps_per_phase=bad)
@@ -453,35 +465,11 @@ def test_motion_bad_input():
 
 
 def test_results_are_immutable():
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2)
+    sol = solve(W_EX, TARGET_EX, L1, L2)
     with pytest.raises(AttributeError):
         sol.theta0 = 1.0  # type: ignore[misc]
     with pytest.raises(ValueError):
         sol.K_wrist[0, 0] = 2.0
-
-
-# ---------------------------------------------------------------------------------------------
-# The drawing companion (smoke: it runs, draws the right number of panels and frames)
-# ---------------------------------------------------------------------------------------------
-
-
-def test_plot_steps_and_animation_smoke():
-    import matplotlib.pyplot as plt
-
-    from puma_course import three_step_plot as tsp
-
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2)
-    fig = tsp.plot_steps(sol)
-    assert len(fig.axes) == 4
-    assert [ax.get_title() for ax in fig.axes] == list(tsp.PHASE_TITLES)
-    plt.close(fig)
-    anim = tsp.animate(sol, steps_per_phase=3, dpi=40, figsize=(4.0, 3.0))
-    html = anim.to_jshtml()
-    frames = re.findall(r"data:image/png;base64,((?:[A-Za-z0-9+/=]|\\\n)+)", html)
-    assert len(frames) == 10  # 3 * 3 + 1
-    png = base64.b64decode(frames[0].replace("\\\n", ""))
-    width, height = struct.unpack(">II", png[16:24])  # the PNG header's IHDR size
-    assert (width, height) == (160, 120)  # 4 x 3 inches at 40 dpi: the dpi was kept
 
 
 def test_wrist_next_to_the_base_axis_is_snapped_onto_it():
@@ -491,7 +479,7 @@ def test_wrist_next_to_the_base_axis_is_snapped_onto_it():
     w = np.array([1e-12, -1e-12, 2.0])
     start = ts.ArmState(0.3, 0.0, 0.0)
     with pytest.warns(ts.ThreeStepWarning, match="base axis"):
-        sol = ts.solve(w, TARGET_EX, L1, L2, start=start)
+        sol = solve(w, TARGET_EX, L1, L2, start=start)
     assert sol.theta0 == 0.3  # the start value, snapped by design
     assert np.allclose(eq1(*sol.joints, L1, L2), w, atol=1e-9 * (L1 + L2))
 
@@ -504,8 +492,8 @@ def test_boundary_answers_do_not_depend_on_the_last_bit(ulps):
     r = np.nextafter(L1 + L2, np.inf if ulps > 0 else -np.inf)
     for _ in range(abs(ulps) - 1):
         r = np.nextafter(r, np.inf if ulps > 0 else -np.inf)
-    sol = ts.solve(r * d, np.eye(3), L1, L2)
-    ref = ts.solve((L1 + L2) * d, np.eye(3), L1, L2)
+    sol = solve(r * d, np.eye(3), L1, L2)
+    ref = solve((L1 + L2) * d, np.eye(3), L1, L2)
     assert sol.theta2 == 0.0 and sol.theta == 0.0  # snapped by design
     assert sol.theta1 == ref.theta1 and sol.theta0 == ref.theta0
 
@@ -513,5 +501,106 @@ def test_boundary_answers_do_not_depend_on_the_last_bit(ulps):
 def test_regular_targets_do_not_warn():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        sol = ts.solve(W_EX, TARGET_EX, L1, L2, elbow="down")
+        sol = solve(W_EX, TARGET_EX, L1, L2, elbow="down")
     assert sol.singular == ()
+
+
+# ---------------------------------------------------------------------------------------------
+# The arm as a robot: fk of all six joints, the eight-branch ik, its singular cases
+# ---------------------------------------------------------------------------------------------
+ARM = ThreeStepArm(L1, L2)
+
+
+def test_fk_is_eq1_and_the_forearm_frame_times_the_zyz_wrist():
+    rng = np.random.default_rng(SEED + 40)
+    q = rng.uniform(-math.pi, math.pi, (60, 6))
+    T = ARM.fk(q)
+    for k, row in enumerate(q):
+        assert np.allclose(T[k, :3, 3], eq1(*row[:3], L1, L2), atol=1e-12)
+        R = forearm_orientation(*row[:3]) @ rotz(row[3]) @ roty(row[4]) @ rotz(row[5])
+        assert np.allclose(T[k, :3, :3], R, atol=1e-12)
+        assert np.allclose(ARM.fk(row), T[k], atol=1e-15)
+    F = ARM.frames(q)
+    assert F.shape == (60, 4, 4, 4) and np.allclose(F[:, -1], T)
+    assert np.allclose(F[:, 2, :3, 3], ARM.points(q)[:, 1])  # the elbow frame sits at the elbow
+
+
+def test_ik_round_trip_eight_branches_and_the_original_among_them():
+    rng = np.random.default_rng(SEED + 41)
+    q = rng.uniform(-math.pi, math.pi, (2000, 6))
+    T = ARM.fk(q)
+    b = ARM.ik_batch(T)
+    assert b.valid.all() and b.reachable.all()
+    Tq = ARM.fk(b.q.reshape(-1, 6)).reshape(-1, 8, 4, 4)
+    assert np.abs(Tq - T[:, None]).max() < 1e-9
+    from puma_course.kinematics.ik import joint_distance
+
+    assert joint_distance(b.q, q[:, None]).min(axis=1).max() < 1e-6
+
+
+def test_the_front_up_branch_is_the_sources_procedure():
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = TARGET_EX, W_EX
+    sol = ARM.ik(T)
+    for elbow in ("up", "down"):
+        proc = solve(W_EX, TARGET_EX, L1, L2, elbow=elbow)
+        row = sol[sol.labels.index(f"front/{elbow}/noflip")]
+        assert np.allclose(row, np.r_[proc.joints, proc.wrist_zyz], atol=1e-12)
+
+
+def test_labels_read_off_the_drawn_arm():
+    """front: the arm plane faces w (cos θ0 w_x + sin θ0 w_y > 0); up: the elbow above the shoulder-wrist
+    line; noflip: ϑ > 0."""
+    rng = np.random.default_rng(SEED + 42)
+    q = rng.uniform(-math.pi, math.pi, (500, 6))
+    P = ARM.points(q)
+    e, w = P[:, 1], P[:, 2]
+    c0, s0 = np.cos(q[:, 0]), np.sin(q[:, 0])
+    front = c0 * w[:, 0] + s0 * w[:, 1] > 0
+    h_e, h_w = c0 * e[:, 0] + s0 * e[:, 1], c0 * w[:, 0] + s0 * w[:, 1]
+    up = np.where(h_w > 0, 1.0, -1.0) * (h_w * e[:, 2] - w[:, 2] * h_e) > 0
+    noflip = np.sin(q[:, 4]) > 0
+    b = ARM.ik_batch(ARM.fk(q))
+    from puma_course.kinematics.ik import joint_distance
+
+    k = np.argmin(joint_distance(b.q, q[:, None]), axis=1)
+    expect = [
+        f"{'front' if f else 'back'}/{'up' if u else 'down'}/{'noflip' if n else 'flip'}"
+        for f, u, n in zip(front, up, noflip, strict=True)
+    ]
+    assert [b.labels[i] for i in k] == expect
+
+
+def test_singular_poses_of_the_robot():
+    # stretched arm: up = down (4 solutions: front/back x noflip/flip), θ2 exactly 0
+    T = ARM.fk([0.3, 0.4, 0.0, 0.2, 0.5, 0.1])
+    with pytest.warns(ts.ThreeStepWarning.__mro__[1], match="elbow"):
+        sol = ARM.ik(T)
+    assert len(sol) == 4 and all("elbow" in f for f in sol.flags) and {r[2] for r in sol} == {0.0}
+    # wrist on the base axis: θ0 free (from near), front = back
+    q = np.array([0.7, math.pi / 2, 0.6, 0.2, 0.5, 0.1])
+    q[2] = 0.0
+    T = ARM.fk(q)
+    with pytest.warns(UserWarning, match="base_axis"):
+        sol = ARM.ik(T, near=q)
+    assert all(lab.startswith("front") for lab in sol.labels) and sol[0][0] == pytest.approx(0.7)
+    # aligned wrist axes (ϑ = 0): φ ± ψ only, ψ from near, flip = noflip
+    q = np.array([0.2, 0.5, -0.9, 0.4, 0.0, 0.3])
+    T = ARM.fk(q)
+    with pytest.warns(UserWarning, match="wrist"):
+        sol = ARM.ik(T, near=q)
+    from puma_course.kinematics.ik import joint_distance
+
+    assert joint_distance(sol[0], q) < 1e-9
+    wrist = [lab for lab, f in zip(sol.labels, sol.flags, strict=True) if "wrist" in f]
+    assert "wrist" in sol.flags[0] and all(lab.endswith("noflip") for lab in wrist)  # flip = noflip: dropped
+    assert len(sol) == 8 - len(wrist)
+    for row in sol:
+        assert np.abs(ARM.fk(row) - T).max() < 1e-9
+
+
+def test_unreachable_wrist_reports_the_reason():
+    T = np.eye(4)
+    T[:3, 3] = [3.0, 0.0, 0.0]
+    sol = ARM.ik(T)
+    assert not sol.success and "out of reach" in sol.reason and len(sol) == 0

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from puma_course import transforms as tf
-from puma_course.dh import DHChain, Link, mdh
+from puma_course.kinematics.dh import DHChain, Link, exact_cos_sin, mdh
 
 angle = st.floats(-7, 7, allow_nan=False)
 length = st.floats(-2, 2, allow_nan=False)
@@ -91,12 +91,17 @@ def test_table_and_repr():
         (lambda c: c.fk([0.0, 0.0]), "q: expected joint values of shape (3,)"),
         (lambda c: c.fk(np.zeros((4, 2))), "got an array of shape (4, 2)"),
         (lambda c: c.fk([0.0, float("nan"), 0.0]), "q: expected finite"),
-        (lambda c: c.fk(["a", 0, 0]), "non-numeric"),
+        (lambda c: c.fk(["a", 0, 0]), "of real numbers, got list ['a', 0, 0]"),
+        (lambda c: c.fk([0.0, 1j, 0.0]), "of real numbers, got complex numbers"),
+        (lambda c: c.fk([0.0, None, 0.0]), "got None"),
         (lambda c: mdh(0, 0, "x", 0), "theta"),
         (lambda c: mdh(np.zeros(2), 0, np.zeros(3), 0), "broadcast"),
         (lambda c: Link(0, 0, kind="X"), "kind"),
         (lambda c: c.q("nope"), "name: expected one of"),
-        (lambda c: DHChain([]), "links: expected at least one Link"),
+        (lambda c: c.q(np.array([])), "name: expected one of"),  # was a TypeError (unhashable array)
+        (lambda c: Link(0, 1e200, 0), "a_prev: expected values of size at most"),
+        (lambda c: c.ik(np.eye(4)), "NotImplementedError"),
+        (lambda c: DHChain([]), "links: expected a non-empty list of Link"),
         (lambda c: DHChain([Link(0, 0, 0), (0, 1, 0, 0)]), "links[1]: expected a Link"),  # was AttributeError
         (lambda c: Link(float("nan"), 0, 0), "alpha_prev: expected finite"),
         (lambda c: DHChain([Link(0, 0, 0)], configurations={"up": [0.0, 1.0]}), "configurations['up']"),
@@ -106,6 +111,34 @@ def test_table_and_repr():
 )
 def test_bad_input(call, fragment):
     chain = DHChain([Link(0, 0, 0), Link(0, 1, 0), Link(0, 1, 0)])
+    if fragment == "NotImplementedError":  # a general chain has no closed-form ik: said plainly
+        with pytest.raises(NotImplementedError, match="no closed-form inverse kinematics"):
+            call(chain)
+        return
     with pytest.raises(ValueError) as err:
         call(chain)
     assert fragment in str(err.value)
+
+
+def test_twists_at_multiples_of_90_degrees_are_exact():
+    # cos(π/2) is 6e-17 in floats; the chain snaps constant twists so zeros stay zeros
+    assert [exact_cos_sin(k * math.pi / 2) for k in range(-2, 3)] == [
+        (-1.0, 0.0),
+        (0.0, -1.0),
+        (1.0, 0.0),
+        (0.0, 1.0),
+        (-1.0, 0.0),
+    ]
+    assert exact_cos_sin(0.3) == (math.cos(0.3), math.sin(0.3))
+    chain = DHChain([Link(-math.pi / 2, 0.0, 0.0), Link(math.pi / 2, 0.0, 0.0)])
+    T = chain.fk([0.0, 0.0])
+    assert np.array_equal(T, np.eye(4))  # Rot(X, -90°) Rot(X, 90°) = I exactly, by design
+
+
+def test_single_pose_path_equals_batch_path_bit_for_bit_structure():
+    # one pose runs in plain floats, a batch in numpy: the same kernel, so the same numbers
+    rng = np.random.default_rng(9)
+    chain = _random_chain(rng, 6)
+    q = rng.uniform(-3, 3, (30, chain.n))
+    assert np.allclose(np.stack([chain.fk(r) for r in q]), chain.fk(q), atol=1e-15, rtol=0)
+    assert np.allclose(np.stack([chain.frames(r) for r in q]), chain.frames(q), atol=1e-15, rtol=0)

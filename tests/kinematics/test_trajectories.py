@@ -6,12 +6,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from puma_course import porter
-from puma_course import trajectories as tr
-from puma_course.robots import puma560
+from puma_course.kinematics import Porter, Puma560
+from puma_course.kinematics import trajectories as tr
+from puma_course.kinematics.ik import joint_distance
 from puma_course.transforms import rotx, rotz
 
-ARM = puma560()
+ARM = Puma560()
 
 
 # ---------------------------------------------------------------- paths
@@ -80,13 +80,13 @@ def test_follow_reaches_every_pose_and_moves_smoothly():
     q0 = ARM.q("qn")
     T0 = ARM.fk(q0)
     path = tr.circle_path(T0[:3, 3] - [0, 0.1, 0], 0.1, [1, 0, 0], T0[:3, :3], 200, start=[0, 1, 0])
-    jp = tr.follow(path, tr.puma_candidates(ARM), q0)
+    jp = tr.follow(ARM, path, q0)
     assert jp.q.shape == (200, 6)
     assert np.abs(ARM.fk(jp.q) - path).max() < 1e-9
     assert jp.start_jump < 1e-9
     # a chord of 2π·0.1/199 ≈ 3 mm needs only small joint steps; and the loop closes on itself
     assert jp.max_step < 0.05
-    assert tr.step_distance(jp.q[0], jp.q[-1]) < 1e-9
+    assert joint_distance(jp.q[0], jp.q[-1]) < 1e-9
 
 
 def test_follow_stays_on_the_branch_of_q0():
@@ -94,21 +94,20 @@ def test_follow_stays_on_the_branch_of_q0():
     k = q_right.labels.index("right/down/flip")
     q0 = q_right[k]
     path = tr.line_path(ARM.fk(q0), ARM.fk(q0)[:3, 3] + [0.0, 0.05, 0.05], 30)
-    jp = tr.follow(path, tr.puma_candidates(ARM), q0)
+    jp = tr.follow(ARM, path, q0)
     assert (jp.choice == 7).all()  # branch index of right/down/flip in BRANCH_LABELS
     assert jp.start_jump < 1e-9 and jp.max_step < 0.05
-    nv = tr.naive(path, tr.puma_candidates(ARM), q0)
+    nv = tr.naive(ARM, path, q0)
     assert (nv.choice == 0).all()
     assert nv.start_jump > 1.0  # the naive first solution is another arm altogether
-    assert nv.start_jump == pytest.approx(float(tr.step_distance(nv.q[0], q0)))
+    assert nv.start_jump == pytest.approx(float(joint_distance(nv.q[0], q0)))
 
 
 def test_naive_jumps_at_the_wrist_flip_follow_does_not():
     path, qm = _wrist_flip_path()
-    cand = tr.puma_candidates(ARM)
     q0 = ARM.ik(path[0]).nearest(qm)
-    jp = tr.follow(path, cand, q0)
-    nv = tr.naive(path, cand)
+    jp = tr.follow(ARM, path, q0)
+    nv = tr.naive(ARM, path)
     assert np.abs(ARM.fk(jp.q) - path).max() < 1e-9
     assert np.abs(ARM.fk(nv.q) - path).max() < 1e-9
     # θ5 changes sign along the path; the continuous solution crosses from noflip to flip
@@ -123,17 +122,17 @@ def test_unreachable_path_raises_with_the_pose_index():
     T0 = ARM.fk(ARM.q("qn"))
     path = tr.line_path(T0, [1.5, 0.0, 0.0], 10)
     with pytest.raises(ValueError, match="pose [0-9] of the path"):
-        tr.follow(path, tr.puma_candidates(ARM), ARM.q("qn"))
-    with pytest.raises(ValueError, match="PUMA-560"):
-        tr.puma_candidates(object())
+        tr.follow(ARM, path, ARM.q("qn"))
+    with pytest.raises(ValueError, match="^robot: expected a robot of the course"):
+        tr.follow(object(), path, ARM.q("qn"))
     with pytest.raises(ValueError, match="q0"):
-        tr.follow(path[:1], tr.puma_candidates(ARM), np.zeros(5))
+        tr.follow(ARM, path[:1], np.zeros(5))
 
 
 def test_step_distance_and_unwrap():
-    assert tr.step_distance([np.pi - 0.1, 0.0], [-np.pi + 0.1, 0.0]) == pytest.approx(0.2)
+    assert joint_distance([np.pi - 0.1, 0.0], [-np.pi + 0.1, 0.0]) == pytest.approx(0.2)
     # a prismatic joint is not wrapped
-    assert tr.step_distance([0.0, 7.0], [0.0, 0.0], revolute=[True, False]) == pytest.approx(7.0)
+    assert joint_distance([0.0, 7.0], [0.0, 0.0], revolute=[True, False]) == pytest.approx(7.0)
     q = np.array([[3.0, 1.0], [-3.0, 2.0], [-2.9, 9.0]])
     u = tr.unwrap(q, revolute=[True, False])
     assert np.allclose(u[:, 0], [3.0, 2 * np.pi - 3.0, 2 * np.pi - 2.9])
@@ -147,11 +146,12 @@ def test_thousand_pose_path_is_vectorised_enough():
     path = tr.circle_path(T0[:3, 3] - [0, 0.1, 0], 0.1, [1, 0, 0], T0[:3, :3], 1000, start=[0, 1, 0])
     calls = []
 
-    def counting(Ts):
-        calls.append(len(Ts))
-        return tr.puma_candidates(ARM)(Ts)
+    class Counting(Puma560):
+        def ik_batch(self, T, near=None, **kw):
+            calls.append(len(T))
+            return super().ik_batch(T, near, **kw)
 
-    jp = tr.follow(path, counting, q0)
+    jp = tr.follow(Counting(), path, q0)
     assert calls == [1000]
     assert jp.q.shape == (1000, 6)
 
@@ -160,14 +160,14 @@ def test_thousand_pose_path_is_vectorised_enough():
 def test_porter_follow_line_and_circle():
     l1, l3, l4 = 1.0, 0.5, 0.3
     q0 = np.array([0.3, 0.4, 1.0, 0.5, 0.6, 0.7])
-    T0 = porter.fk(q0, l1, l3, l4)
-    cand = tr.porter_candidates(l1, l3, l4)
+    pa = Porter(l1, l3, l4)
+    T0 = pa.fk(q0)
     for path in (
         tr.line_path(T0, T0[:3, 3] + [0.3, 0.2, 0.4], 100),
         tr.circle_path(T0[:3, 3] - [0, 0.3, 0], 0.3, [0, 0, 1], T0[:3, :3], 100, start=[0, 1, 0]),
     ):
-        jp = tr.follow(path, cand, q0, revolute=tr.PORTER_REVOLUTE)
-        assert np.abs(porter.fk(jp.q, l1, l3, l4) - path).max() < 1e-9
+        jp = tr.follow(pa, path, q0)
+        assert np.abs(pa.fk(jp.q) - path).max() < 1e-9
         assert jp.start_jump < 1e-9
         assert jp.max_step < 0.2
         assert (jp.q[:, 2] >= 0).all()
@@ -181,12 +181,12 @@ def test_porter_naive_jumps_where_the_planes_become_parallel():
     T0[:3, :3] = rotz(np.pi / 2)
     T0[:3, 3] = [1.0, -0.4 + l4, 1.3]
     path = tr.line_path(T0, [1.0, 0.4 + l4, 1.3], 60)
-    cand = tr.porter_candidates(l1, l3, l4)
-    q0 = cand(path[:1])[0][0, 0]
-    jp = tr.follow(path, cand, q0, revolute=tr.PORTER_REVOLUTE)
-    nv = tr.naive(path, cand, q0, revolute=tr.PORTER_REVOLUTE)
-    assert np.abs(porter.fk(jp.q, l1, l3, l4) - path).max() < 1e-9
-    assert np.abs(porter.fk(nv.q, l1, l3, l4) - path).max() < 1e-9
+    pa = Porter(l1, l3, l4)
+    q0 = pa.ik_batch(path[:1]).q[0, 0]
+    jp = tr.follow(pa, path, q0)
+    nv = tr.naive(pa, path, q0)
+    assert np.abs(pa.fk(jp.q) - path).max() < 1e-9
+    assert np.abs(pa.fk(nv.q) - path).max() < 1e-9
     assert jp.max_step < 0.05 and nv.start_jump == 0.0
     assert nv.max_step > 3.0
     assert set(jp.choice.tolist()) == {0, 1}
@@ -199,22 +199,24 @@ def _short_path() -> np.ndarray:
 @pytest.mark.parametrize(
     "call, match",
     [
-        (lambda: tr.step_distance([0.0, 0.0], [0.0, 0.0, 0.0]), "^qa, qb: expected joint vectors of the same length"),
-        (lambda: tr.step_distance([np.nan, 0.0], [0.0, 0.0]), "^qa: expected finite"),
+        (lambda: joint_distance([0.0, 0.0], [0.0, 0.0, 0.0]), "^q, q_ref: expected joint vectors of the same length"),
+        (lambda: joint_distance([np.nan, 0.0], [0.0, 0.0]), "^q: expected finite"),
         # a mask of the wrong length used to broadcast silently (or raise IndexError in unwrap and follow)
         (
-            lambda: tr.step_distance([0.0, 7.0], [0.0, 0.0], revolute=[True]),
-            r"^revolute: expected a mask of shape \(2,\)",
+            lambda: joint_distance([0.0, 7.0], [0.0, 0.0], revolute=[True]),
+            r"^revolute: expected a boolean mask of shape \(2,\)",
         ),
         (lambda: tr.unwrap([1.0, 2.0, 3.0]), "^q: expected a joint path"),
-        (lambda: tr.unwrap([[1.0, 2.0]], revolute=[True]), r"^revolute: expected a mask of shape \(2,\)"),
-        (
-            lambda: tr.follow(_short_path(), tr.puma_candidates(ARM), ARM.q("qn"), revolute=[True] * 5),
-            r"^revolute: expected a mask of shape \(6,\)",
-        ),
-        (lambda: tr.naive(_short_path(), tr.puma_candidates(ARM), np.zeros(5)), r"^q0: expected .* shape \(6,\)"),
-        (lambda: tr.follow(np.eye(3), tr.puma_candidates(ARM), ARM.q("qn")), "^path_Ts: "),
-        (lambda: tr.porter_candidates(-1.0, 0.5, 0.3)(np.eye(4)[None]), "^l1: expected a positive length"),
+        (lambda: tr.unwrap([[1.0, 2.0]], revolute=[True]), r"^revolute: expected a boolean mask of shape \(2,\)"),
+        # a non-boolean mask ([1, 0]) used to be accepted
+        (lambda: tr.unwrap([[1.0, 2.0]], revolute=[1, 0]), r"^revolute: expected a boolean mask of shape \(2,\)"),
+        (lambda: tr.follow(ARM, _short_path()[:0], ARM.q("qn")), "^path_Ts: expected at least one pose"),
+        (lambda: tr.naive(ARM, _short_path()[:0]), "^path_Ts: expected at least one pose"),  # was IndexError
+        (lambda: tr.line_path(np.eye(4), [1, 2, 3], 5.5), "^n: expected a whole number"),  # was truncated to 5
+        (lambda: tr.circle_path([0, 0, 0], 1.0, [0, 0, 1], np.eye(3), 2.5), "^n: expected a whole number"),
+        (lambda: tr.naive(ARM, _short_path(), np.zeros(5)), r"^q0: expected .* shape \(6,\)"),
+        (lambda: tr.follow(ARM, np.eye(3), ARM.q("qn")), "^path_Ts: "),
+        (lambda: Porter(-1.0, 0.5, 0.3), "^l1: expected a positive length"),
     ],
 )
 def test_bad_joint_path_input(call, match):
