@@ -61,7 +61,7 @@ def test_numeric_error_samples_angles_and_lengths():
 
 
 def test_bad_input():
-    with pytest.raises(ValueError, match="derived"):
+    with pytest.raises(ValueError, match=r"^derived: expected entries named like the printed ones, missing \['r11'\]"):
         S.check_printed({"r11": 0}, {"r12": 0})
     with pytest.raises(ValueError, match=r"^notation: expected one of \['meghdari', 'porter'\], got 'craig'"):
         S.check_printed({"r11": 0}, {"r11": 0}, notation="craig")

@@ -137,9 +137,9 @@ def test_collect_shorthand_groups_like_the_slides():
 
 
 def test_bad_input():
-    with pytest.raises(ValueError, match="lengths"):
+    with pytest.raises(ValueError, match=r"^lengths: expected values for \['a1', 'a2', 'a3', 'd5'\]"):
         S.fk_from_forms(S.closed_forms_mk3(), np.zeros(5), d1=1.0)
-    with pytest.raises(ValueError, match="q"):
+    with pytest.raises(ValueError, match=r"^q: expected at least 5 joint values"):
         S.fk_from_forms(S.closed_forms_mk3(), np.zeros(3), d1=1, a1=1, a2=1, a3=1, d5=1)
     bad = SimpleNamespace(links=[SimpleNamespace(alpha_prev=0.0, a_prev=0.0, d=0.0, theta=0.0, kind="X")])
     with pytest.raises(ValueError, match=r"^chain.links\[0\].kind: expected 'R' or 'P', got 'X'"):

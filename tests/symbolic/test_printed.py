@@ -46,6 +46,8 @@ def test_printed_forms_that_are_right_are_not_flagged():
     assert S.check_printed(printed.PUMA560_LINK_MATRICES, S.derived_link_matrices(S.puma560_table_sym())).ok
     al, a, th, d = sp.symbols("alpha a theta d", real=True)
     assert S.check_printed(printed.GENERAL_LINK_MATRIX, S.mdh_sym(al, a, th, d)).ok
+    # mdh_sym is typed entry by entry like the print; the derivation is the product of the four motions
+    assert S.check_printed(printed.GENERAL_LINK_MATRIX, S.elementary_product_sym(al, a, th, d)).ok
 
 
 def test_printed_mk3_0T5_equals_numeric_fk(mk3_lengths):
@@ -73,6 +75,8 @@ def test_printed_local_product_misses_tx_q2():
     assert printed.porter.CLOSED_FORMS["p5"][0].has(PS.q2)
     M = PS.local_product()
     assert sp.simplify(M.subs(PS.q2, 0) - PL) == sp.zeros(4, 4)
+    # the transcription differs from the chain's motions by exactly that factor
+    assert [m for m in PS.MOTIONS if m not in printed.porter.LOCAL_PRODUCT] == [("T", "x", PS.q2)]
 
 
 def test_printed_scene_product_is_the_chain_read_backwards():
