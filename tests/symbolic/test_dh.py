@@ -1,46 +1,42 @@
-"""Symbolic derivations against independent truths: the numeric chains, hand-worked numbers, elementary products."""
+"""Modified-DH derivations against independent truths: the numeric chains, hand-worked numbers, elementary products."""
 
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 import sympy as sp
 
-from puma_course import mdh, mk3, puma560
+from puma_course import DHChain, Link, mdh, mk3, puma560
 from puma_course import symbolic as S
+from tests.support import random_q
 
 
 def test_mdh_sym_equals_product_of_four_elementary_transforms():
     al, a, th, d = sp.symbols("alpha a theta d", real=True)
     diff = S.elementary_product_sym(al, a, th, d) - S.mdh_sym(al, a, th, d)
     assert diff.applyfunc(sp.simplify) == sp.zeros(4, 4)
-    # and the elementary factors are what their names say (checked by hand on a point)
-    p = S.trans_x_sym(a) * sp.Matrix([0, 0, 0, 1])
-    assert list(p) == [a, 0, 0, 1]
-    assert S.rot_z_sym(sp.pi / 2) * sp.Matrix([1, 0, 0, 1]) == sp.Matrix([0, 1, 0, 1])
-    assert S.rot_x_sym(sp.pi / 2) * sp.Matrix([0, 1, 0, 1]) == sp.Matrix([0, 0, 1, 1])
 
 
 def test_mdh_sym_matches_numeric_mdh():
     rng = np.random.default_rng(1)
     al, a, th, d = sp.symbols("alpha a theta d", real=True)
     f = sp.lambdify((al, a, th, d), S.mdh_sym(al, a, th, d), modules="numpy")
+    g = sp.lambdify((al, a, th, d), S.elementary_product_sym(al, a, th, d), modules="numpy")
     for _ in range(10):
         x = rng.uniform(-3, 3, 4)
         np.testing.assert_allclose(np.array(f(*x), dtype=float), mdh(*x), atol=1e-12)
-
-
-def _random_q(n, seed, N=25):
-    return np.random.default_rng(seed).uniform(-np.pi, np.pi, (N, n))
+        np.testing.assert_allclose(np.array(g(*x), dtype=float), mdh(*x), atol=1e-12)
 
 
 @pytest.mark.parametrize(
     "lengths", [{}, {"a2": 0.7, "a3": -0.11, "d3": 0.33, "d4": 0.25}], ids=["default", "other-lengths"]
 )
-def test_puma560_closed_forms_equal_numeric_fk(lengths):
+def test_puma560_closed_forms_equal_numeric_fk(lengths, puma560_lengths):
     arm = puma560(**lengths)
-    L = {**{"a2": 0.4318, "a3": 0.0203, "d3": 0.15005, "d4": 0.4318}, **lengths}
-    Q = _random_q(6, seed=2)
+    L = {**puma560_lengths, **lengths}
+    Q = random_q(6, seed=2, N=25)
     np.testing.assert_allclose(S.fk_from_forms(S.closed_forms_puma560(), Q, **L), arm.fk(Q), atol=1e-12)
     # the short-hand form evaluates to the same thing
     np.testing.assert_allclose(
@@ -51,11 +47,20 @@ def test_puma560_closed_forms_equal_numeric_fk(lengths):
 @pytest.mark.parametrize(
     "lengths", [{}, {"d1": 500.0, "a1": 80.0, "a2": 300.0, "a3": 190.0, "d5": 40.0}], ids=["default", "other-lengths"]
 )
-def test_mk3_closed_forms_equal_numeric_fk(lengths):
+def test_mk3_closed_forms_equal_numeric_fk(lengths, mk3_lengths):
     arm = mk3(**lengths)
-    L = {**{"d1": 360.0, "a1": 135.0, "a2": 250.0, "a3": 215.0, "d5": 100.0}, **lengths}
-    Q = _random_q(5, seed=3)
+    L = {**mk3_lengths, **lengths}
+    Q = random_q(5, seed=3, N=25)
     np.testing.assert_allclose(S.fk_from_forms(S.closed_forms_mk3(), Q, **L), arm.fk(Q), atol=1e-9)
+
+
+def test_fk_from_forms_single_configuration_is_the_batch_row(puma560_lengths):
+    Q = random_q(6, seed=4, N=3)
+    batch = S.fk_from_forms(S.closed_forms_puma560(), Q, **puma560_lengths)
+    assert batch.shape == (3, 4, 4)
+    one = S.fk_from_forms(S.closed_forms_puma560(), Q[1], **puma560_lengths)
+    assert one.shape == (4, 4)
+    np.testing.assert_allclose(one, puma560().fk(Q[1]), atol=1e-12)
 
 
 def test_hand_worked_poses():
@@ -82,6 +87,37 @@ def test_chain_sym_from_dhchain_is_exact_and_matches_fk():
     np.testing.assert_allclose(num, arm.fk(q), atol=1e-12)
 
 
+def test_table_sym_of_a_chain_with_a_prismatic_joint_and_offsets_matches_fk():
+    arm = DHChain(
+        [Link(0.0, 0.0, 0.2, theta=np.pi / 6), Link(-np.pi / 2, 0.3, 0.1, kind="P"), Link(np.pi / 3, 0.4, 0.0)]
+    )
+    rows = S.table_sym(arm)
+    t1, t3 = sp.Symbol("theta1", real=True), sp.Symbol("theta3", real=True)
+    d2 = sp.Symbol("d2", real=True)
+    R = sp.Rational
+    assert rows == [
+        (0, 0, t1 + sp.pi / 6, R(1, 5)),
+        (-sp.pi / 2, R(3, 10), 0, d2 + R(1, 10)),
+        (sp.pi / 3, R(2, 5), t3, 0),
+    ]
+    _, T = S.chain_sym(arm, simplify=False)
+    q = np.array([0.7, 0.25, -1.2])
+    num = np.array(T.subs({t1: q[0], d2: q[1], t3: q[2]}).evalf(), dtype=float)
+    np.testing.assert_allclose(num, arm.fk(q), atol=1e-12)
+
+
+def test_derived_link_matrices_are_the_chain_factors():
+    mats = S.derived_link_matrices(S.puma560_table_sym())
+    assert list(mats) == ["0T1", "1T2", "2T3", "3T4", "4T5", "5T6"]
+    q = random_q(6, seed=5)
+    L = {"a2": 0.4318, "a3": 0.0203, "d3": 0.15005, "d4": 0.4318}
+    subs = {**dict(zip(S.theta_symbols(6), q, strict=True)), **{sp.Symbol(k, real=True): v for k, v in L.items()}}
+    prod = np.eye(4)
+    for M in mats.values():
+        prod = prod @ np.array(M.subs(subs).evalf(), dtype=float)
+    np.testing.assert_allclose(prod, puma560().fk(q), atol=1e-12)
+
+
 def test_shorthand_round_trip():
     t = S.theta_symbols(4)
     e = sp.cos(t[0]) * sp.sin(t[1] + t[2] + t[3]) - sp.cos(t[1] + t[2]) + sp.sin(t[0] - t[1])
@@ -92,47 +128,19 @@ def test_shorthand_round_trip():
     assert sp.simplify(S.expand_shorthand(short) - e) == 0
 
 
-def test_printed_mk3_link_matrix_misprint_is_flagged_exactly():
-    res = S.check_printed(S.printed_mk3_link_matrices(), S.derived_link_matrices(S.mk3_table_sym()))
-    assert res.differ == ["4T5[2,4]", "4T5[3,4]"]
-    d5 = sp.Symbol("d5", real=True)
-    bad = {e.name: e for e in res.entries if not e.agrees}
-    assert bad["4T5[2,4]"].derived == -d5 and bad["4T5[3,4]"].derived == 0
-    # the deciding computation, numerically: the printed ^4T5 moves the tool sideways, the table does not
-    q = np.array([0.4, 0.3, -0.2, 0.5, 0.9])
-    L = {"d1": 360.0, "a1": 135.0, "a2": 250.0, "a3": 215.0, "d5": 100.0}
-    subs = {**{S.theta_symbols(5)[i]: q[i] for i in range(5)}, **{sp.Symbol(k, real=True): v for k, v in L.items()}}
-    printed = S.printed_mk3_link_matrices()
-    prod = sp.eye(4)
-    for key in ("0T1", "1T2", "2T3", "3T4", "4T5"):
-        prod = prod * S.expand_shorthand(printed[key])
-    P = np.array(prod.subs(subs).evalf(), dtype=float)
-    T = mk3().fk(q)
-    assert np.linalg.norm(P[:3, 3] - T[:3, 3]) == pytest.approx(np.sqrt(2) * 100.0)  # off by d5 along y4 and z4
-    np.testing.assert_allclose(P[:3, :3], T[:3, :3], atol=1e-12)  # rotations agree
-
-
-def test_printed_forms_that_are_right_are_not_flagged():
-    assert S.check_printed(S.printed_mk3_0T5(), S.closed_forms_mk3()).ok
-    assert S.check_printed(S.printed_puma560_0T6_entries(), S.closed_forms_puma560()).ok
-    assert S.check_printed(S.printed_puma560_link_matrices(), S.derived_link_matrices(S.puma560_table_sym())).ok
-    al, a, th, d = sp.symbols("alpha a theta d", real=True)
-    assert S.check_printed(S.printed_general_link_matrix(), S.mdh_sym(al, a, th, d)).ok
-
-
-def test_check_printed_catches_a_planted_error():
-    printed = dict(S.printed_puma560_0T6_entries())
-    C23, S5, C6 = (sp.Symbol(n, real=True) for n in ("C23", "S5", "C6"))
-    printed["r31"] = printed["r31"] + 2 * C23 * S5 * C6  # sign of the last term flipped
-    res = S.check_printed(printed, S.closed_forms_puma560())
-    assert res.differ == ["r31"]
-    assert "DIFFERS" in res._repr_html_()
+def test_collect_shorthand_groups_like_the_slides():
+    # worked by hand from the table: px = C1 (a2 C2 + a3 C23 - d4 S23) - d3 S1
+    C1, C2, C23, S1, S23 = S.shorthand("C1 C2 C23 S1 S23")
+    a2, a3, d3, d4 = S.PUMA560_LENGTHS
+    px = S.collect_shorthand(S.closed_forms_puma560()["px"])
+    assert set(sp.Add.make_args(px)) == {C1 * (a2 * C2 + a3 * C23 - d4 * S23), -d3 * S1}  # grouped as printed
 
 
 def test_bad_input():
-    with pytest.raises(ValueError, match="derived"):
-        S.check_printed({"r11": 0}, {"r12": 0})
-    with pytest.raises(ValueError, match="lengths"):
+    with pytest.raises(ValueError, match=r"^lengths: expected values for \['a1', 'a2', 'a3', 'd5'\]"):
         S.fk_from_forms(S.closed_forms_mk3(), np.zeros(5), d1=1.0)
-    with pytest.raises(ValueError, match="q"):
+    with pytest.raises(ValueError, match=r"^q: expected at least 5 joint values"):
         S.fk_from_forms(S.closed_forms_mk3(), np.zeros(3), d1=1, a1=1, a2=1, a3=1, d5=1)
+    bad = SimpleNamespace(links=[SimpleNamespace(alpha_prev=0.0, a_prev=0.0, d=0.0, theta=0.0, kind="X")])
+    with pytest.raises(ValueError, match=r"^chain.links\[0\].kind: expected 'R' or 'P', got 'X'"):
+        S.table_sym(bad)
