@@ -1,0 +1,133 @@
+"""The course folder: found from where a command runs."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from puma_course.course import MARKERS, CourseNotFoundError, course_root, find_course, is_course
+from tests.support import ROOT
+
+
+def _course(folder: Path, marker: str = "solutions") -> Path:
+    (folder / marker).mkdir(parents=True)
+    return folder.resolve()
+
+
+def _outside_any_course(tmp_path: Path) -> Path:
+    """tmp_path itself, unless some folder above it happens to be a course (then the test cannot run here)."""
+    here = tmp_path.resolve()
+    if any(is_course(f) for f in (here, *here.parents)):
+        pytest.skip(f"a folder above {here} holds {' or '.join(MARKERS)}")
+    return here
+
+
+# --------------------------------------------------------------------------- finding the course
+@pytest.mark.parametrize("marker", MARKERS)
+def test_either_marker_folder_makes_a_course(tmp_path, marker):
+    root = _course(tmp_path / "course", marker)
+    assert is_course(root)
+    assert find_course(root) == root
+
+
+def test_found_from_any_folder_below_the_root(tmp_path):
+    root = _course(tmp_path / "course")
+    deep = root / "notebooks" / "figures" / "old"
+    deep.mkdir(parents=True)
+    assert find_course(deep) == root
+    assert find_course(root / "solutions") == root
+
+
+def test_the_current_directory_is_the_default_start(tmp_path, monkeypatch):
+    root = _course(tmp_path / "course", "notebooks")
+    (root / "exercises").mkdir()
+    monkeypatch.chdir(root / "exercises")
+    assert find_course() == root
+    assert course_root() == root
+
+
+def test_a_relative_start_is_taken_from_the_current_directory(tmp_path, monkeypatch):
+    root = _course(tmp_path / "course")
+    (root / "a" / "b").mkdir(parents=True)
+    monkeypatch.chdir(root / "a")
+    assert find_course("b") == root
+    assert find_course(Path("b") / "..") == root
+
+
+def test_the_nearest_course_wins(tmp_path):
+    outer = _course(tmp_path / "outer", "notebooks")
+    inner = _course(outer / "notebooks" / "inner", "solutions")
+    (inner / "work").mkdir()
+    assert find_course(inner / "work") == inner
+    assert find_course(outer / "notebooks") == outer
+
+
+def test_a_file_named_like_a_marker_does_not_make_a_course(tmp_path):
+    here = _outside_any_course(tmp_path)
+    for marker in MARKERS:
+        (here / marker).write_text("not a folder", encoding="utf-8")
+    assert not is_course(here)
+    with pytest.raises(CourseNotFoundError):
+        find_course(here)
+
+
+def test_outside_a_course_the_error_names_what_and_where_it_searched(tmp_path):
+    here = _outside_any_course(tmp_path)
+    start = here / "a" / "b"
+    start.mkdir(parents=True)
+    with pytest.raises(CourseNotFoundError) as info:
+        find_course(start)
+    err = info.value
+    assert isinstance(err, ValueError)
+    assert err.searched == (start, start.parent, here, *here.parents)
+    message = str(err)
+    assert message.startswith("start: expected")
+    assert "solutions/" in message and "notebooks/" in message
+    for folder in err.searched:
+        assert repr(str(folder)) in message
+
+
+@pytest.mark.parametrize("kind", ["missing", "file"])
+def test_a_start_that_is_not_a_folder_is_refused(tmp_path, kind):
+    start = tmp_path / "x"
+    if kind == "file":
+        start.write_text("", encoding="utf-8")
+    with pytest.raises(CourseNotFoundError, match="start: expected .*'" + re.escape(str(start)) + "'"):
+        find_course(start)
+
+
+def test_a_named_course_is_used_as_it_is(tmp_path, monkeypatch):
+    root = _course(tmp_path / "course")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    assert course_root(root) == root
+    assert course_root(str(root)) == root
+
+
+@pytest.mark.parametrize(
+    ("make", "why"),
+    [
+        (lambda p: None, "does not exist"),
+        (lambda p: p.write_text("", encoding="utf-8"), "is not a folder"),
+        (lambda p: p.mkdir(), "holds neither solutions/ nor notebooks/"),
+    ],
+)
+def test_a_named_folder_that_is_not_a_course_is_refused(tmp_path, make, why):
+    named = tmp_path / "named"
+    make(named)
+    with pytest.raises(CourseNotFoundError, match="course: expected a course folder") as info:
+        course_root(named)
+    assert repr(str(named)) in str(info.value) and why in str(info.value)
+
+
+def test_a_named_folder_inside_a_course_is_not_walked_up_from(tmp_path):
+    root = _course(tmp_path / "course", "notebooks")
+    with pytest.raises(CourseNotFoundError, match="holds neither"):
+        course_root(root / "notebooks")
+
+
+def test_this_repository_is_a_course():
+    assert find_course(ROOT / "puma_course") == ROOT.resolve()
