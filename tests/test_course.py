@@ -1,13 +1,15 @@
-"""The course folder: found from where a command runs."""
+"""The course folder: found from where a command runs; its index links to files that exist."""
 
 from __future__ import annotations
 
 import re
 from pathlib import Path
+from urllib.parse import unquote, urlparse
 
+import nbformat
 import pytest
 
-from puma_course.course import MARKERS, CourseNotFoundError, course_root, find_course, is_course
+from puma_course.course import INDEX, MARKERS, CourseNotFoundError, course_root, find_course, is_course
 from tests.support import ROOT
 
 
@@ -131,3 +133,58 @@ def test_a_named_folder_inside_a_course_is_not_walked_up_from(tmp_path):
 
 def test_this_repository_is_a_course():
     assert find_course(ROOT / "puma_course") == ROOT.resolve()
+
+
+# --------------------------------------------------------------------------- the index and the README
+_LINK = re.compile(r"\[[^\]]*\]\(([^)\s]+)\)")
+
+
+def _links(markdown: str) -> list[str]:
+    """The targets of Markdown links, outside fenced and inline code."""
+    text = re.sub(r"```.*?```", "", markdown, flags=re.DOTALL)
+    text = re.sub(r"`[^`\n]*`", "", text)
+    return _LINK.findall(text)
+
+
+def _local_files(targets: list[str], base: Path) -> list[Path]:
+    """The local files the link targets name (web links and in-page anchors left out)."""
+    files = []
+    for target in targets:
+        url = urlparse(target)
+        if url.scheme or url.netloc or not url.path:
+            continue
+        files.append(base / unquote(url.path))
+    return files
+
+
+def _index_text() -> str:
+    nb = nbformat.read(ROOT / INDEX, as_version=4)
+    return "\n\n".join(cell.source for cell in nb.cells)
+
+
+def test_the_index_is_a_markdown_only_notebook_that_opens_without_asking_for_a_kernel():
+    nb = nbformat.read(ROOT / INDEX, as_version=4)
+    nbformat.validate(nb)
+    assert nb.cells and {cell.cell_type for cell in nb.cells} == {"markdown"}
+    assert nb.metadata["kernelspec"]["name"] == "python3"
+
+
+def test_every_link_of_the_index_opens_an_existing_file():
+    targets = _links(_index_text())
+    files = _local_files(targets, ROOT)
+    assert len(files) == len(targets), "the index should link only to course files"
+    missing = [str(f.relative_to(ROOT)) for f in files if not f.is_file()]
+    assert not missing, f"{INDEX} links to missing files: {missing}"
+
+
+def test_the_index_links_every_lecture_and_every_exercise():
+    linked = {f.resolve() for f in _local_files(_links(_index_text()), ROOT)}
+    course = sorted((ROOT / "notebooks").glob("*.ipynb")) + sorted((ROOT / "exercises").glob("*.ipynb"))
+    assert len(course) >= 10
+    unlinked = [str(p.relative_to(ROOT)) for p in course if p.resolve() not in linked]
+    assert not unlinked, f"{INDEX} does not link: {unlinked}"
+
+
+def test_the_index_says_how_to_work():
+    text = _index_text()
+    assert "Run All Cells" in text and "self-check" in text and 'check("q1"' in text
