@@ -1,4 +1,4 @@
-"""The course folder: found from where a command runs; its index links to files that exist."""
+"""The course folder: found from where a command runs; its index and README link to files that exist."""
 
 from __future__ import annotations
 
@@ -188,3 +188,24 @@ def test_the_index_links_every_lecture_and_every_exercise():
 def test_the_index_says_how_to_work():
     text = _index_text()
     assert "Run All Cells" in text and "self-check" in text and 'check("q1"' in text
+
+
+def test_every_local_link_of_the_readme_opens_an_existing_file():
+    targets = _links((ROOT / "README.md").read_text(encoding="utf-8"))
+    files = _local_files(targets, ROOT)
+    assert files, "the README's contents table should link the course's notebooks"
+    missing = [str(f.relative_to(ROOT)) for f in files if not f.exists()]
+    assert not missing, f"README.md links to missing files: {missing}"
+
+
+def test_the_readme_contents_link_the_index_every_lecture_and_every_exercise():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    contents = readme.split("## Contents", 1)[1].split("\n## ", 1)[0]
+    linked = {f.resolve() for f in _local_files(_links(contents), ROOT)}
+    wanted = [
+        ROOT / INDEX,
+        *sorted((ROOT / "notebooks").glob("*.ipynb")),
+        *sorted((ROOT / "exercises").glob("*.ipynb")),
+    ]
+    unlinked = [str(p.relative_to(ROOT)) for p in wanted if p.resolve() not in linked]
+    assert not unlinked, f"README's contents do not link: {unlinked}"
