@@ -1,137 +1,254 @@
-"""The ``puma-course`` command: open the lectures, release exercises, grade submissions.
+"""The ``puma-course`` command: open the course, release exercises, grade submissions.
 
-    puma-course lab [--no-browser] [--print-command]
-    puma-course release [--solutions DIR] [--exercises DIR] [--check]
-    puma-course grade SUBMISSIONS -o grades.csv [--feedback DIR] [--jobs N]
+    puma-course lab [--course DIR] [--no-browser] [--print-command] [JUPYTER-OPTIONS ...]
+    puma-course release [--course DIR] [--solutions DIR] [--exercises DIR] [--check]
+    puma-course grade SUBMISSIONS -o grades.csv [--course DIR] [--feedback DIR] [--jobs N]
                       [--timeout-cell S] [--timeout-total S] [--seed N] [--exercise NAME ...]
-    puma-course check NOTEBOOK [--exercise NAME]
+    puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
 
-Every sub-command returns an exit code from :func:`main` (0 = success).
+Every command works on the course it is run in: the nearest folder, at or above the current
+one, that holds ``solutions/`` or ``notebooks/`` (:mod:`puma_course.course`), or the folder named
+by ``--course DIR``. Run outside a course, a command that needs one says where it looked and
+exits with code 2.
+
+Every sub-command returns an exit code from :func:`main` (0 = success, 2 = bad input); ``lab``
+on POSIX replaces the process with JupyterLab, so Ctrl-C and signals reach JupyterLab itself.
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import os
 import shlex
 import subprocess
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
+
+from .course import INDEX, CourseNotFoundError, course_root
 
 __all__ = ["main", "build_parser", "lab_command"]
 
-REPO_ROOT = Path(__file__).resolve().parent.parent
+_COURSE_HELP = (
+    "the course folder (default: the nearest folder, at or above the current one, that holds solutions/ or notebooks/)"
+)
 
 
-def _course_dir(name: str) -> Path:
-    """``<repo>/name`` for a checkout (editable install), else ``./name`` (run from the course folder)."""
-    here = REPO_ROOT / name
-    return here if here.is_dir() else Path.cwd() / name
+def lab_command(root: str | os.PathLike[str], jupyter_args: Sequence[str] = (), no_browser: bool = False) -> list[str]:
+    """The command line that opens JupyterLab at the course folder ``root``, its index first.
 
+    JupyterLab serves ``root`` (lectures in ``notebooks/`` and exercises in ``exercises/`` are
+    both in its file browser); when ``root`` holds the index ``START_HERE.ipynb``, JupyterLab's
+    default page (the URL it opens and prints) is that notebook. ``jupyter_args`` come last, so
+    an option given there overrides the ones chosen here.
 
-def lab_command(no_browser: bool = False, notebooks: Path | None = None) -> list[str]:
-    """The command line that opens JupyterLab on the course's lecture notebooks.
-
-    >>> lab_command(no_browser=True)[1:3]
-    ['-m', 'jupyterlab']
+    >>> cmd = lab_command("/srv/course", ["--port", "8899"], no_browser=True)
+    >>> cmd[1:], cmd[0] == sys.executable
+    (['-m', 'jupyterlab', '--ServerApp.root_dir=/srv/course', '--no-browser', '--port', '8899'], True)
     """
-    folder = notebooks if notebooks is not None else _course_dir("notebooks")
-    cmd = [sys.executable, "-m", "jupyterlab", str(folder)]
+    folder = Path(root)
+    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={folder}"]
+    if (folder / INDEX).is_file():
+        cmd.append(f"--LabApp.default_url=/lab/tree/{INDEX}")
     if no_browser:
         cmd.append("--no-browser")
+    cmd.extend(jupyter_args)
     return cmd
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``puma-course`` (sub-commands lab, release, grade, check)."""
+    """The argument parser of ``puma-course`` (sub-commands lab, release, grade, check).
+
+    ``lab`` takes any further option for JupyterLab: parse with ``parse_known_args`` (as
+    :func:`main` does) to collect them.
+
+    >>> build_parser().parse_args(["release", "--check"]).command
+    'release'
+    """
     parser = argparse.ArgumentParser(prog="puma-course", description="Manipulator-kinematics course tools.")
-    sub = parser.add_subparsers(dest="command", required=True)
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", help="what to do")
 
-    lab = sub.add_parser("lab", help="open JupyterLab on the lecture notebooks")
+    course = argparse.ArgumentParser(add_help=False)
+    course.add_argument("--course", type=Path, default=None, metavar="DIR", help=_COURSE_HELP)
+
+    lab = sub.add_parser(
+        "lab",
+        parents=[course],
+        allow_abbrev=False,  # an abbreviation of a JupyterLab option must reach JupyterLab, not match ours
+        usage="puma-course lab [-h] [--course DIR] [--no-browser] [--print-command] [JUPYTER-OPTIONS ...]",
+        help="open JupyterLab on the course (lectures and exercises), START_HERE.ipynb first",
+        description="Open JupyterLab at the course folder, with the index START_HERE.ipynb as its first page.",
+        epilog="Every other option goes to JupyterLab unchanged, e.g. --port 8899, --allow-root, "
+        "--ServerApp.token=TOKEN, --LabApp.default_url=/lab.",
+    )
     lab.add_argument("--no-browser", action="store_true", help="start the server without opening a browser")
-    lab.add_argument("--notebooks", type=Path, default=None, help="folder to open (default: the course's notebooks/)")
-    lab.add_argument("--print-command", action="store_true", help="print the command instead of running it")
+    lab.add_argument("--print-command", action="store_true", help="print the JupyterLab command instead of running it")
 
-    rel = sub.add_parser("release", help="generate exercises/ from solutions/")
-    rel.add_argument("--solutions", type=Path, default=_course_dir("solutions"))
-    rel.add_argument("--exercises", type=Path, default=_course_dir("exercises"))
+    rel = sub.add_parser("release", parents=[course], help="generate exercises/ from solutions/")
+    rel.add_argument(
+        "--solutions",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="solution notebooks (default: the course's solutions/)",
+    )
+    rel.add_argument(
+        "--exercises",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="where the student versions go (default: the course's exercises/)",
+    )
     rel.add_argument("--check", action="store_true", help="write nothing; exit 1 if exercises/ is out of date")
 
-    gr = sub.add_parser("grade", help="grade SUBMISSIONS/<student>/<exercise>.ipynb")
-    gr.add_argument("submissions", type=Path)
-    gr.add_argument("-o", "--output", type=Path, required=True, help="CSV file to write")
-    gr.add_argument("--feedback", type=Path, default=None, help="folder for one Markdown feedback file per student")
-    gr.add_argument("--jobs", type=int, default=2, help="notebooks graded at the same time (default 2)")
-    gr.add_argument("--timeout-cell", type=float, default=10.0, help="seconds per cell and per call (default 10)")
-    gr.add_argument("--timeout-total", type=float, default=60.0, help="seconds per notebook (default 60)")
-    gr.add_argument("--seed", type=int, default=None, help="seed of the hidden inputs (default: a fresh random one)")
-    gr.add_argument("--exercise", action="append", default=None, help="grade only this exercise (repeatable)")
+    gr = sub.add_parser("grade", parents=[course], help="grade SUBMISSIONS/<student>/<exercise>.ipynb")
+    gr.add_argument(
+        "submissions",
+        type=Path,
+        metavar="SUBMISSIONS",
+        help="folder with one sub-folder per student, holding <exercise>.ipynb files",
+    )
+    gr.add_argument("-o", "--output", type=Path, required=True, metavar="FILE", help="CSV file to write")
+    gr.add_argument(
+        "--feedback", type=Path, default=None, metavar="DIR", help="folder for one Markdown feedback file per student"
+    )
+    gr.add_argument("--jobs", type=int, default=2, metavar="N", help="notebooks graded at the same time (default 2)")
+    gr.add_argument(
+        "--timeout-cell", type=float, default=10.0, metavar="S", help="seconds per cell and per call (default 10)"
+    )
+    gr.add_argument("--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)")
+    gr.add_argument(
+        "--seed", type=int, default=None, metavar="N", help="seed of the hidden inputs (default: a fresh random one)"
+    )
+    gr.add_argument(
+        "--exercise",
+        action="append",
+        default=None,
+        metavar="NAME",
+        help="grade only this exercise (repeatable; default: every exercise in the course's exercises/)",
+    )
     gr.add_argument("--quiet", action="store_true", help="no progress lines")
 
-    ck = sub.add_parser("check", help="grade your own notebook on the public cases")
-    ck.add_argument("notebook", type=Path)
-    ck.add_argument("--exercise", default=None, help="exercise name (default: the notebook's file name)")
-    ck.add_argument("--timeout-cell", type=float, default=10.0)
-    ck.add_argument("--timeout-total", type=float, default=60.0)
+    ck = sub.add_parser("check", parents=[course], help="grade your own notebook on the public cases")
+    ck.add_argument(
+        "notebook",
+        type=Path,
+        metavar="NOTEBOOK",
+        help="the notebook: a path, or the name of an exercise in the course's exercises/ (e.g. ex01_rotations)",
+    )
+    ck.add_argument(
+        "--exercise", default=None, metavar="NAME", help="exercise name (default: the notebook's file name)"
+    )
+    ck.add_argument(
+        "--timeout-cell", type=float, default=10.0, metavar="S", help="seconds per cell and per call (default 10)"
+    )
+    ck.add_argument("--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)")
     return parser
 
 
+def _course(args: argparse.Namespace) -> Path:
+    """The course the command works on: ``--course DIR``, else found from the current directory."""
+    return course_root(args.course)
+
+
+def _exec(cmd: list[str]) -> int:
+    """Run ``cmd`` in place of this process (POSIX), else as a child whose exit code is returned."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    if os.name == "posix":
+        # Like `jupyter lab` itself: Ctrl-C, SIGTERM and the exit code belong to JupyterLab,
+        # which asks before shutting down and stops its kernels (a waiting parent would not).
+        os.execv(cmd[0], cmd)
+    with subprocess.Popen(cmd) as proc:  # pragma: no cover - Windows
+        while True:
+            try:
+                return proc.wait()
+            except KeyboardInterrupt:
+                continue  # JupyterLab got the Ctrl-C as well and handles it
+
+
 def _lab(args: argparse.Namespace) -> int:
-    cmd = lab_command(args.no_browser, args.notebooks)
+    cmd = lab_command(_course(args), args.jupyter_args, no_browser=args.no_browser)
     if args.print_command:
         print(shlex.join(cmd))
         return 0
-    return subprocess.call(cmd)
+    return _exec(cmd)
 
 
 def _release(args: argparse.Namespace) -> int:
     from .grading import release
 
-    try:
-        changed = release(args.solutions, args.exercises, check_only=args.check)
-    except ValueError as exc:
-        print(f"release failed: {exc}", file=sys.stderr)
-        return 2
+    if args.solutions is None or args.exercises is None:
+        root = _course(args)
+        solutions = args.solutions if args.solutions is not None else root / "solutions"
+        exercises = args.exercises if args.exercises is not None else root / "exercises"
+    else:
+        solutions, exercises = args.solutions, args.exercises
+    if not solutions.is_dir():
+        raise ValueError(
+            f"solutions: expected a folder of solution notebooks, got {str(solutions)!r}, which "
+            + ("is not a folder" if solutions.exists() else "does not exist")
+        )
+    changed = release(solutions, exercises, check_only=args.check)
     if args.check:
         if changed:
             print("exercises out of date (run `puma-course release`): " + ", ".join(changed), file=sys.stderr)
             return 1
-        print("exercises are up to date")
+        print(f"exercises are up to date ({exercises})")
         return 0
-    print(f"wrote {len(changed)} exercise notebook(s)" + (": " + ", ".join(changed) if changed else ""))
+    print(f"wrote {len(changed)} exercise notebook(s) to {exercises}" + (": " + ", ".join(changed) if changed else ""))
     return 0
+
+
+def _course_exercises(root: Path, known: Sequence[str]) -> list[str]:
+    """The exercises the course at ``root`` hands out (``exercises/*.ipynb``) that the grader knows."""
+    folder = root / "exercises"
+    names = sorted(p.stem for p in folder.glob("*.ipynb"))
+    if not names:
+        raise ValueError(
+            f"exercise: expected --exercise NAME or a course that hands out exercises, got none in {str(folder)!r}"
+        )
+    unknown = [name for name in names if name not in known]
+    if unknown:
+        print(f"not graded (the grader has no questions for them): {', '.join(unknown)}", file=sys.stderr)
+    graded = [name for name in names if name in known]
+    if not graded:
+        raise ValueError(
+            f"exercise: expected exercises the grader knows ({', '.join(sorted(known))}) in {str(folder)!r}, "
+            f"got only {', '.join(unknown)}"
+        )
+    return graded
 
 
 def _grade(args: argparse.Namespace) -> int:
     import warnings
 
-    from .grading import GradingIntegrityWarning, grade
+    from .grading import EXERCISES, GradingIntegrityWarning, grade
 
-    def progress(r):  # type: ignore[no-untyped-def]
+    names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
+
+    def progress(r: Any) -> None:
         if not args.quiet:
             print(
                 f"{r.student:>20} {r.exercise:<18} {r.score:>6g}/{r.max_score:<4g} {r.status} ({r.seconds:.1f} s)",
                 flush=True,
             )
 
-    try:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", GradingIntegrityWarning)
-            results = grade(
-                args.submissions,
-                args.output,
-                feedback=args.feedback,
-                jobs=args.jobs,
-                timeout_cell=args.timeout_cell,
-                timeout_total=args.timeout_total,
-                seed=args.seed,
-                exercises=args.exercise,
-                progress=progress,
-            )
-    except ValueError as exc:
-        print(f"grade failed: {exc}", file=sys.stderr)
-        return 2
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", GradingIntegrityWarning)
+        results = grade(
+            args.submissions,
+            args.output,
+            feedback=args.feedback,
+            jobs=args.jobs,
+            timeout_cell=args.timeout_cell,
+            timeout_total=args.timeout_total,
+            seed=args.seed,
+            exercises=names,
+            progress=progress,
+        )
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s); wrote {args.output}")
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
@@ -140,10 +257,37 @@ def _grade(args: argparse.Namespace) -> int:
     return 3 if tampered else 0
 
 
+def _notebook(args: argparse.Namespace) -> Path:
+    """The notebook ``check`` grades: the path as given, else an exercise of the course by name."""
+    given: Path = args.notebook
+    if given.is_file():
+        return given
+    if given.exists():
+        raise ValueError(f"notebook: expected a notebook file, got {str(given)!r}, which is a folder")
+    if len(given.parts) != 1:
+        raise ValueError(f"notebook: expected a notebook file, got {str(given)!r}, which does not exist")
+    try:
+        folder = _course(args) / "exercises"
+    except CourseNotFoundError as exc:
+        raise ValueError(
+            f"notebook: expected a notebook file or an exercise of a course, got {str(given)!r}: "
+            f"no such file here, and no course to look in ({exc})"
+        ) from None
+    tried = [folder / given.name] + ([] if given.suffix == ".ipynb" else [folder / f"{given.name}.ipynb"])
+    for path in tried:
+        if path.is_file():
+            return path
+    raise ValueError(
+        f"notebook: expected a notebook file or an exercise of the course, got {str(given)!r}; "
+        f"looked for {', '.join(repr(str(p)) for p in [given, *tried])}"
+    )
+
+
 def _check(args: argparse.Namespace) -> int:
     from .grading import EXERCISES, grade_notebook
 
-    name = args.exercise or args.notebook.stem
+    notebook = _notebook(args)
+    name = args.exercise or notebook.stem
     if name not in EXERCISES:
         print(f"check: unknown exercise {name!r}; use --exercise with one of {sorted(EXERCISES)}", file=sys.stderr)
         return 2
@@ -152,7 +296,7 @@ def _check(args: argparse.Namespace) -> int:
     public = dataclasses.replace(
         ex, questions=tuple(dataclasses.replace(q, hidden=lambda rng: []) for q in ex.questions)
     )
-    r = grade_notebook(args.notebook, public, seed=0, timeout_cell=args.timeout_cell, timeout_total=args.timeout_total)
+    r = grade_notebook(notebook, public, seed=0, timeout_cell=args.timeout_cell, timeout_total=args.timeout_total)
     print(f"{name}: {r.score:g} / {r.max_score:g} on the public cases (status {r.status})")
     for note in r.notes:
         print(f"  {note}")
@@ -166,10 +310,30 @@ def _check(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of ``puma-course``; returns the exit code."""
-    args = build_parser().parse_args(argv)
+    """Entry point of ``puma-course``; returns the exit code (2: bad input, such as no course found).
+
+    >>> main(["release", "--course", "/no/such/course"])
+    2
+    """
+    parser = build_parser()
+    args, extra = parser.parse_known_args(argv)
+    if extra and args.command != "lab":
+        parser.error(f"unrecognized arguments: {' '.join(extra)}")
+    args.jupyter_args = extra
     handlers = {"lab": _lab, "release": _release, "grade": _grade, "check": _check}
-    return handlers[args.command](args)
+    try:
+        return handlers[args.command](args)
+    except CourseNotFoundError as exc:
+        print(f"puma-course {args.command}: no course found: {exc}", file=sys.stderr)
+        if args.course is None:
+            print(
+                "Run it inside a course folder (or any folder below one), or name the course with --course DIR.",
+                file=sys.stderr,
+            )
+        return 2
+    except ValueError as exc:
+        print(f"puma-course {args.command}: {exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -35,9 +36,15 @@ def test_ci_script_propagates_pytest_failure_and_no_tests():
 
 
 def test_readme_commands_match_ci():
+    """README's test command is CI's; its first command installs and opens the whole course."""
     readme = (ROOT / "README.md").read_text()
     assert 'python -m pip install -e ".[dev]" && python -m pytest' in readme
-    assert 'python -m pip install -e ".[dev]" && jupyter lab notebooks/' in readme
+    blocks = re.findall(r"```bash\n(.*?)```", readme, flags=re.DOTALL)
+    assert blocks[0].strip() == 'python -m pip install -e ".[dev]" && puma-course lab'
+    # the old start command served notebooks/ only, out of reach of exercises/
+    assert "jupyter lab notebooks/" not in readme
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert 'puma-course = "puma_course.cli:main"' in pyproject
 
 
 def test_ruff_clean():
