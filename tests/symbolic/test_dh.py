@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from puma_course import DHChain, Link, mdh, mk3, puma560
+from puma_course import MK3, DHChain, Link, Puma560, mdh
 from puma_course import symbolic as S
 from tests.support import random_q
 
@@ -34,7 +34,7 @@ def test_mdh_sym_matches_numeric_mdh():
     "lengths", [{}, {"a2": 0.7, "a3": -0.11, "d3": 0.33, "d4": 0.25}], ids=["default", "other-lengths"]
 )
 def test_puma560_closed_forms_equal_numeric_fk(lengths, puma560_lengths):
-    arm = puma560(**lengths)
+    arm = Puma560(**lengths)
     L = {**puma560_lengths, **lengths}
     Q = random_q(6, seed=2, N=25)
     np.testing.assert_allclose(S.fk_from_forms(S.closed_forms_puma560(), Q, **L), arm.fk(Q), atol=1e-12)
@@ -48,7 +48,7 @@ def test_puma560_closed_forms_equal_numeric_fk(lengths, puma560_lengths):
     "lengths", [{}, {"d1": 500.0, "a1": 80.0, "a2": 300.0, "a3": 190.0, "d5": 40.0}], ids=["default", "other-lengths"]
 )
 def test_mk3_closed_forms_equal_numeric_fk(lengths, mk3_lengths):
-    arm = mk3(**lengths)
+    arm = MK3(**lengths)
     L = {**mk3_lengths, **lengths}
     Q = random_q(5, seed=3, N=25)
     np.testing.assert_allclose(S.fk_from_forms(S.closed_forms_mk3(), Q, **L), arm.fk(Q), atol=1e-9)
@@ -60,7 +60,7 @@ def test_fk_from_forms_single_configuration_is_the_batch_row(puma560_lengths):
     assert batch.shape == (3, 4, 4)
     one = S.fk_from_forms(S.closed_forms_puma560(), Q[1], **puma560_lengths)
     assert one.shape == (4, 4)
-    np.testing.assert_allclose(one, puma560().fk(Q[1]), atol=1e-12)
+    np.testing.assert_allclose(one, Puma560().fk(Q[1]), atol=1e-12)
 
 
 def test_hand_worked_poses():
@@ -77,7 +77,7 @@ def test_hand_worked_poses():
 
 
 def test_chain_sym_from_dhchain_is_exact_and_matches_fk():
-    arm = puma560()
+    arm = Puma560()
     rows = S.table_sym(arm)
     assert rows[1][0] == -sp.pi / 2  # exact angle, so cos/sin are exact
     assert rows[2][1] == sp.Rational(2159, 5000)  # a2 = 0.4318 m as an exact number
@@ -115,7 +115,7 @@ def test_derived_link_matrices_are_the_chain_factors():
     prod = np.eye(4)
     for M in mats.values():
         prod = prod @ np.array(M.subs(subs).evalf(), dtype=float)
-    np.testing.assert_allclose(prod, puma560().fk(q), atol=1e-12)
+    np.testing.assert_allclose(prod, Puma560().fk(q), atol=1e-12)
 
 
 def test_shorthand_round_trip():

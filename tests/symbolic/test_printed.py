@@ -1,7 +1,7 @@
 """The sources' formulas as printed, put to the test: which are right, which are wrong, and by how much.
 
 Each verdict is decided against an independent truth: the derivation from the table, the numeric
-chain (``mk3().fk``, ``porter.fk``), or a number worked out by hand.
+chain (``MK3().fk``, ``porter.fk``), or a number worked out by hand.
 """
 
 from __future__ import annotations
@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from puma_course import mk3
-from puma_course import porter as P
+from puma_course import MK3, Porter
 from puma_course import symbolic as S
+from puma_course.kinematics.ik import joint_distance
+from puma_course.kinematics.porter import REVOLUTE, angle
 from puma_course.symbolic import porter as PS
 from puma_course.symbolic import printed
 
@@ -35,7 +36,7 @@ def test_printed_mk3_link_matrix_misprint_is_flagged_exactly(mk3_lengths):
     for key in ("0T1", "1T2", "2T3", "3T4", "4T5"):
         prod = prod * S.expand_shorthand(printed.MK3_LINK_MATRICES[key])
     Pm = np.array(prod.subs(subs).evalf(), dtype=float)
-    T = mk3().fk(q)
+    T = MK3().fk(q)
     assert np.linalg.norm(Pm[:3, 3] - T[:3, 3]) == pytest.approx(np.sqrt(2) * 100.0)  # off by d5 along y4 and z4
     np.testing.assert_allclose(Pm[:3, :3], T[:3, :3], atol=1e-12)  # rotations agree
 
@@ -53,7 +54,7 @@ def test_printed_forms_that_are_right_are_not_flagged():
 def test_printed_mk3_0T5_equals_numeric_fk(mk3_lengths):
     # independent of the derivation: the printed closed forms reproduce the numeric chain
     Q = np.random.default_rng(31).uniform(-np.pi, np.pi, (10, 5))
-    np.testing.assert_allclose(S.fk_from_forms(printed.MK3_0T5, Q, **mk3_lengths), mk3().fk(Q), atol=1e-9)
+    np.testing.assert_allclose(S.fk_from_forms(printed.MK3_0T5, Q, **mk3_lengths), MK3().fk(Q), atol=1e-9)
 
 
 def test_printed_data_is_immutable():
@@ -93,7 +94,7 @@ def test_printed_closed_forms(porter_lengths):
     # and the printed z5[1] is really different in value (not only in form)
     q = [0.3, 0.2, 1.1, 0.4, 0.5, 0.6]
     v = PS.sc_values(q, *porter_lengths)
-    T = P.fk(q, *porter_lengths)
+    T = Porter(*porter_lengths).fk(q)
     assert abs(float(printed.porter.CLOSED_FORMS["z5"][1].subs(v)) - T[1, 2]) > 0.1
     assert abs(float(PS.corrected_z5_2().subs(v)) - T[1, 2]) < 1e-13
     # every other printed entry gives the numeric pose
@@ -108,7 +109,7 @@ def test_printed_closed_forms(porter_lengths):
 
 def _pose_values(q, lengths):
     L1, L3, L4 = lengths
-    T = P.fk(q, *lengths)
+    T = Porter(*lengths).fk(q)
     vals = {}
     for j, v in enumerate("xyzp"):
         for i in range(3):
@@ -148,13 +149,13 @@ def test_printed_eq14_eq15_fail_where_c1_c4_vanish(porter_lengths):
     # The old check `... or not expr.is_finite` also passed when sympy could not decide (is_finite None).
     num, den = sp.fraction(sp.together(F["q2_eq15"]))
     assert den.subs(v) == 0 and abs(float(num.subs(v))) < 1e-12
-    assert P.classify(P.fk(q, *porter_lengths), *porter_lengths) == []
-    sols = P.ik_explicit(P.fk(q, *porter_lengths), *porter_lengths, near=q)
-    assert P.config_distance(sols[0], q) < 1e-9
+    assert Porter(*porter_lengths).classify(Porter(*porter_lengths).fk(q)) == ()
+    sols = Porter(*porter_lengths).ik(Porter(*porter_lengths).fk(q), near=q)
+    assert joint_distance(sols[0], q, REVOLUTE) < 1e-9
     # α2 = π/2 (c2 = 0, prismatic axis vertical): eq. 15 divides by zero, the module does not
     q = [0.3, math.pi / 2, 1.2, 0.4, 0.5, 0.6]
-    sols = P.ik_explicit(P.fk(q, *porter_lengths), *porter_lengths, near=q)
-    assert P.config_distance(sols[0], q) < 1e-9
+    sols = Porter(*porter_lengths).ik(Porter(*porter_lengths).fk(q), near=q)
+    assert joint_distance(sols[0], q, REVOLUTE) < 1e-9
 
 
 def test_arctan_second_value_of_eq14_has_negative_q2(porter_lengths):
@@ -184,8 +185,8 @@ def test_ver2_printed_normal_order_flips_signs(porter_lengths):
     # printed offsets give wrong α2, α3, α4; with n = (p2 - p0) x (p4 - p0) = y1 they are right
     L1, L3, L4 = porter_lengths
     q = np.array([0.4, 0.5, 1.3, 0.6, 0.7, 0.8])
-    p = P.points(q, *porter_lengths)
-    T = P.fk(q, *porter_lengths)
+    p = Porter(*porter_lengths).points(q)
+    T = Porter(*porter_lengths).fk(q)
     p0, p2, p3, p4 = p[0], p[2], p[3], p[4]
     n_printed = np.cross(p4 - p0, p2 - p0)
     n_printed /= np.linalg.norm(n_printed)
@@ -196,12 +197,12 @@ def test_ver2_printed_normal_order_flips_signs(porter_lengths):
     n = -n_printed
     z4 = (p3 - p4) / L3
     wrap = lambda a: (a + np.pi) % (2 * np.pi) - np.pi  # noqa: E731
-    assert wrap(P.angle(p2 - p0, p3 - p2, n) - np.pi / 2 - q[1]) == pytest.approx(0, abs=1e-12)
-    assert wrap(P.angle(p3 - p2, p4 - p3, n) - np.pi / 2 - q[3]) == pytest.approx(0, abs=1e-12)
-    assert wrap(P.angle(n, T[:3, 0], z4) + np.pi / 2 - q[4]) == pytest.approx(0, abs=1e-12)
-    assert wrap(P.angle(p3 - p4, T[:3, 2], T[:3, 0]) - q[5]) == pytest.approx(0, abs=1e-12)
-    assert abs(wrap(P.angle(p2 - p0, p3 - p2, n_printed) - np.pi / 2 - q[1])) > 0.1
-    assert abs(wrap(P.angle(n_printed, T[:3, 0], z4) + np.pi / 2 - q[4])) > 0.1
+    assert wrap(angle(p2 - p0, p3 - p2, n) - np.pi / 2 - q[1]) == pytest.approx(0, abs=1e-12)
+    assert wrap(angle(p3 - p2, p4 - p3, n) - np.pi / 2 - q[3]) == pytest.approx(0, abs=1e-12)
+    assert wrap(angle(n, T[:3, 0], z4) + np.pi / 2 - q[4]) == pytest.approx(0, abs=1e-12)
+    assert wrap(angle(p3 - p4, T[:3, 2], T[:3, 0]) - q[5]) == pytest.approx(0, abs=1e-12)
+    assert abs(wrap(angle(p2 - p0, p3 - p2, n_printed) - np.pi / 2 - q[1])) > 0.1
+    assert abs(wrap(angle(n_printed, T[:3, 0], z4) + np.pi / 2 - q[4])) > 0.1
     # eq. 18 prints |p3 - p4| = l4: the chain has l3
     assert np.linalg.norm(p3 - p4) == pytest.approx(L3) and abs(L3 - L4) > 0.1
     eq18 = [float(e.subs(vals).subs({PS.l4: L4})) for e in printed.porter.VER2_EQ18]
