@@ -116,6 +116,15 @@ class NotebookResult:
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
 
+    @classmethod
+    def blank(cls, student: str, exercise: Exercise, status: str = "ok", note: str | None = None) -> NotebookResult:
+        """A result with every question of ``exercise`` at 0 points and no notes (but ``note``)."""
+        qids = [q.qid for q in exercise.questions]
+        result = cls(student, exercise.name, status, exercise.max_score, {q: 0.0 for q in qids}, {q: [] for q in qids})
+        if note is not None:
+            result.notes.append(note)
+        return result
+
     @property
     def score(self) -> float:
         """The sum of the question scores (bonus included), to 0.01."""

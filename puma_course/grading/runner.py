@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from .model import EXERCISES, Exercise, NotebookResult, score_question
+from .model import EXERCISES, Exercise, NotebookResult, Question, score_question
 from .report import feedback_markdown, safe_name, write_csv
 
 __all__ = ["GradingIntegrityWarning", "make_plan", "grade_notebook", "grade", "MAX_NOTEBOOK_BYTES", "PACKAGE_PARENT"]
@@ -212,6 +212,20 @@ def _run_child(
     return events, timed_out, proc.returncode, overflow[0]
 
 
+def _judge(q: Question, event: dict[str, Any] | None, expected: np.ndarray) -> str | None:
+    """None if the child's answer to one call (its event) is right, else the reason for the student."""
+    if event is None:
+        return "no answer came back (the notebook stopped before this call)"
+    if "error" in event:
+        return str(event["error"])[:300]
+    if "value" not in event:
+        return "no value came back"
+    try:
+        return q.compare(event["value"], expected)
+    except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the grading
+        return f"could not compare the value ({type(exc).__name__})"
+
+
 def grade_notebook(
     path: str | os.PathLike[str] | None,
     exercise: Exercise,
@@ -230,27 +244,16 @@ def grade_notebook(
     modified and nothing written to disk while grading can change what is graded.
     """
     start = time.perf_counter()
-    result = NotebookResult(
-        student,
-        exercise.name,
-        "ok",
-        exercise.max_score,
-        scores={q.qid: 0.0 for q in exercise.questions},
-        question_notes={q.qid: [] for q in exercise.questions},
-    )
     if path is None or (data is None and not Path(path).is_file()):
-        result.status = "missing"
-        result.notes.append(f"no file {exercise.name}.ipynb was submitted")
-        return result
+        return NotebookResult.blank(student, exercise, "missing", f"no file {exercise.name}.ipynb was submitted")
     path = Path(path)
     try:
         if data is None:
             data = _load(path)
         cells = _parse_cells(data)
     except (ValueError, OSError) as exc:
-        result.status = "malformed"
-        result.notes.append(str(exc))
-        return result
+        return NotebookResult.blank(student, exercise, "malformed", str(exc))
+    result = NotebookResult.blank(student, exercise)
     calls_plan = make_plan(exercise, seed) if plan is None else plan
     # the child gets what to call, never what is expected
     child_calls = [{k: v for k, v in item.items() if k != "expected"} for item in calls_plan]
@@ -271,20 +274,8 @@ def grade_notebook(
     outcomes: dict[str, list[tuple[str, str | None]]] = {q.qid: [] for q in exercise.questions}
     for item in calls_plan:
         q = exercise.question(item["qid"])
-        event = got.get((q.qid, item["case"]))
-        reason: str | None
-        if event is None:
-            reason = "no answer came back (the notebook stopped before this call)"
-        elif "error" in event:
-            reason = str(event["error"])[:300]
-        elif "value" not in event:
-            reason = "no value came back"
-        else:
-            try:
-                reason = q.compare(event["value"], item["expected"])
-            except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the grading
-                reason = f"could not compare the value ({type(exc).__name__})"
         kind = "public case" if item["case"] < len(q.public) else "hidden case"
+        reason = _judge(q, got.get((q.qid, item["case"])), item["expected"])
         outcomes[q.qid].append((f"{kind} {item['case'] + 1}", reason))
     for q in exercise.questions:
         result.scores[q.qid], result.question_notes[q.qid] = score_question(q.points, outcomes[q.qid])
@@ -355,10 +346,7 @@ def grade(
         ex = EXERCISES[name]
         try:
             if isinstance(data, Exception):
-                res = NotebookResult(
-                    student, name, "malformed", ex.max_score, scores={q.qid: 0.0 for q in ex.questions}
-                )
-                res.notes.append(str(data))
+                res = NotebookResult.blank(student, ex, "malformed", str(data))
             else:
                 res = grade_notebook(
                     path if data is not None else None,
@@ -371,8 +359,9 @@ def grade(
                     data=data,
                 )
         except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
-            res = NotebookResult(student, name, "grader-error", ex.max_score, scores={q.qid: 0.0 for q in ex.questions})
-            res.notes.append(f"the grader failed on this notebook: {type(exc).__name__}: {exc}")
+            res = NotebookResult.blank(
+                student, ex, "grader-error", f"the grader failed on this notebook: {type(exc).__name__}: {exc}"
+            )
         if progress is not None:
             progress(res)
         return res
