@@ -52,7 +52,7 @@ def _wants_hint(q: Question, earned: float) -> bool:
 
 
 def format_question(q: Question, earned: float, notes: Sequence[str], *, markdown: bool = False) -> str:
-    """The result of one question as a text line (plus a ``Hint:`` line), or with ``markdown`` a table row.
+    """The result of one question as a text line (plus an indented ``Hint:`` line), or with ``markdown`` a table row.
 
     ``notes`` are the question's notes ("k/n cases pass", then reasons); a not-attempted question
     shows its verdict only. The Markdown row has the columns question | points | result.
@@ -63,7 +63,7 @@ def format_question(q: Question, earned: float, notes: Sequence[str], *, markdow
     q4 invert_transform: 2 / 2 points - passed (4/4 cases pass)
     >>> print(format_question(q, 0, ["0/4 cases pass", "public case 1: returned shape (3,)"]))
     q4 invert_transform: 0 / 2 points - FAILED (0/4 cases pass; public case 1: returned shape (3,))
-    Hint: The inverse rotation is R^T and the inverse translation is -R^T p.
+      Hint: The inverse rotation is R^T and the inverse translation is -R^T p.
     >>> format_question(q, 2, ["4/4 cases pass"], markdown=True)
     '| q4 `invert_transform` | 2 / 2 | passed: 4/4 cases pass |'
     """
@@ -77,7 +77,7 @@ def format_question(q: Question, earned: float, notes: Sequence[str], *, markdow
     if detail:
         line += f" ({detail})"
     if _wants_hint(q, earned):
-        line += f"\nHint: {q.hint}"
+        line += f"\n  Hint: {q.hint}"
     return line
 
 

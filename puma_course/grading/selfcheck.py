@@ -99,7 +99,7 @@ def check(question: str, answer: Callable[..., Any]) -> None:
 
     >>> check("ex01_rotations:q1", lambda axis, angle: np.eye(3))  # doctest: +ELLIPSIS
     q1 elementary_rotation: 0 / 2 points - FAILED (0/3 cases pass; case 1 (elementary_rotation('x', 0.3)): ...)
-    Hint: Each column of R ...
+      Hint: Each column of R ...
     """
     ex, q = _find_question(question)
     if not callable(answer):

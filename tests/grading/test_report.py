@@ -46,7 +46,7 @@ def test_the_text_line_names_question_function_points_verdict_reasons_and_hint()
     assert text.splitlines() == [
         "q2 rodrigues_formula: 1 / 3 points - partly "
         "(2/6 cases pass; hidden case 4: values differ from the reference by up to 0.5)",
-        f"Hint: {q.hint}",
+        f"  Hint: {q.hint}",
     ]
     assert format_question(EX.question("q1"), 2, ["5/5 cases pass"]) == (
         "q1 elementary_rotation: 2 / 2 points - passed (5/5 cases pass)"

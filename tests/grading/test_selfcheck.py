@@ -67,7 +67,7 @@ def test_the_stub_counts_as_not_attempted_without_details(capsys):
     check("ex01_rotations:q2", stub)
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == "q2 rodrigues_formula: 0 / 3 points - not attempted yet"
-    assert lines[1].startswith("Hint: ") and len(lines) == 2
+    assert lines[1].startswith("  Hint: ") and len(lines) == 2
 
 
 def test_check_without_an_exercise_finds_a_unique_question_or_asks_for_one(capsys, monkeypatch):
