@@ -4,9 +4,13 @@
 
 Each student's folder holds, per exercise, one of: the solution, the solution with a bug
 injected (a sign flipped in the first answer line that has a '+'), the untouched exercise
-(stubs), or nothing (missing; not counted as submitted). For comparison it also times
-executing a few notebooks in a fresh Jupyter kernel with nbclient, the obvious alternative
-to the plain `python` worker the grader uses. Figures are printed, never asserted.
+(stubs), or nothing (missing; not counted as submitted). It also times the grader's own
+steps that run no student code: the plan (every expected value, computed from the question
+bank in the grader's process, :func:`puma_course.grading.runner.make_plan`) and the release
+check of the course (:func:`puma_course.grading.release`). For comparison it times executing
+a few notebooks in a fresh Jupyter kernel with nbclient, the obvious alternative to the plain
+`python` worker (:mod:`puma_course.grading.worker`) the grader uses. Figures are printed,
+never asserted.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ from pathlib import Path
 
 import nbformat
 
-from puma_course.grading import EXERCISES, grade
+from puma_course.grading import EXERCISES, grade, release
+from puma_course.grading.runner import make_plan
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -71,6 +76,22 @@ def time_kernel(sample: int) -> float:
     return (time.perf_counter() - start) / max(1, len(paths))
 
 
+def time_grader_steps(repeat: int = 3) -> tuple[float, int, float]:
+    """(seconds to plan every exercise, number of planned calls, seconds for the release check), best of ``repeat``."""
+    plan_s = check_s = float("inf")
+    calls = 0
+    for _ in range(repeat):
+        start = time.perf_counter()
+        calls = sum(len(make_plan(ex, seed=1)) for ex in EXERCISES.values())
+        plan_s = min(plan_s, time.perf_counter() - start)
+        start = time.perf_counter()
+        stale = release(ROOT / "solutions", ROOT / "exercises", check_only=True)
+        check_s = min(check_s, time.perf_counter() - start)
+        if stale:
+            raise SystemExit(f"exercises out of date: {stale}")
+    return plan_s, calls, check_s
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--students", type=int, default=20)
@@ -89,6 +110,11 @@ def main() -> None:
     per = wall / n
     print(f"{args.students} students x {len(EXERCISES)} exercises: {n} submitted notebooks, statuses {statuses}")
     print(f"grading wall time {wall:.2f} s with {args.jobs} job(s): {per:.3f} s per submitted notebook")
+    plan_s, calls, check_s = time_grader_steps()
+    print(
+        f"grader-side steps: plan of all {len(EXERCISES)} exercises ({calls} calls with expected values) "
+        f"{plan_s * 1e3:.0f} ms; release check of the course {check_s * 1e3:.0f} ms"
+    )
     if args.kernel_sample:
         k = time_kernel(args.kernel_sample)
         print(

@@ -284,7 +284,7 @@ def _notebook(args: argparse.Namespace) -> Path:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from .grading import EXERCISES, grade_notebook
+    from .grading import EXERCISES, format_check_report, grade_notebook
 
     notebook = _notebook(args)
     name = args.exercise or notebook.stem
@@ -297,15 +297,7 @@ def _check(args: argparse.Namespace) -> int:
         ex, questions=tuple(dataclasses.replace(q, hidden=lambda rng: []) for q in ex.questions)
     )
     r = grade_notebook(notebook, public, seed=0, timeout_cell=args.timeout_cell, timeout_total=args.timeout_total)
-    print(f"{name}: {r.score:g} / {r.max_score:g} on the public cases (status {r.status})")
-    for note in r.notes:
-        print(f"  {note}")
-    for q in ex.questions:
-        bonus = " (bonus)" if getattr(q, "bonus", False) else ""
-        notes = "; ".join(r.question_notes[q.qid])
-        print(f"  {q.qid} {q.function}{bonus}: {r.scores[q.qid]:g}/{q.points:g} - {notes}")
-        if r.scores[q.qid] < q.points and q.hint:
-            print(f"      hint: {q.hint}")
+    print(format_check_report(r, ex))
     return 0 if r.status in ("ok", "cell-error") else 1
 
 

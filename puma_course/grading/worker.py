@@ -1,7 +1,8 @@
 """The child side of grading: run one student's code cells, call their functions, report plain data.
 
 This module runs in a fresh ``python -I`` process started by
-:func:`puma_course.grading.grade`, with a temporary working directory. It reads one
+:mod:`puma_course.grading.runner` (:func:`~puma_course.grading.grade`), with a temporary
+working directory. It needs the standard library only (numpy once student code runs). It reads one
 JSON job from stdin::
 
     {"cells": [source, ...], "calls": [{"qid", "case", "function", "args"}, ...],
@@ -39,7 +40,10 @@ import sys
 import traceback
 from typing import Any
 
-__all__ = ["main", "strip_magics"]
+__all__ = ["main", "strip_magics", "resolve", "forbidden_codes", "guarded_call", "NOT_ATTEMPTED"]
+
+#: The reason given for a case whose function still raises NotImplementedError (the released stub).
+NOT_ATTEMPTED = "not attempted yet"
 
 
 class CellTimeout(BaseException):
@@ -213,7 +217,7 @@ def main() -> None:
     os.dup2(devnull, 1)
     os.dup2(devnull, 2)
     sink = _CappedWriter()
-    sys.stdout = sys.stderr = sink  # type: ignore[assignment]
+    sys.stdout = sys.stderr = sink
 
     import numpy as np
 
@@ -283,7 +287,7 @@ def main() -> None:
                 event["error"] = f"the call ran longer than {timeout:g} s"
                 slow.add(call["qid"])
             except NotImplementedError:
-                event["error"] = "not attempted yet (NotImplementedError)"
+                event["error"] = f"{NOT_ATTEMPTED} (NotImplementedError)"
             except BaseException as exc:  # noqa: BLE001
                 event["error"] = _short_error(exc)
             else:

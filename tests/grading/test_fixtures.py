@@ -17,8 +17,9 @@ import nbformat
 import pytest
 
 from puma_course.grading import EXERCISES, grade
+from tests.support import ROOT
 
-FIXTURES = Path(__file__).parent / "fixtures" / "submissions"
+FIXTURES = ROOT / "tests" / "fixtures" / "submissions"
 EX = "ex01_rotations"
 
 # student -> (score, status, {question: points})

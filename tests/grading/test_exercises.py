@@ -5,23 +5,24 @@ from __future__ import annotations
 
 import re
 import shutil
-from pathlib import Path
 
 import nbformat
 import pytest
 
-from puma_course.grading import (
+from puma_course.grading import EXERCISES, grade, release, release_notebook
+from puma_course.grading.release import (
     BEGIN_HIDDEN,
     BEGIN_SOLUTION,
     END_HIDDEN,
     END_SOLUTION,
-    EXERCISES,
-    grade,
+    NOTEBOOK_METADATA,
+    essentials,
     notebook_text,
-    release_notebook,
+    points_summary,
+    question_heading,
 )
+from tests.support import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 SOLUTIONS = sorted((ROOT / "solutions").glob("*.ipynb"))
 NAMES = [p.stem for p in SOLUTIONS]
 
@@ -34,9 +35,22 @@ def test_every_exercise_has_a_solution_notebook_and_back():
 @pytest.mark.parametrize("name", NAMES)
 def test_committed_exercise_equals_what_the_generator_makes(name):
     solution = nbformat.read(ROOT / "solutions" / f"{name}.ipynb", as_version=4)
-    expected = notebook_text(release_notebook(solution))
+    expected = notebook_text(release_notebook(solution, EXERCISES[name]))
     committed = (ROOT / "exercises" / f"{name}.ipynb").read_text(encoding="utf-8")
     assert committed == expected, f"exercises/{name}.ipynb is stale: run `puma-course release`"
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_committed_exercise_has_what_the_release_check_compares(name):
+    # the rule of `puma-course release --check` (cell order, types, sources, tags), which a save in
+    # JupyterLab does not disturb; the test above also pins the bytes of the committed files
+    solution = nbformat.read(ROOT / "solutions" / f"{name}.ipynb", as_version=4)
+    committed = nbformat.read(ROOT / "exercises" / f"{name}.ipynb", as_version=4)
+    assert essentials(committed) == essentials(release_notebook(solution, EXERCISES[name]))
+
+
+def test_release_check_passes_on_the_committed_course():
+    assert release(ROOT / "solutions", ROOT / "exercises", check_only=True) == []
 
 
 def _blocks(source: str, begin: str, end: str, inside_wanted: bool = True) -> list[str]:
@@ -73,23 +87,57 @@ def test_no_solution_or_hidden_test_leaks_into_the_exercise(name):
     for cell in exercise.cells:
         assert cell.get("outputs", []) == [] and cell.get("execution_count") is None
         assert set(cell.metadata) <= {"tags"}
+    assert exercise.metadata == NOTEBOOK_METADATA
     assert exercise.metadata == {
         "kernelspec": {"display_name": "Python 3 (ipykernel)", "language": "python", "name": "python3"},
-        "language_info": {"name": "python"},
+        "language_info": {
+            "codemirror_mode": {"name": "ipython", "version": 3},
+            "file_extension": ".py",
+            "mimetype": "text/x-python",
+            "name": "python",
+            "nbconvert_exporter": "python",
+            "pygments_lexer": "ipython3",
+        },
     }
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_answer_cells_are_tagged_as_the_question_bank_says(name):
     solution = nbformat.read(ROOT / "solutions" / f"{name}.ipynb", as_version=4)
+    exercise = nbformat.read(ROOT / "exercises" / f"{name}.ipynb", as_version=4)
     ex = EXERCISES[name]
     for q in ex.questions:
         cells = [c for c in solution.cells if f"question:{q.qid}" in c.metadata.get("tags", [])]
         assert len(cells) == 1, (name, q.qid)
-        assert f"points:{q.points:g}" in cells[0].metadata["tags"], (name, q.qid)
+        # the solution names the question only; its points live in the bank (Question.points)
+        assert cells[0].metadata["tags"] == [f"question:{q.qid}"], (name, q.qid)
         assert re.search(rf"^def {q.function}\(", cells[0].source, re.M), (name, q.qid, q.function)
         checks = [c for c in solution.cells if c.source.strip() == f'check("{q.qid}", {q.function})']
         assert len(checks) == 1, (name, q.qid)
+        # ... and the exercise carries them as written by the release: the tag and the heading above
+        index = [i for i, c in enumerate(exercise.cells) if f"question:{q.qid}" in c.metadata.get("tags", [])]
+        assert len(index) == 1, (name, q.qid)
+        answer, heading = exercise.cells[index[0]], exercise.cells[index[0] - 1]
+        assert answer.metadata["tags"] == [f"question:{q.qid}", f"points:{q.points:g}"], (name, q.qid)
+        assert heading.metadata["tags"] == [f"heading:{q.qid}"], (name, q.qid)
+        assert heading.source == question_heading(q)
+        assert heading.source.startswith(f"**{q.qid}** · ") and f"{q.points:g} point" in heading.source
+    headings = [c for c in exercise.cells if any(t.startswith("heading:") for t in c.metadata.get("tags", []))]
+    assert len(headings) == len(ex.questions)
+    summary = [c for c in exercise.cells if "points-summary" in c.metadata.get("tags", [])]
+    assert len(summary) == 1 and exercise.cells[1] is summary[0]
+    assert summary[0].source == points_summary(ex) and f"{ex.max_score:g} in all" in summary[0].source
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_solutions_write_no_points_by_hand(name):
+    """Points appear in a solution nowhere: not as tags, not in headings or prose ("(3 points)", "3-point")."""
+    solution = nbformat.read(ROOT / "solutions" / f"{name}.ipynb", as_version=4)
+    assert solution.metadata == NOTEBOOK_METADATA
+    for cell in solution.cells:
+        assert not [t for t in cell.metadata.get("tags", []) if t.startswith("points:")], cell.id
+        if cell.cell_type == "markdown":
+            assert not re.search(r"\d+(\.\d+)?[ -]points?\b", cell.source, re.I), (cell.id, cell.source[:80])
 
 
 @pytest.fixture(scope="module")

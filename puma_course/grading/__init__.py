@@ -1,0 +1,44 @@
+"""Exercises: self-checks for students, release of the student versions, grading into a CSV.
+
+One question bank, on the grader's side (:data:`EXERCISES`, filled by :mod:`.bank`, one file per
+exercise), serves three jobs:
+
+* **Self-check** (student side, :mod:`.selfcheck`): in an exercise notebook,
+  ``use_exercise("ex01_rotations")`` then ``check("q2", my_function)`` runs that question's
+  *public* cases and prints its result line: passed, FAILED with the reasons and a hint, or
+  "not attempted yet".
+* **Release** (instructor side, :mod:`.release`): :func:`release` turns ``solutions/NAME.ipynb``
+  into ``exercises/NAME.ipynb`` (stubs for solutions, hidden tests removed, points and headings
+  written from the bank) and, with ``check_only``, says which exercises are out of date.
+* **Grade** (instructor side, :mod:`.runner` and :mod:`.worker`): :func:`grade` runs every
+  submitted notebook in its own fresh ``python -I`` process with time limits, calls the student's
+  functions on inputs drawn at grading time (seeded), brings back only the numbers they return,
+  and compares them in the grader's process with the package's reference
+  (:mod:`.compare`); :mod:`.report` writes the CSV and the feedback.
+
+Deleting or editing tests in a submitted notebook changes nothing: the questions live here.
+"""
+
+from __future__ import annotations
+
+from . import bank as _bank  # noqa: F401 - registers every exercise in EXERCISES
+from .model import EXERCISES, Exercise, NotebookResult, Question
+from .release import release, release_notebook
+from .report import format_check_report
+from .runner import GradingIntegrityWarning, grade, grade_notebook
+from .selfcheck import check, use_exercise
+
+__all__ = [
+    "EXERCISES",
+    "Exercise",
+    "Question",
+    "NotebookResult",
+    "GradingIntegrityWarning",
+    "use_exercise",
+    "check",
+    "release",
+    "release_notebook",
+    "grade",
+    "grade_notebook",
+    "format_check_report",
+]

@@ -1,0 +1,154 @@
+"""The question model: a graded :class:`Question`, an :class:`Exercise` of questions, the registry.
+
+The registry :data:`EXERCISES` maps an exercise's name (the file stem of
+``solutions/NAME.ipynb``) to its :class:`Exercise`; the files in :mod:`puma_course.grading.bank`
+fill it, one exercise each. :attr:`Question.points` is the only place a question's points are
+written down: the release generator copies them into the exercise notebooks, the grader and the
+self-check score with them. :class:`NotebookResult` is what grading one notebook produces, and
+:func:`score_question` the one scoring rule (points × cases passed / cases).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .compare import Comparison, compare_close
+
+__all__ = ["Question", "Exercise", "EXERCISES", "register", "NotebookResult", "score_question", "MAX_NOTES"]
+
+#: At most this many distinct failure reasons are kept per question (after the "k/n cases pass" line).
+MAX_NOTES = 3
+
+
+@dataclass(frozen=True)
+class Question:
+    """One graded question: the student writes ``function``; cases are argument tuples.
+
+    ``public`` cases are shown to the student (self-check); ``hidden(rng)`` draws
+    more at grading time. ``reference(*args)`` gives the expected value in the
+    grader's process, ``compare(got, expected)`` returns None or a reason.
+    A ``bonus`` question's points count in the score but not in the maximum.
+    ``forbidden`` names package functions (``"module:attr"``) that are this
+    question's answer key; calling them while being graded fails the case.
+
+    >>> q = Question("q1", "double", 2, "twice x", public=((1.0,),), hidden=lambda rng: [(2.0,)],
+    ...              reference=lambda x: 2 * x)
+    >>> q.cases(np.random.default_rng(0))
+    [(1.0,), (2.0,)]
+    """
+
+    qid: str
+    function: str
+    points: float
+    title: str
+    public: tuple[tuple[Any, ...], ...]
+    hidden: Callable[[np.random.Generator], list[tuple[Any, ...]]]
+    reference: Callable[..., Any]
+    compare: Comparison = compare_close
+    hint: str = ""
+    bonus: bool = False
+    forbidden: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.points, (int, float)) and self.points > 0 and np.isfinite(self.points)):
+            raise ValueError(f"points: expected a positive number of points for {self.qid}, got {self.points!r}")
+
+    def cases(self, rng: np.random.Generator) -> list[tuple[Any, ...]]:
+        """Public cases followed by hidden ones drawn from ``rng``."""
+        return list(self.public) + list(self.hidden(rng))
+
+
+@dataclass(frozen=True)
+class Exercise:
+    """An exercise notebook: its file stem (``solutions/NAME.ipynb``) and its questions.
+
+    >>> ex = EXERCISES["ex05_porter_ik"]
+    >>> ex.max_score, ex.question("q3").bonus  # 2 + 6, and a 3-point bonus on top
+    (8.0, True)
+    """
+
+    name: str
+    title: str
+    questions: tuple[Question, ...]
+
+    @property
+    def max_score(self) -> float:
+        """The points of the questions that are not a bonus."""
+        return float(sum(q.points for q in self.questions if not q.bonus))
+
+    def question(self, qid: str) -> Question:
+        """The question called ``qid`` (ValueError naming the exercise's questions if there is none)."""
+        for q in self.questions:
+            if q.qid == qid:
+                return q
+        raise ValueError(f"question: expected one of {[q.qid for q in self.questions]} in {self.name}, got {qid!r}")
+
+
+#: Every exercise by name; filled by :mod:`puma_course.grading.bank` (one file per exercise).
+EXERCISES: dict[str, Exercise] = {}
+
+
+def register(exercise: Exercise) -> Exercise:
+    """Add ``exercise`` to :data:`EXERCISES` (ValueError if the name or a question id is taken twice)."""
+    if exercise.name in EXERCISES and EXERCISES[exercise.name] is not exercise:
+        raise ValueError(f"exercise: expected a new name, got {exercise.name!r}, which is registered already")
+    qids = [q.qid for q in exercise.questions]
+    if len(set(qids)) != len(qids) or not qids:
+        raise ValueError(f"exercise: expected distinct question ids in {exercise.name}, got {qids}")
+    EXERCISES[exercise.name] = exercise
+    return exercise
+
+
+@dataclass
+class NotebookResult:
+    """The outcome of grading one (student, exercise) pair."""
+
+    student: str
+    exercise: str
+    status: str
+    max_score: float
+    scores: dict[str, float] = field(default_factory=dict)
+    question_notes: dict[str, list[str]] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    seconds: float = 0.0
+
+    @classmethod
+    def blank(cls, student: str, exercise: Exercise, status: str = "ok", note: str | None = None) -> NotebookResult:
+        """A result with every question of ``exercise`` at 0 points and no notes (but ``note``)."""
+        qids = [q.qid for q in exercise.questions]
+        result = cls(student, exercise.name, status, exercise.max_score, {q: 0.0 for q in qids}, {q: [] for q in qids})
+        if note is not None:
+            result.notes.append(note)
+        return result
+
+    @property
+    def score(self) -> float:
+        """The sum of the question scores (bonus included), to 0.01."""
+        return round(sum(self.scores.values()), 2)
+
+
+def score_question(points: float, outcomes: Sequence[tuple[str, str | None]]) -> tuple[float, list[str]]:
+    """Points earned and notes for a question's cases, given as (label, reason or None when it passed).
+
+    The notes are "k/n cases pass" followed by up to :data:`MAX_NOTES` distinct failure reasons,
+    each after the label of the first case that gave it.
+
+    >>> score_question(3, [("case 1", None), ("case 2", "wrong"), ("case 3", "wrong")])
+    (1.0, ['1/3 cases pass', 'case 2: wrong'])
+    """
+    passed, seen = 0, set()
+    notes: list[str] = []
+    for label, reason in outcomes:
+        if reason is None:
+            passed += 1
+        elif reason not in seen:
+            seen.add(reason)
+            if len(notes) < MAX_NOTES:
+                notes.append(f"{label}: {reason}")
+    total = len(outcomes)
+    earned = round(points * passed / total, 2) if total else 0.0
+    return earned, [f"{passed}/{total} cases pass", *notes]

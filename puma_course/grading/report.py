@@ -1,0 +1,165 @@
+"""Rendering results: one per-question line, the ``puma-course check`` report, feedback Markdown, the CSV.
+
+:func:`format_question` is the only place a question's result is worded. The self-check
+(:func:`puma_course.grading.check`), the feedback files written by :func:`~puma_course.grading.grade`
+and ``puma-course check`` (:func:`format_check_report`) all print through it, so a student reads
+the same verdicts, scores and hints everywhere:
+
+* ``passed``: every case passed (full points);
+* ``partly``: some cases passed (points in proportion);
+* ``not attempted yet``: no case passed and every failure is the released stub's ``NotImplementedError``;
+* ``FAILED``: anything else, with the first distinct reasons.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+import re
+from collections.abc import Sequence
+from pathlib import Path
+
+from .model import EXERCISES, Exercise, NotebookResult, Question
+from .worker import NOT_ATTEMPTED
+
+__all__ = ["verdict", "format_question", "format_check_report", "feedback_markdown", "write_csv", "safe_name"]
+
+_COUNT_LINE = re.compile(r"^\d+/\d+ cases pass$")
+
+
+def verdict(q: Question, earned: float, notes: Sequence[str]) -> str:
+    """``passed``, ``partly``, ``not attempted yet`` or ``FAILED`` for ``earned`` points and the case notes.
+
+    >>> from puma_course.grading import EXERCISES
+    >>> q = EXERCISES["ex01_rotations"].question("q1")
+    >>> verdict(q, 2, ["3/3 cases pass"]), verdict(q, 1.33, ["2/3 cases pass", "case 3: wrong sign"])
+    ('passed', 'partly')
+    >>> verdict(q, 0, ["0/3 cases pass", "case 1: not attempted yet (NotImplementedError)"])
+    'not attempted yet'
+    """
+    if earned >= q.points:
+        return "passed"
+    if earned > 0:
+        return "partly"
+    reasons = [n for n in notes if not _COUNT_LINE.match(n)]
+    if reasons and all(NOT_ATTEMPTED in r for r in reasons):
+        return NOT_ATTEMPTED
+    return "FAILED"
+
+
+def _wants_hint(q: Question, earned: float) -> bool:
+    return bool(q.hint) and earned < q.points
+
+
+def format_question(q: Question, earned: float, notes: Sequence[str], *, markdown: bool = False) -> str:
+    """The result of one question as a text line (plus an indented ``Hint:`` line), or with ``markdown`` a table row.
+
+    ``notes`` are the question's notes ("k/n cases pass", then reasons); a not-attempted question
+    shows its verdict only. The Markdown row has the columns question | points | result.
+
+    >>> from puma_course.grading import EXERCISES
+    >>> q = EXERCISES["ex01_rotations"].question("q4")
+    >>> print(format_question(q, 2, ["4/4 cases pass"]))
+    q4 invert_transform: 2 / 2 points - passed (4/4 cases pass)
+    >>> print(format_question(q, 0, ["0/4 cases pass", "public case 1: returned shape (3,)"]))
+    q4 invert_transform: 0 / 2 points - FAILED (0/4 cases pass; public case 1: returned shape (3,))
+      Hint: The inverse rotation is R^T and the inverse translation is -R^T p.
+    >>> format_question(q, 2, ["4/4 cases pass"], markdown=True)
+    '| q4 `invert_transform` | 2 / 2 | passed: 4/4 cases pass |'
+    """
+    word = verdict(q, earned, notes)
+    bonus = " (bonus)" if q.bonus else ""
+    detail = "; ".join(notes) if word != NOT_ATTEMPTED else ""
+    if markdown:
+        result = (f"{word}: {detail}" if detail else word).replace("|", r"\|")
+        return f"| {q.qid} `{q.function}`{bonus} | {earned:g} / {q.points:g} | {result} |"
+    line = f"{q.qid} {q.function}{bonus}: {earned:g} / {q.points:g} points - {word}"
+    if detail:
+        line += f" ({detail})"
+    if _wants_hint(q, earned):
+        line += f"\n  Hint: {q.hint}"
+    return line
+
+
+def format_check_report(result: NotebookResult, exercise: Exercise) -> str:
+    """What ``puma-course check`` prints: the score on the public cases, notes, one line per question.
+
+    >>> from puma_course.grading import EXERCISES, NotebookResult
+    >>> ex = EXERCISES["ex01_rotations"]
+    >>> r = NotebookResult("me", ex.name, "missing", ex.max_score, scores={q.qid: 0.0 for q in ex.questions})
+    >>> print(format_check_report(r, ex).splitlines()[0])
+    ex01_rotations: 0 / 10 on the public cases (status missing)
+    """
+    lines = [f"{exercise.name}: {result.score:g} / {result.max_score:g} on the public cases (status {result.status})"]
+    lines += [f"  {note}" for note in result.notes]
+    for q in exercise.questions:
+        text = format_question(q, result.scores.get(q.qid, 0.0), result.question_notes.get(q.qid, []))
+        lines += [f"  {line}" for line in text.splitlines()]
+    return "\n".join(lines)
+
+
+def feedback_markdown(student: str, results: Sequence[NotebookResult], seed: int) -> str:
+    """One student's feedback file: per exercise the status, the score, one table row per question, hints."""
+    lines = [f"# Feedback for {student}", ""]
+    total = sum(r.score for r in results)
+    top = sum(r.max_score for r in results)
+    lines += [f"Total: **{total:g} / {top:g}** points.", ""]
+    for r in results:
+        ex = EXERCISES[r.exercise]
+        lines += [
+            f"## {r.exercise}: {ex.title}",
+            "",
+            f"Status: `{r.status}`. Score: **{r.score:g} / {r.max_score:g}**.",
+            "",
+        ]
+        for note in r.notes:
+            lines.append(f"- {note}")
+        if r.notes:
+            lines.append("")
+        if r.status in ("missing", "malformed"):
+            continue
+        lines += ["| question | points | result |", "| --- | --- | --- |"]
+        for q in ex.questions:
+            lines.append(format_question(q, r.scores[q.qid], r.question_notes.get(q.qid, []), markdown=True))
+        if any(q.bonus for q in ex.questions):
+            lines += ["", "Bonus points count in your score, not in the maximum."]
+        failing = [q for q in ex.questions if _wants_hint(q, r.scores[q.qid])]
+        if failing:
+            lines += ["", "Hints:"] + [f"- {q.qid}: {q.hint}" for q in failing]
+        lines.append("")
+    lines += ["", f"Hidden inputs were drawn with seed {seed}."]
+    return "\n".join(lines) + "\n"
+
+
+def safe_name(name: str) -> str:
+    """A file-name-safe form of a student's folder name.
+
+    >>> safe_name("../Ann Lee")
+    'Ann_Lee'
+    """
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "student"
+
+
+def write_csv(output: str | os.PathLike[str], results: Sequence[NotebookResult], names: Sequence[str]) -> None:
+    """Write the grades: student, exercise, score, max_score, one column per question id, status, notes.
+
+    The file is written under a temporary name and moved into place, so it appears whole or not at all.
+    """
+    qids: list[str] = []
+    for name in names:
+        for q in EXERCISES[name].questions:
+            if q.qid not in qids:
+                qids.append(q.qid)
+    out = Path(output)
+    if out.parent and not out.parent.exists():
+        out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = out.with_name(out.name + ".tmp")
+    with open(tmp, "w", newline="", encoding="utf-8") as fh:
+        writer = csv.writer(fh)
+        writer.writerow(["student", "exercise", "score", "max_score", *qids, "status", "notes"])
+        for r in results:
+            row = [r.student, r.exercise, f"{r.score:g}", f"{r.max_score:g}"]
+            row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
+            row += [r.status, " | ".join(r.notes)[:500]]
+            writer.writerow(row)
+    os.replace(tmp, out)

@@ -1,0 +1,93 @@
+"""puma_course.grading.report: one wording of a question's result, used by self-check, feedback and the CLI."""
+
+from __future__ import annotations
+
+import csv
+import inspect
+
+from puma_course import cli
+from puma_course.grading import EXERCISES, NotebookResult, check, format_check_report
+from puma_course.grading.report import feedback_markdown, format_question, verdict, write_csv
+
+EX = EXERCISES["ex01_rotations"]
+
+
+def _result(status="ok"):
+    return NotebookResult(
+        "ann",
+        EX.name,
+        status,
+        EX.max_score,
+        scores={"q1": 2.0, "q2": 1.0, "q3": 0.0, "q4": 0.0},
+        question_notes={
+            "q1": ["5/5 cases pass"],
+            "q2": ["2/6 cases pass", "hidden case 4: values differ from the reference by up to 0.5"],
+            "q3": ["0/7 cases pass", "public case 1: not attempted yet (NotImplementedError)"],
+            "q4": ["0/5 cases pass", "public case 1: returned a | pipe"],
+        },
+    )
+
+
+def test_verdicts():
+    q = EX.question("q3")
+    assert verdict(q, 3, ["7/7 cases pass"]) == "passed"
+    assert verdict(q, 0.43, ["1/7 cases pass", "hidden case 2: wrong"]) == "partly"
+    assert verdict(q, 0, ["0/7 cases pass", "public case 1: not attempted yet (NotImplementedError)"]) == (
+        "not attempted yet"
+    )
+    mixed = ["0/7 cases pass", "public case 1: not attempted yet (NotImplementedError)", "hidden case 3: raised"]
+    assert verdict(q, 0, mixed) == "FAILED"
+    assert verdict(q, 0, []) == "FAILED"
+
+
+def test_the_text_line_names_question_function_points_verdict_reasons_and_hint():
+    q = EX.question("q2")
+    text = format_question(q, 1.0, _result().question_notes["q2"])
+    assert text.splitlines() == [
+        "q2 rodrigues_formula: 1 / 3 points - partly "
+        "(2/6 cases pass; hidden case 4: values differ from the reference by up to 0.5)",
+        f"  Hint: {q.hint}",
+    ]
+    assert format_question(EX.question("q1"), 2, ["5/5 cases pass"]) == (
+        "q1 elementary_rotation: 2 / 2 points - passed (5/5 cases pass)"
+    )
+    bonus = EXERCISES["ex05_porter_ik"].question("q3")
+    assert format_question(bonus, 3, ["1/1 cases pass"]).startswith("q3 porter_ik_geometric (bonus): 3 / 3 points")
+
+
+def test_the_feedback_table_rows_are_the_same_formatter_in_markdown():
+    text = feedback_markdown("ann", [_result()], seed=7)
+    for q in EX.questions:
+        row = format_question(q, _result().scores[q.qid], _result().question_notes[q.qid], markdown=True)
+        assert row in text
+    assert "| q3 `axis_angle_from_matrix` | 0 / 3 | not attempted yet |" in text
+    assert r"returned a \| pipe" in text  # a '|' in a reason does not break the table
+    assert "Total: **3 / 10** points." in text and "seed 7" in text
+    assert text.count("\n- q") == 3  # hints for q2, q3, q4, not for q1
+
+
+def test_the_cli_report_is_the_same_formatter_indented():
+    report = format_check_report(_result(), EX)
+    lines = report.splitlines()
+    assert lines[0] == "ex01_rotations: 3 / 10 on the public cases (status ok)"
+    for q in EX.questions:
+        for line in format_question(q, _result().scores[q.qid], _result().question_notes[q.qid]).splitlines():
+            assert f"  {line}" in lines
+    # the CLI's check prints through it and words nothing itself
+    source = inspect.getsource(cli._check)
+    assert "format_check_report" in source and "q.points" not in source and "hint" not in source
+
+
+def test_check_prints_through_the_same_formatter(capsys, right_rotation):
+    check("ex01_rotations:q1", right_rotation)
+    assert capsys.readouterr().out == format_question(EX.question("q1"), 2, ["3/3 cases pass"]) + "\n"
+
+
+def test_csv_columns(tmp_path):
+    out = tmp_path / "sub" / "grades.csv"
+    write_csv(out, [_result(), _result("missing")], [EX.name])
+    with open(out, newline="", encoding="utf-8") as fh:
+        rows = list(csv.reader(fh))
+    assert rows[0] == ["student", "exercise", "score", "max_score", "q1", "q2", "q3", "q4", "status", "notes"]
+    assert rows[1] == ["ann", "ex01_rotations", "3", "10", "2", "1", "0", "0", "ok", ""]
+    assert not (tmp_path / "sub" / "grades.csv.tmp").exists()

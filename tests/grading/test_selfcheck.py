@@ -1,0 +1,80 @@
+"""puma_course.grading.selfcheck: check() prints one clear result per question, from the public cases."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from puma_course.grading import check, use_exercise
+
+
+def test_check_prints_one_clear_line(capsys, right_rotation):
+    use_exercise("ex01_rotations")
+    check("q1", right_rotation)
+    assert "passed" in capsys.readouterr().out
+
+    def stub(axis, angle):
+        raise NotImplementedError("write your answer here")
+
+    check("q1", stub)
+    assert "not attempted yet" in capsys.readouterr().out
+
+    check("q1", lambda axis, angle: right_rotation(axis, -angle))
+    out = capsys.readouterr().out
+    assert "FAILED" in out and "Hint:" in out and "Traceback" not in out
+
+    def crashes(axis, angle):
+        return undefined_name  # noqa: F821
+
+    check("q1", crashes)
+    out = capsys.readouterr().out
+    assert "NameError" in out and "Traceback" not in out
+
+    check("q1", 42)
+    assert "FAILED" in capsys.readouterr().out
+
+
+def test_check_flags_the_answer_key(capsys):
+    from puma_course import rodrigues
+
+    check("ex01_rotations:q2", lambda axis, angle: rodrigues(axis, angle))
+    out = capsys.readouterr().out
+    assert "FAILED" in out and "rodrigues" in out
+
+
+def test_check_rejects_unknown_names(right_rotation):
+    with pytest.raises(ValueError, match="ex01_rotations"):
+        use_exercise("no_such_exercise")
+    with pytest.raises(ValueError, match="q1"):
+        check("ex01_rotations:q99", right_rotation)
+
+
+def test_check_runs_every_public_case_and_scores_like_the_grader(capsys, right_rotation):
+    # q1 has three public cases, about x, y and z; this answer gets the z rotation wrong
+    def wrong_about_z(axis, angle):
+        return right_rotation(axis, angle) if axis != "z" else right_rotation(axis, -angle)
+
+    check("ex01_rotations:q1", wrong_about_z)
+    out = capsys.readouterr().out
+    assert out.startswith("q1 elementary_rotation: 1.33 / 2 points - partly (2/3 cases pass; case 3 (")
+    assert "elementary_rotation('z', 1.571)" in out and "Hint:" in out
+
+
+def test_the_stub_counts_as_not_attempted_without_details(capsys):
+    def stub(axis, angle):
+        raise NotImplementedError("write your answer here")
+
+    check("ex01_rotations:q2", stub)
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "q2 rodrigues_formula: 0 / 3 points - not attempted yet"
+    assert lines[1].startswith("  Hint: ") and len(lines) == 2
+
+
+def test_check_without_an_exercise_finds_a_unique_question_or_asks_for_one(capsys, monkeypatch):
+    from puma_course.grading import selfcheck
+
+    monkeypatch.setattr(selfcheck, "_current_exercise", [])
+    with pytest.raises(ValueError, match="use_exercise"):
+        check("q1", lambda *a: np.eye(3))
+    with pytest.raises(ValueError, match="question: expected a question id"):
+        check(1, lambda *a: np.eye(3))
