@@ -1,7 +1,7 @@
 """The question bank's one window onto the kinematics layer: reference answers, inputs, answer keys.
 
-Every call the bank makes into the course's kinematics (``rodrigues``, ``puma560().fk``,
-``mk3()``, Porter's ``fk/points/ik_explicit/ik_geometric``, ``three_step.solve``, ...) is made
+Every call the bank makes into the course's kinematics (``rodrigues``, ``Puma560().fk``,
+``MK3().fk``, ``Porter(...).fk/points/ik``, ``ThreeStepArm(...).three_step``, ...) is made
 here, and so are the names of the package functions that answer a question (the "answer keys"
 the worker trips on). When the kinematics API changes, this is the only file of the bank to
 update; the exercise files only name what they ask for.
@@ -12,13 +12,15 @@ bank's inputs avoid singularities and a warning would only clutter the grader's 
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from ... import dh, porter, robots, three_step, transforms
+from ... import transforms
+from ...kinematics import MK3, Porter, Puma560, ThreeStepArm, dh
 from ._inputs import unit_vectors
 
 # ---------------------------------------------------------------- answer keys ("module:attr")
@@ -28,18 +30,36 @@ KEY_ROT = tuple(f"puma_course.transforms:{name}" for name in ("rotx", "roty", "r
 KEY_RODRIGUES = ("puma_course.transforms:rodrigues", "puma_course.transforms:trot")
 KEY_AXIS_ANGLE = ("puma_course.transforms:axis_angle",)
 KEY_INVERSE = ("puma_course.transforms:inverse_transform",)
-KEY_MDH = ("puma_course.dh:mdh", "puma_course.dh:DHChain.link_matrices")
-_KEY_CHAIN = ("puma_course.dh:DHChain.fk", "puma_course.dh:DHChain.frames", "puma_course.dh:mdh")
-KEY_PUMA = ("puma_course.robots:puma560", *_KEY_CHAIN)
-KEY_MK3 = ("puma_course.robots:mk3", *_KEY_CHAIN)
-KEY_PORTER_FK = ("puma_course.porter:fk", "puma_course.porter:frames", "puma_course.porter:points")
-KEY_PORTER_IK = (
-    "puma_course.porter:ik_explicit",
-    "puma_course.porter:ik_explicit_batch",
-    "puma_course.porter:ik_geometric",
-    "puma_course.porter:solve",
+_DH = "puma_course.kinematics.dh"
+KEY_MDH = (f"{_DH}:mdh", f"{_DH}:DHChain.link_matrices")
+_KEY_CHAIN = (f"{_DH}:DHChain.fk", f"{_DH}:DHChain.frames", f"{_DH}:mdh", f"{_DH}:_walk")
+KEY_PUMA = ("puma_course.kinematics.puma560:Puma560.fk", "puma_course.kinematics.puma560:_fk_entries", *_KEY_CHAIN)
+KEY_MK3 = _KEY_CHAIN
+_PORTER = "puma_course.kinematics.porter"
+KEY_PORTER_FK = (
+    f"{_PORTER}:Porter.fk",
+    f"{_PORTER}:Porter.frames",
+    "puma_course.kinematics.robot:Robot.points",
+    f"{_PORTER}.fk:fk_entries",
+    f"{_PORTER}.fk:frames_array",
 )
-KEY_THREE_STEP = ("puma_course.three_step:solve", "puma_course.three_step:motion", "puma_course.three_step:arm_axis")
+KEY_PORTER_IK = (
+    f"{_PORTER}:Porter.ik",
+    f"{_PORTER}:Porter.ik_batch",
+    f"{_PORTER}.explicit:branch",
+    f"{_PORTER}.explicit:pose_terms",
+    f"{_PORTER}.geometric:construct",
+)
+_TS = "puma_course.kinematics.three_step"
+KEY_THREE_STEP = (
+    f"{_TS}.arm:ThreeStepArm.three_step",
+    f"{_TS}.arm:ThreeStepArm.ik",
+    f"{_TS}.procedure:solve_three_steps",
+    f"{_TS}.procedure:motion",
+    f"{_TS}.geometry:arm_axis",
+    f"{_TS}.geometry:triangle",
+    f"{_TS}.geometry:base_angle",
+)
 
 
 # ---------------------------------------------------------------- exercise 1: rotations
@@ -87,17 +107,17 @@ def mdh(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
 
 def puma_fk(q: np.ndarray) -> np.ndarray:
     """^0T_6 of the PUMA-560 (metres)."""
-    return robots.puma560().fk(q)
+    return Puma560().fk(q)
 
 
 def puma_frames(q: np.ndarray) -> np.ndarray:
     """^0T_i, i = 0..6, of the PUMA-560: shape (7, 4, 4)."""
-    return robots.puma560().frames(q)
+    return Puma560().frames(q)
 
 
 def mk3_fk(q: np.ndarray) -> np.ndarray:
     """^0T_5 of the Motoman MK3 (mm)."""
-    return robots.mk3().fk(q)
+    return MK3().fk(q)
 
 
 def mk3_position(q: np.ndarray) -> np.ndarray:
@@ -119,12 +139,12 @@ def _quiet(fn: Callable[..., Any], *args: Any) -> Any:
 
 def porter_fk(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
     """F05 of Porter's chain."""
-    return _quiet(porter.fk, q, l1, l3, l4)
+    return Porter(l1, l3, l4).fk(q)
 
 
 def porter_points(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
     """The joint points p0 ... p5 of Porter's chain: shape (6, 3)."""
-    return _quiet(porter.points, q, l1, l3, l4)
+    return Porter(l1, l3, l4).points(q)
 
 
 def porter_z5(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
@@ -140,12 +160,12 @@ def porter_wrist_point(T: Any, l4: float) -> np.ndarray:
 
 def porter_ik_explicit(T: Any, l1: float, l3: float, l4: float) -> np.ndarray:
     """Every configuration reaching T (Porter's Ver.1): shape (k, 6)."""
-    return _quiet(porter.ik_explicit, T, l1, l3, l4)
+    return np.asarray(_quiet(Porter(l1, l3, l4).ik, T))
 
 
 def porter_ik_geometric(T: Any, l1: float, l3: float, l4: float) -> np.ndarray:
     """Porter's Ver.2 pair: shape (2, 6)."""
-    return _quiet(porter.ik_geometric, T, l1, l3, l4)
+    return np.asarray(_quiet(lambda: Porter(l1, l3, l4).ik(T, method="geometric")))
 
 
 def porter_configs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, float, float, float]]:
@@ -155,7 +175,7 @@ def porter_configs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, f
         q = rng.uniform(0.0, 2 * np.pi, 6)
         q[2] = rng.uniform(0.3, 2.0)
         l1, l3, l4 = (float(x) for x in rng.uniform(0.3, 1.5, 3))
-        p4 = porter.points(q, l1, l3, l4)[4]
+        p4 = Porter(l1, l3, l4).points(q)[4]
         if abs(np.cos(q[4])) >= 0.3 and np.hypot(p4[0], p4[1]) > 0.2:
             out.append((q, l1, l3, l4))
     return out
@@ -163,17 +183,17 @@ def porter_configs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, f
 
 def porter_poses(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     """Cases (T, l1, l3, l4) with T reached from a configuration in general position."""
-    return [(porter.fk(q, l1, l3, l4), l1, l3, l4) for q, l1, l3, l4 in porter_configs(rng, n)]
+    return [(Porter(l1, l3, l4).fk(q), l1, l3, l4) for q, l1, l3, l4 in porter_configs(rng, n)]
 
 
 def porter_pose(q: Any, l1: float, l3: float, l4: float) -> tuple[Any, ...]:
     """The case (F05(q), l1, l3, l4)."""
-    return (porter.fk(q, l1, l3, l4), l1, l3, l4)
+    return (Porter(l1, l3, l4).fk(q), l1, l3, l4)
 
 
 # ---------------------------------------------------------------- exercise 6: the three-step procedure
 def three_step_solution(*fields: str) -> Callable[..., Any]:
-    """A reference from ``three_step.solve`` (elbow up) for args (w), (w, l1, l2) or (w, F, l1, l2).
+    """A reference from ``ThreeStepArm(l1, l2).three_step`` (elbow up) for args (w), (w, l1, l2) or (w, F, l1, l2).
 
     ``fields`` name the attributes of the solution to return (one: that value; several: an array of
     them): theta0, frame_step1, theta, theta1, theta2, frame_step2, K_wrist.
@@ -189,8 +209,8 @@ def three_step_solution(*fields: str) -> Callable[..., Any]:
         elif len(rest) == 2:
             target, (l1, l2) = np.eye(3), rest
         else:  # step 1 does not depend on the lengths; pick any that reach w
-            target, l1, l2 = np.eye(3), float(np.linalg.norm(w)), float(np.linalg.norm(w))
-        sol = _quiet(lambda: three_step.solve(w, target, l1, l2, elbow="up"))
+            target, l1, l2 = np.eye(3), math.hypot(*w.tolist()), math.hypot(*w.tolist())
+        sol = _quiet(lambda: ThreeStepArm(l1, l2).three_step(w, target, elbow="up"))
         values = [np.asarray(getattr(sol, f), dtype=float) for f in fields]
         return values[0] if len(values) == 1 else np.array(values)
 
