@@ -8,10 +8,7 @@ properties (orthonormal, det 1, K a = a); and round trips on random targets.
 
 from __future__ import annotations
 
-import base64
 import math
-import re
-import struct
 import warnings
 
 import numpy as np
@@ -458,30 +455,6 @@ def test_results_are_immutable():
         sol.theta0 = 1.0  # type: ignore[misc]
     with pytest.raises(ValueError):
         sol.K_wrist[0, 0] = 2.0
-
-
-# ---------------------------------------------------------------------------------------------
-# The drawing companion (smoke: it runs, draws the right number of panels and frames)
-# ---------------------------------------------------------------------------------------------
-
-
-def test_plot_steps_and_animation_smoke():
-    import matplotlib.pyplot as plt
-
-    from puma_course import three_step_plot as tsp
-
-    sol = ts.solve(W_EX, TARGET_EX, L1, L2)
-    fig = tsp.plot_steps(sol)
-    assert len(fig.axes) == 4
-    assert [ax.get_title() for ax in fig.axes] == list(tsp.PHASE_TITLES)
-    plt.close(fig)
-    anim = tsp.animate(sol, steps_per_phase=3, dpi=40, figsize=(4.0, 3.0))
-    html = anim.to_jshtml()
-    frames = re.findall(r"data:image/png;base64,((?:[A-Za-z0-9+/=]|\\\n)+)", html)
-    assert len(frames) == 10  # 3 * 3 + 1
-    png = base64.b64decode(frames[0].replace("\\\n", ""))
-    width, height = struct.unpack(">II", png[16:24])  # the PNG header's IHDR size
-    assert (width, height) == (160, 120)  # 4 x 3 inches at 40 dpi: the dpi was kept
 
 
 def test_wrist_next_to_the_base_axis_is_snapped_onto_it():
