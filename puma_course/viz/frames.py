@@ -53,9 +53,10 @@ def new_axes(
 
 
 def set_equal(ax: Any, points: Any | None = None, margin: float = 0.1) -> None:
-    """Equal scaling on all three axes, framing ``points`` (k, 3) or what is drawn.
+    """Equal scaling on all three axes, framing ``points`` (..., 3) or what is drawn.
 
-    The cube's half side is half the largest extent times ``1 + margin``.
+    The cube's half side is half the largest extent times ``1 + margin``. ``points`` may be
+    any stack of points, e.g. ``robot.points(Q)`` for a batch Q (N, n).
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
@@ -68,7 +69,10 @@ def set_equal(ax: Any, points: Any | None = None, margin: float = 0.1) -> None:
     if points is None:
         lims = np.array([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()])
     else:
-        P = as_array(points, "points", (3,), batch=True).reshape(-1, 3)
+        P = as_array(points, "points", what="points of shape (..., 3)")
+        if P.ndim == 0 or P.shape[-1] != 3 or P.size == 0:
+            raise ValueError(f"points: expected points of shape (..., 3), got an array of shape {P.shape}")
+        P = P.reshape(-1, 3)
         lims = np.stack([P.min(axis=0), P.max(axis=0)], axis=1)
     centre = lims.mean(axis=1)
     half = max(float(np.max(lims[:, 1] - lims[:, 0])) / 2.0, 1e-9) * (1.0 + margin)

@@ -44,6 +44,11 @@ def test_set_equal_margin_by_hand():
     np.testing.assert_allclose(ax.get_zlim3d(), [-1.5, 1.5])
     with pytest.raises(ValueError, match="points"):
         V.set_equal(ax, [[0.0, 1.0]])
+    with pytest.raises(ValueError, match="points"):
+        V.set_equal(ax, np.zeros((0, 3)))
+    # any stack of points: (2, 2, 3) frames the same cube as its four points
+    V.set_equal(ax, [[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]], [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]]], margin=0.0)
+    np.testing.assert_allclose([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()], [[0, 2], [-1, 1], [-0.5, 1.5]])
 
 
 def test_draw_frame_axes_point_along_rotation_columns():
