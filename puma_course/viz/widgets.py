@@ -43,6 +43,11 @@ class SliderList(list[Any]):
 
     ``radians()`` returns the current joint vector in code units: degrees
     converted to radians, lengths unchanged.
+
+    >>> s = joint_sliders(["θ1", "d2"], [-np.pi, 0.0], [np.pi, 2.0], degrees=[True, False])
+    >>> s.set_radians([np.pi / 2, 1.5])
+    >>> [x.value for x in s], s.radians().round(6).tolist()
+    ([90.0, 1.5], [1.570796, 1.5])
     """
 
     def __init__(self, sliders: Sequence[widgets.FloatSlider], degrees: Sequence[bool]) -> None:
@@ -50,12 +55,21 @@ class SliderList(list[Any]):
         self.degrees = tuple(bool(x) for x in degrees)
 
     def radians(self) -> np.ndarray:
-        """The slider values as a joint vector in radians (lengths unchanged)."""
+        """The slider values as a joint vector in radians (lengths unchanged).
+
+        >>> joint_sliders(["θ"], -np.pi, np.pi, values=np.pi).radians().round(6).tolist()
+        [3.141593]
+        """
         v = np.array([s.value for s in self], dtype=float)
         return np.where(self.degrees, np.radians(v), v)
 
     def set_radians(self, q: Any) -> None:
-        """Move the sliders to the joint vector ``q`` (radians / lengths)."""
+        """Move the sliders to the joint vector ``q`` (radians / lengths).
+
+        >>> s = joint_sliders(["θ"], -np.pi, np.pi)
+        >>> s.set_radians([-np.pi / 4]); s[0].value
+        -45.0
+        """
         q = as_array(q, "q", (len(self),), what=f"a joint vector of shape ({len(self)},)")
         for s, deg, v in zip(self, self.degrees, q, strict=True):
             s.value = float(np.degrees(v)) if deg else float(v)
@@ -237,7 +251,13 @@ class Panel(widgets.VBox):
         plt.close(fig)
 
     def set_radians(self, q: Any) -> None:
-        """Move all sliders to ``q`` (radians / lengths); the drawing follows."""
+        """Move all sliders to ``q`` (radians / lengths); the drawing follows.
+
+        >>> from puma_course import MK3
+        >>> panel = robot_panel(MK3(), readout=None)
+        >>> panel.set_radians(MK3().q("qr")); np.degrees(panel.last_q).round(6).tolist()
+        [0.0, 90.0, -90.0, 0.0, 0.0]
+        """
         self.sliders.set_radians(q)
 
 
@@ -355,17 +375,8 @@ def dh_link_panel(
     )
 
     def steps(q: np.ndarray) -> np.ndarray:
-        al, a, th, d = q
-        I = np.eye(4)
-        return np.stack(
-            [
-                I,
-                mdh(al, 0.0, 0.0, 0.0),
-                mdh(al, a, 0.0, 0.0),
-                mdh(al, a, th, 0.0),
-                mdh(al, a, th, d),
-            ]
-        )
+        """{i-1} (identity), then Rot(X, α), Trans(X, a), Rot(Z, θ), Trans(Z, d) applied one more at a time."""
+        return mdh(*(np.tri(5, 4, -1) * q).T)  # row k keeps the first k parameters: (5, 4, 4)
 
     span = max(abs(lo), abs(hi))
     L = 0.35 * span

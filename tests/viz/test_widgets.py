@@ -160,6 +160,13 @@ def test_dh_link_panel_matrix_matches_hand_worked_cases():
     np.testing.assert_allclose(T[:3, 2], [0.0, -1.0, 0.0], atol=1e-12)
     assert "^(i-1)T_i" in panel.last_readout
     np.testing.assert_allclose(panel.last_frames[0], np.eye(4))
+    # the path drawn through the four elementary steps: Rot(X, α) stays at the origin, Trans(X, a) moves
+    # to (a, 0, 0), Rot(Z, θ) stays, Trans(Z, d) moves d along Z_i = -Y_{i-1}
+    path = _xyz(panel.last_axes.lines[0])
+    np.testing.assert_allclose(path, [[0, 0, 0], [0, 0, 0], [1, 0, 0], [1, 0, 0], [1, -0.5, 0]], atol=1e-12)
+    # after Rot(X, 90°) the intermediate frame's z axis is -y0 (first faint triad, its blue line)
+    z1 = _xyz(panel.last_axes.lines[3])
+    np.testing.assert_allclose((z1[1] - z1[0]) / np.linalg.norm(z1[1] - z1[0]), [0.0, -1.0, 0.0], atol=1e-12)
 
 
 def test_kernel_route_uses_interactive_output(monkeypatch):
