@@ -115,10 +115,10 @@ def draw_robot(
 
     ``triads`` picks the frames whose triads are drawn: ``"last"`` (the end effector, default),
     ``"all"``, ``"none"`` or a list of indices into ``robot.frames(q)``; ``labels`` has one text
-    per frame (default ``{0}`` on the base and ``{m-1}`` on the last frame); ``axes`` adds each
-    frame's z axis (its joint axis) dashed. Use a low ``alpha`` for ghost arms and ``label`` for
-    a legend (given to the first arm's links only). ``length`` (triads) defaults to 8 % of the
-    total link length. Returns the artists, per arm: the links line first, then axes and triads.
+    per frame, e.g. ``["{0}", "", ..., "{6}"]`` (default: no texts); ``axes`` adds each frame's
+    z axis (its joint axis) dashed. Use a low ``alpha`` for ghost arms and ``label`` for a legend
+    (given to the first arm's links only). ``length`` (triads) defaults to 8 % of the total link
+    length. Returns the artists, per arm: the links line first, then axes and triads.
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
@@ -126,8 +126,8 @@ def draw_robot(
     >>> arm = Puma560()
     >>> fig, ax = new_axes()
     >>> arts = draw_robot(ax, arm, arm.q("qn"), label="qn")
-    >>> len(arts), arts[0].get_label()  # the links, the hand triad's 3 lines and its label {6}
-    (5, 'qn')
+    >>> len(arts), arts[0].get_label()  # the links and the hand triad's 3 lines
+    (4, 'qn')
     >>> bool(np.allclose(np.transpose(arts[0].get_data_3d()), arm.points(arm.q("qn"))))
     True
     >>> plt.close(fig)
@@ -141,7 +141,7 @@ def draw_robot(
     m = F.shape[-3]
     idx = _triad_indices(triads, m)
     if labels is None:
-        labels = ["{0}" if i == 0 else f"{{{m - 1}}}" if i == m - 1 else "" for i in range(m)]
+        labels = [""] * m
     elif len(labels) != m:
         raise ValueError(f"labels: expected {m} texts (one per frame of {robot.name}), got {len(labels)}")
     artists: list[Any] = []

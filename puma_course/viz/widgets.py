@@ -310,8 +310,9 @@ def robot_panel(
     ``robot.fk(q)``), ``None`` or a callable ``readout(q)`` / ``readout(q, frames)`` returning
     text. ``limits`` is ``(low, high)`` for all axes or a (3, 2) array; by default a cube
     framing the arm over many configurations, fixed once for the panel. Other keywords go to
-    ``draw_robot`` (here ``triads="all"``, ``axes=True`` and a triad length of 8 % of the view
-    unless given: ``labels``, ``color``, ...). ``title`` defaults to the name and units.
+    ``draw_robot`` (here ``triads="all"``, ``axes=True``, ``labels`` {0} on the base and {m-1}
+    on the last frame, a triad length of 8 % of the view, unless given; ``color``, ...). ``title``
+    defaults to the name and units.
 
     >>> from puma_course import MK3
     >>> panel = robot_panel(MK3())
@@ -326,7 +327,13 @@ def robot_panel(
     sliders = joint_sliders(robot.joint_symbols, robot.qlim[:, 0], robot.qlim[:, 1], _start(robot, q),
                             degrees=robot.revolute.tolist(), step=step, units=robot.units)  # fmt: skip
     lim = _limits(limits) if limits is not None else _auto_limits(robot, sliders)
-    opts: dict[str, Any] = {"triads": "all", "axes": True, "length": 0.08 * float(np.max(lim[:, 1] - lim[:, 0]))}
+    m = robot.frames(sliders.radians()).shape[0]
+    opts: dict[str, Any] = {
+        "triads": "all",
+        "axes": True,
+        "labels": [f"{{{i}}}" if i in (0, m - 1) else "" for i in range(m)],
+        "length": 0.08 * float(np.max(lim[:, 1] - lim[:, 0])),
+    }
     opts.update(draw_kw)
 
     def pose(q: np.ndarray) -> str:

@@ -74,12 +74,14 @@ def test_draw_robot_artists_and_bad_input():
     fig, ax = new_axes()
     q = ARM.q("qn")
     arts = A.draw_robot(ax, ARM, q, color="tab:blue", alpha=0.3, label="ghost")
-    assert len(arts) == 5  # links, the hand triad's 3 lines and its label {6}
+    assert len(arts) == 4  # links and the hand triad's 3 lines (no texts unless asked)
     links = arts[0]
     assert links.get_color() == "tab:blue" and links.get_alpha() == 0.3 and links.get_label() == "ghost"
     np.testing.assert_array_equal(_xyz(links), ARM.points(q))  # exactly the robot's polyline: offset d3 visible
     np.testing.assert_allclose(_xyz(links)[-1], ARM.fk(q)[:3, 3])  # ... ending at the wrist centre
-    assert arts[4].get_text() == "{6}"
+    arts = A.draw_robot(ax, ARM, q, triads=[0, -1], labels=["{0}", "", "", "", "", "", "{6}"])
+    assert [a.get_text() for a in arts if hasattr(a, "get_text")] == ["{0}", "{6}"]
+    assert len(arts) == 1 + 2 * 4
     assert len(A.draw_robot(ax, ARM, q, triads="none")) == 1
     fig.canvas.draw()
     with pytest.raises(ValueError, match="q"):
@@ -101,7 +103,7 @@ def test_draw_robot_draws_the_robot_points_and_frames(robot):
     fig, ax = new_axes()
     q = random_q(robot.n, seed=3)
     q = np.clip(q, robot.qlim[:, 0], robot.qlim[:, 1])
-    arts = A.draw_robot(ax, robot, q, triads="all", length=0.25, labels=[""] * robot.frames(q).shape[0])
+    arts = A.draw_robot(ax, robot, q, triads="all", length=0.25)
     np.testing.assert_array_equal(_xyz(arts[0]), robot.points(q))
     F = robot.frames(q)
     lines = arts[1:]

@@ -85,6 +85,7 @@ def test_robot_panel_passes_radians_to_the_robot():
     # what is drawn is the robot's polyline (the offset d3 visible), not the frame origins
     np.testing.assert_allclose(_xyz(panel.last_axes.lines[0]), Puma560().points(q), atol=1e-12)
     assert panel.last_axes.get_title() == "PUMA-560 (m)"
+    assert [t.get_text() for t in panel.last_axes.texts] == ["{0}", "{6}"]  # the base and the hand are named
     assert plt.get_fignums() == []  # every redraw closes its figure
 
 
