@@ -5,6 +5,9 @@ Import as ``from tests.support import ROOT, random_q``.
 
 from __future__ import annotations
 
+import base64
+import re
+import struct
 from pathlib import Path
 
 import numpy as np
@@ -17,3 +20,14 @@ def random_q(n: int, seed: int, N: int | None = None, low: float = -np.pi, high:
     """Joint angles drawn uniformly from [low, high): shape (n,) or (N, n), reproducible by ``seed``."""
     rng = np.random.default_rng(seed)
     return rng.uniform(low, high, n if N is None else (N, n))
+
+
+def jshtml_png_sizes(html: str) -> list[tuple[int, int]]:
+    """(width, height) in pixels of every PNG frame embedded in an animation's ``to_jshtml()``, read from
+    each PNG header (IHDR), so a test can check the figure's dpi was kept."""
+    frames = re.findall(r"data:image/png;base64,((?:[A-Za-z0-9+/=]|\\\n)+)", html)
+    sizes = []
+    for b64 in frames:
+        png = base64.b64decode(b64.replace("\\\n", ""))
+        sizes.append(struct.unpack(">II", png[16:24]))
+    return sizes

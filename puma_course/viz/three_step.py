@@ -1,8 +1,9 @@
 """Pictures and the animation of the three-step wrist-frame procedure (lecture 08).
 
-Companion of :mod:`puma_course.three_step`: nothing here computes kinematics,
-it draws (with :mod:`puma_course.plotting`'s helpers) a :class:`~puma_course.three_step.ThreeStepSolution` and its
-:func:`~puma_course.three_step.motion`.
+Companion of :mod:`puma_course.kinematics.three_step`: nothing here computes kinematics, it draws
+the :class:`~puma_course.kinematics.three_step.ThreeStepSolution` that
+``ThreeStepArm(l1, l2).three_step(w, target)`` returns, sampled by
+:func:`~puma_course.kinematics.three_step.motion`.
 The arm is drawn as grey links s-e-w, the moving wrist frame as an RGB triad
 (f1 red, f2 green, f3 blue), the target frame as a thick red triad and the
 wrist centre's path in green, as in the source's Figure 3.
@@ -15,13 +16,15 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import FuncAnimation
+from matplotlib.figure import Figure
 
-from ._validate import as_array
-from .plotting import AXIS_COLORS, draw_points, set_equal
-from .three_step import Motion, ThreeStepSolution, motion
+from .._validate import as_array
+from ..kinematics.three_step import Motion, ThreeStepSolution, motion
+from .frames import AXIS_COLORS, draw_points, set_equal
 
-__all__ = ["draw_triad", "draw_state", "plot_steps", "animate"]
+__all__ = ["PHASE_TITLES", "draw_triad", "draw_state", "plot_steps", "animate"]
 
+#: The title of each phase of :func:`~puma_course.kinematics.three_step.motion` (0 is the start).
 PHASE_TITLES = (
     "start",
     "step 1: base turns by δ0 about e_z",
@@ -39,7 +42,7 @@ def draw_triad(
     lw: float = 2.0,
     alpha: float = 1.0,
     label: str | None = None,
-) -> list:
+) -> list[Any]:
     """Draw the columns of the rotation ``R`` as arrows from ``origin``; one colour or x/y/z = red/green/blue.
 
     Returns the artists: three lines and their labels f1, f2, f3 (plus ``label``).
@@ -55,7 +58,7 @@ def draw_triad(
     """
     o = as_array(origin, "origin", (3,))
     R = as_array(R, "R", (3, 3))
-    artists = []
+    artists: list[Any] = []
     for k in range(3):
         tip = o + length * R[:, k]
         c = color or AXIS_COLORS[k]
@@ -66,7 +69,7 @@ def draw_triad(
     return artists
 
 
-def draw_state(ax: Any, points: Any, frame: Any, length: float = 0.5, alpha: float = 1.0) -> list:
+def draw_state(ax: Any, points: Any, frame: Any, length: float = 0.5, alpha: float = 1.0) -> list[Any]:
     """Draw one arm configuration: links s-e-w (3, 3) and the wrist frame at w.
 
     >>> import matplotlib
@@ -84,9 +87,9 @@ def draw_state(ax: Any, points: Any, frame: Any, length: float = 0.5, alpha: flo
     return artists
 
 
-def _scene(ax: Any, sol: ThreeStepSolution, m: Motion, k: int, length: float) -> list:
+def _scene(ax: Any, sol: ThreeStepSolution, m: Motion, k: int, length: float) -> list[Any]:
     """Everything but the arm at sample ``k``: floor cross, target, start ghost, path so far."""
-    arts = []
+    arts: list[Any] = []
     arts += ax.plot([0, 0], [0, 0], [-0.2, 0.2], color="k", lw=1)  # the base axis
     arts += draw_triad(ax, sol.w, sol.target, length=length, color="red", lw=4.0, alpha=0.45)
     arts += ax.plot(*m.points[0].T, color="0.6", lw=1.5, ls=":")  # the straight-arm start
@@ -105,13 +108,13 @@ def plot_steps(
     length: float = 0.5,
     figsize: tuple[float, float] = (9.0, 8.0),
     title: str | None = None,
-):
+) -> Figure:
     """Four panels: the start and the arm with its wrist frame after steps 1, 2 and 3; returns ``fig``.
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
-    >>> from puma_course.three_step import solve
-    >>> fig = plot_steps(solve([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]), 1.5, 1.0))
+    >>> from puma_course import ThreeStepArm
+    >>> fig = plot_steps(ThreeStepArm(1.5, 1.0).three_step([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0])))
     >>> [ax.get_title() for ax in fig.axes][:2]
     ['start', 'step 1: base turns by δ0 about e_z']
     >>> plt.close(fig)
@@ -146,15 +149,16 @@ def animate(
 ) -> FuncAnimation:
     """The source's Figure 3: the arm moves through the three steps to the red target frame.
 
-    3 * steps_per_phase + 1 frames (see :func:`~puma_course.three_step.motion`).
+    3 * steps_per_phase + 1 frames (see :func:`~puma_course.kinematics.three_step.motion`).
     Show it with ``HTML(anim.to_jshtml())``: it plays in JupyterLab with
     nothing to install. The figure is created with its ``dpi`` (set at creation
     so that closing the figure does not reset it).
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
-    >>> from puma_course.three_step import solve
-    >>> anim = animate(solve([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]), 1.5, 1.0), steps_per_phase=1)
+    >>> from puma_course import ThreeStepArm
+    >>> sol = ThreeStepArm(1.5, 1.0).three_step([0.5, 0.5, 2.0], np.diag([-1.0, 1.0, -1.0]))
+    >>> anim = animate(sol, steps_per_phase=1)
     >>> type(anim).__name__, len(list(anim.new_frame_seq()))  # 3 * 1 + 1 frames
     ('FuncAnimation', 4)
     >>> anim.to_jshtml().count("data:image/png")  # one embedded PNG per frame
@@ -165,7 +169,7 @@ def animate(
     fig = plt.figure(figsize=figsize, dpi=dpi)
     ax = fig.add_subplot(projection="3d")
 
-    def draw(k: int) -> list:
+    def draw(k: int) -> list[Any]:
         ax.cla()
         ax.view_init(elev=20, azim=-50)
         arts = _scene(ax, sol, m, k, length)

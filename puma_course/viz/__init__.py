@@ -1,0 +1,52 @@
+"""Viz layer: drawing the course's arms and frames with matplotlib, animations and slider panels.
+
+* :mod:`~puma_course.viz.frames`: a 3-D axes with equal scaling, frame triads, polylines;
+* :mod:`~puma_course.viz.arms`: any robot through the robot API (:func:`draw_robot`: links
+  ``robot.points(q)``, triads ``robot.frames(q)``), any chain from its frames
+  (:func:`draw_chain`), pictures and jshtml animations;
+* :mod:`~puma_course.viz.three_step`: the pictures and the animation of the three-step procedure;
+* :mod:`~puma_course.viz.widgets`: slider panels (ipywidgets + the inline backend).
+
+It loads matplotlib and ipywidgets; ``import puma_course`` does not import it.
+
+>>> import matplotlib
+>>> matplotlib.use("Agg")
+>>> from puma_course import Puma560
+>>> from puma_course.viz import plot_robot
+>>> fig, ax = plot_robot(Puma560(), Puma560().q("qr"))
+>>> ax.get_title()
+'PUMA-560'
+>>> import matplotlib.pyplot as plt; plt.close(fig)
+"""
+
+from __future__ import annotations
+
+from . import arms, frames, three_step, widgets
+from .arms import animate_frames, animate_robot, draw_chain, draw_robot, plot_chain, plot_robot
+from .frames import AXIS_COLORS, draw_frame, draw_frames, draw_points, new_axes, set_equal
+from .widgets import Panel, SliderList, dh_link_panel, joint_sliders, pose_readout, robot_panel
+
+__all__ = [
+    "AXIS_COLORS",
+    "Panel",
+    "SliderList",
+    "animate_frames",
+    "animate_robot",
+    "arms",
+    "dh_link_panel",
+    "draw_chain",
+    "draw_frame",
+    "draw_frames",
+    "draw_points",
+    "draw_robot",
+    "frames",
+    "joint_sliders",
+    "new_axes",
+    "plot_chain",
+    "plot_robot",
+    "pose_readout",
+    "robot_panel",
+    "set_equal",
+    "three_step",
+    "widgets",
+]

@@ -1,0 +1,150 @@
+"""Axes and coordinate frames: a 3-D axes with equal scaling, triads, polylines (matplotlib).
+
+A frame is a 4x4 transform mapping its coordinates into the axes' (world) coordinates; its
+triad is drawn as the columns of its rotation from its origin, x red, y green, z blue
+(:data:`AXIS_COLORS`). Nothing here computes kinematics.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.figure import Figure
+
+from .._validate import as_array
+
+__all__ = ["AXIS_COLORS", "new_axes", "set_equal", "draw_frame", "draw_frames", "draw_points"]
+
+#: Colours of a triad's x, y and z axes.
+AXIS_COLORS = ("tab:red", "tab:green", "tab:blue")
+
+
+def new_axes(
+    figsize: tuple[float, float] = (6.0, 5.0),
+    title: str | None = None,
+    elev: float = 25,
+    azim: float = -60,
+    dpi: float | None = None,
+) -> tuple[Figure, Any]:
+    """A new figure with one 3-D axes; returns ``(fig, ax)``.
+
+    Angles ``elev``/``azim`` in degrees (matplotlib's view); axes labelled x, y, z. Give ``dpi``
+    here rather than later: ``plt.close`` resets a later ``set_dpi`` (matplotlib 3.11).
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig, ax = new_axes(title="demo")
+    >>> ax.name, ax.get_title(), ax.get_xlabel()
+    ('3d', 'demo', 'x')
+    >>> plt.close(fig)
+    """
+    fig = plt.figure(figsize=figsize, dpi=dpi)
+    ax = fig.add_subplot(projection="3d")
+    ax.view_init(elev=elev, azim=azim)
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.set_zlabel("z")
+    if title:
+        ax.set_title(title)
+    return fig, ax
+
+
+def set_equal(ax: Any, points: Any | None = None, margin: float = 0.1) -> None:
+    """Equal scaling on all three axes, framing ``points`` (..., 3) or what is drawn.
+
+    The cube's half side is half the largest extent times ``1 + margin``. ``points`` may be
+    any stack of points, e.g. ``robot.points(Q)`` for a batch Q (N, n).
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig, ax = new_axes()
+    >>> set_equal(ax, [[0.0, 0.0, 0.0], [2.0, 1.0, 0.0]], margin=0.0)
+    >>> [float(v) for v in ax.get_xlim3d()], [float(v) for v in ax.get_ylim3d()]
+    ([0.0, 2.0], [-0.5, 1.5])
+    >>> plt.close(fig)
+    """
+    if points is None:
+        lims = np.array([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()])
+    else:
+        P = as_array(points, "points", what="points of shape (..., 3)")
+        if P.ndim == 0 or P.shape[-1] != 3 or P.size == 0:
+            raise ValueError(f"points: expected points of shape (..., 3), got an array of shape {P.shape}")
+        P = P.reshape(-1, 3)
+        lims = np.stack([P.min(axis=0), P.max(axis=0)], axis=1)
+    centre = lims.mean(axis=1)
+    half = max(float(np.max(lims[:, 1] - lims[:, 0])) / 2.0, 1e-9) * (1.0 + margin)
+    ax.set_xlim3d(centre[0] - half, centre[0] + half)
+    ax.set_ylim3d(centre[1] - half, centre[1] + half)
+    ax.set_zlim3d(centre[2] - half, centre[2] + half)
+    ax.set_box_aspect((1, 1, 1))
+
+
+def draw_frame(
+    ax: Any, T: Any, label: str | None = None, length: float = 0.1, alpha: float = 1.0, lw: float = 2.0
+) -> list[Any]:
+    """Draw one frame's triad (x red, y green, z blue) with an optional label ``{i}``.
+
+    ``T`` maps the frame's coordinates into the axes' (world) coordinates: the triad's lines
+    are the columns of its rotation, from its origin. Returns three lines (and the label).
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig, ax = new_axes()
+    >>> arts = draw_frame(ax, np.eye(4), label="{0}", length=1.0)
+    >>> len(arts), arts[0].get_color(), [float(v) for v in arts[0].get_data_3d()[0]]
+    (4, 'tab:red', [0.0, 1.0])
+    >>> plt.close(fig)
+    """
+    T = as_array(T, "T", (4, 4))
+    o = T[:3, 3]
+    artists: list[Any] = []
+    for k in range(3):
+        e = o + length * T[:3, k]
+        artists += ax.plot([o[0], e[0]], [o[1], e[1]], [o[2], e[2]], color=AXIS_COLORS[k], alpha=alpha, lw=lw)
+    if label:
+        artists.append(ax.text(*(o + 0.25 * length * (T[:3, 0] + T[:3, 1])), label, fontsize=9, alpha=alpha))
+    return artists
+
+
+def draw_frames(ax: Any, frames: Any, labels: Sequence[str] | None = None, length: float = 0.1, **kw: Any) -> list[Any]:
+    """Draw a triad for every frame in ``frames`` (k, 4, 4); labels default to {0}..{k-1}.
+
+    Other keywords (``alpha``, ``lw``) go to :func:`draw_frame`.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig, ax = new_axes()
+    >>> arts = draw_frames(ax, np.stack([np.eye(4)] * 2))
+    >>> len(arts), [a.get_text() for a in arts if hasattr(a, "get_text")]
+    (8, ['{0}', '{1}'])
+    >>> plt.close(fig)
+    """
+    F = as_array(frames, "frames", (4, 4), batch=True).reshape(-1, 4, 4)
+    if labels is None:
+        labels = [f"{{{i}}}" for i in range(len(F))]
+    artists: list[Any] = []
+    for T, lab in zip(F, labels, strict=False):
+        artists += draw_frame(ax, T, lab, length=length, **kw)
+    return artists
+
+
+def draw_points(
+    ax: Any, points: Any, color: str = "0.3", lw: float = 4.0, alpha: float = 1.0, marker: str = "o", **kw: Any
+) -> list[Any]:
+    """Draw a polyline through points (k, 3), with a marker at each: the links of an arm.
+
+    Other keywords (``label``, ``ls``, ...) go to ``ax.plot``. Returns the one line.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig, ax = new_axes()
+    >>> (line,) = draw_points(ax, [[0, 0, 0], [1, 0, 0], [1, 1, 0]], color="k")
+    >>> [float(v) for v in line.get_data_3d()[1]]
+    [0.0, 0.0, 1.0]
+    >>> plt.close(fig)
+    """
+    P = as_array(points, "points", (3,), batch=True).reshape(-1, 3)
+    return list(ax.plot(P[:, 0], P[:, 1], P[:, 2], color=color, lw=lw, alpha=alpha, marker=marker, ms=lw + 2, **kw))
