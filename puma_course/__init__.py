@@ -2,8 +2,9 @@
 
 Layers (each folder imports only the ones above it in this list):
 
-* base: :mod:`~puma_course.transforms` (rotations, K(a, θ), transforms, Euler angles, the one
-  ``wrap_angle``), input checks, :mod:`~puma_course.course` (finding the course folder);
+* base: :mod:`~puma_course.transforms` (rotations, K(a, θ), transforms, the one ``wrap_angle``),
+  :mod:`~puma_course.euler` (ZYZ and roll-pitch-yaw angles), input checks,
+  :mod:`~puma_course.course` (finding the course folder);
 * :mod:`~puma_course.kinematics`: every arm as a robot with the same API (``fk``, ``frames``,
   ``ik``, ``ik_batch``) and one inverse-kinematics result type;
 * :mod:`~puma_course.symbolic` (sympy), :mod:`~puma_course.viz` (figures, widgets),
@@ -21,8 +22,9 @@ sub-packages that need them.
 
 from __future__ import annotations
 
-from . import kinematics, transforms
+from . import euler, kinematics, transforms
 from ._version import __version__
+from .euler import rotation_from_rpy, rotation_from_zyz, rpy_from_rotation, zyz_from_rotation
 from .kinematics import (
     MK3,
     DHChain,
@@ -43,14 +45,10 @@ from .transforms import (
     homogeneous,
     inverse_transform,
     rodrigues,
-    rotation_from_rpy,
-    rotation_from_zyz,
     rotx,
     roty,
     rotz,
-    rpy_from_rotation,
     wrap_angle,
-    zyz_from_rotation,
 )
 
 __all__ = [
@@ -67,6 +65,7 @@ __all__ = [
     "ThreeStepArm",
     "__version__",
     "axis_angle",
+    "euler",
     "homogeneous",
     "inverse_transform",
     "joint_distance",

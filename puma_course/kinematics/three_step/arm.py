@@ -20,7 +20,8 @@ from typing import Any
 import numpy as np
 
 from ..._validate import as_array, as_length
-from ...transforms import EULER_SINGULAR_TOL, wrap_angle, zyz_from_rotation
+from ...euler import EULER_SINGULAR_TOL, zyz_from_rotation
+from ...transforms import wrap_angle
 from .._ops import ARRAY, SCALAR
 from ..dh import frame_array, split_q
 from ..ik import IKBatch, IKSolutions

@@ -29,7 +29,8 @@ from typing import Any
 import numpy as np
 
 from ..._validate import as_array, as_choice, as_count, as_rotation
-from ...transforms import axis_angle, rodrigues, wrap_angle, zyz_from_rotation
+from ...euler import zyz_from_rotation
+from ...transforms import axis_angle, rodrigues, wrap_angle
 from .._ops import ARRAY, SCALAR
 from ..ik import KinematicsWarning
 from .geometry import arm_axis, base_angle, points_eq1, triangle
