@@ -268,7 +268,7 @@ def trot(axis: Any, angle: Any, point: Any = (0.0, 0.0, 0.0)) -> np.ndarray:
     array([2., 0., 0., 1.])
     """
     R = rodrigues(axis, angle)
-    c = as_array(point, "point", (3,), batch=True)
+    c = as_array(point, "point", (3,), batch=True, max_magnitude=MAX_MAGNITUDE)
     p = c - np.einsum("...ij,...j->...i", R, c)
     return homogeneous(R, p)
 

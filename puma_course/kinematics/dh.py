@@ -24,7 +24,7 @@ from .._validate import MAX_MAGNITUDE, as_array, as_choice, as_length, as_transf
 from .ik import IKBatch, IKSolutions
 from .robot import Robot
 
-__all__ = ["mdh", "Link", "DHChain", "exact_cos_sin"]
+__all__ = ["mdh", "Link", "DHChain"]
 
 
 def exact_cos_sin(angle: float) -> tuple[float, float]:

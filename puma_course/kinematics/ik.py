@@ -32,8 +32,6 @@ __all__ = [
     "IKSolutions",
     "IKBatch",
     "joint_distance",
-    "nearest_index",
-    "dedupe_mask",
     "keys_from_bits",
 ]
 

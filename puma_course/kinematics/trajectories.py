@@ -52,7 +52,7 @@ def line_path(T0: Any, T1: Any, n: int) -> np.ndarray:
     if shape == (4, 4):
         p1 = as_transform(T1, "T1")[:3, 3]
     else:
-        p1 = as_array(T1, "T1", (3,), what="a pose (4, 4) or a point (3,)")
+        p1 = as_array(T1, "T1", (3,), what="a pose (4, 4) or a point (3,)", max_magnitude=MAX_MAGNITUDE)
     n = as_count(n, "n", minimum=2)
     s = np.linspace(0.0, 1.0, n)[:, None]
     return _poses(T0[:3, :3], (1.0 - s) * T0[:3, 3] + s * p1)

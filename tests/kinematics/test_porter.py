@@ -464,3 +464,19 @@ def test_q2_zero_is_snapped_and_the_pairs_of_planes_agree():
     q2 = b.q[0, :, 2]
     assert (q2 == 0.0).sum() == 2  # exactly 0 by design: p3 = p2 is reached from both planes
     assert ((b.flags[0] & 4) > 0).sum() == 2
+
+
+@pytest.mark.parametrize("q2", [1e3, 1e8, 1e12, 1e13, 1e40, 1e100, 1e149])
+def test_far_poses_keep_their_relative_accuracy(q2):
+    """Tolerances scale with a finite length and no square overflows: far poses are solved to the last
+    digits by both methods (before: |p| >= 1e154 gave 4 wrong solutions, and Ver.2 called a pose with
+    q2 >= 1e12 l1 unreachable, its on-axis test scaling as L² instead of L)."""
+    q = np.array([0.3, 0.2, q2, 0.4, 0.5, 0.6])
+    T = ARM.fk(q)
+    for method, count in (("explicit", 4), ("geometric", 2)):
+        sol = ARM.ik(T, method=method)
+        assert sol.success and len(sol) == count and not sol.singular
+        err = np.abs(ARM.fk(np.asarray(sol)) - T)
+        assert err[:, :3, 3].max() / q2 < 1e-14 and err[:, :3, :3].max() < 1e-14
+    with pytest.raises(ValueError, match="at most 1e\\+150"):
+        ARM.ik(tf.homogeneous(np.eye(3), [1e154, 0.0, 0.0]))  # its square would overflow: refused

@@ -154,6 +154,9 @@ class Porter(Robot):
         if any(keys):  # a guard at singular poses: keep rows that really reach T, drop coinciding representatives
             err = np.abs(self.fk(Q) - Tm[0]).max(axis=(-2, -1)) / max(1.0, float(np.abs(Tm[0, :3, 3]).max()))
             keep = np.flatnonzero(err < 1e-8)
+            if len(keep) == 0:  # never silently "success" with nothing: say the solver failed
+                why = f"the {method} solver found no configuration reaching T (pose error {err.min():.3g}): please report"
+                return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, why, self.name, method, REVOLUTE)
             keep = keep[dedupe_mask(Q[keep], REVOLUTE)]
             Q, keys, labels = Q[keep], [keys[i] for i in keep], [labels[i] for i in keep]
         present = {k for f in keys for k in f}

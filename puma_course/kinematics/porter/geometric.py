@@ -88,8 +88,8 @@ def construct(
     p2: Vec = (0.0, 0.0, l1)
     p4 = _axpy(-l4, x5, p5)
     n = _cross(_sub(p2, p0), _sub(p4, p0))
-    nn = _norm(n)
-    if nn <= tol * scale * scale:  # p4 on the z0 axis: the plane P is free
+    nn = _norm(n)  # = l1 times the distance of p4 from the z0 axis
+    if nn <= tol * scale * l1:  # p4 on the z0 axis: the plane P is free
         keys.append("p4_on_z0_axis")
         if near is not None:
             a1 = float(near[0])
@@ -99,6 +99,9 @@ def construct(
     else:
         a1 = math.atan2(p4[1], p4[0])
         n = (n[0] / nn, n[1] / nn, n[2] / nn)
+    # each candidate elbow point is p3 = p4 + l3 u with u a unit vector kept as such: p3 - p4 is
+    # then exactly l3 u, never the difference of two large coordinates (which loses the digits of
+    # α3 and α5 when q2 is large)
     m = _cross(n, x5)
     mn = _norm(m)
     if mn <= tol:  # n ∥ x5: planes parallel, p3 on a circle about p4; Porter: minimal q2
@@ -107,32 +110,32 @@ def construct(
         dn = _norm(d)
         if near is not None:  # the member of the family nearest to ``near``
             a23 = float(nearest_parallel(T[:3, :3], T[:3, 3], L, a1, near, tol)[[1, 3]].sum())
-            z: Vec = (math.sin(a23) * math.cos(a1), math.sin(a23) * math.sin(a1), math.cos(a23))
-            P3 = [_axpy(l3, z, p4)]
+            U: list[Vec] = [(math.sin(a23) * math.cos(a1), math.sin(a23) * math.sin(a1), math.cos(a23))]
         elif dn > tol * scale:
-            P3 = [_axpy(-l3 / dn, d, p4)]
+            U = [(-d[0] / dn, -d[1] / dn, -d[2] / dn)]
         else:  # p4 = p2: every p3 on the circle gives q2 = l3; take z4 = z0 (simplest)
-            P3 = [_axpy(l3, (0.0, 0.0, 1.0), p4)]
+            U = [(0.0, 0.0, 1.0)]
     else:
         z4: Vec = (m[0] / mn, m[1] / mn, m[2] / mn)
-        P3 = [_axpy(l3, z4, p4), _axpy(-l3, z4, p4)]
+        U = [z4, (-z4[0], -z4[1], -z4[2])]
     out = []
-    for p3 in P3:
-        zz = _sub(p3, p4)
-        z4 = (zz[0] / l3, zz[1] / l3, zz[2] / l3)
+    for u in U:
+        p3 = _axpy(l3, u, p4)
+        z4 = u  # z4 = (p3 - p4) / l3
         q2 = _norm(_sub(p3, p2))
         a4 = _angle(n, x5, z4) + math.pi / 2
         if "planes_parallel" in keys:
             a4 = math.copysign(math.pi / 2, math.sin(a4))  # snapped: c4 = 0 exactly
-        a5 = _angle(_sub(p3, p4), z5, x5)
+        a5 = _angle(u, z5, x5)
         row_keys = list(keys)
+        down = (-u[0], -u[1], -u[2])  # p4 - p3, along -z4
         if q2 <= tol * scale:  # p3 = p2: α2 free, only α2 + α3 = angle(p2 - p0, p4 - p3) - π is fixed
             row_keys.append("q2_zero")
             q2, a2 = 0.0, 0.0
-            a3 = _angle(_sub(p2, p0), _sub(p4, p3), n) - math.pi - a2
+            a3 = _angle(_sub(p2, p0), down, n) - math.pi - a2
         else:
             a2 = _angle(_sub(p2, p0), _sub(p3, p2), n) - math.pi / 2
-            a3 = _angle(_sub(p3, p2), _sub(p4, p3), n) - math.pi / 2
+            a3 = _angle(_sub(p3, p2), down, n) - math.pi / 2
         q = np.array([a1, a2, q2, a3, a4, a5])
         if near is not None and q2 == 0.0:
             q = split_q2zero(q, near)

@@ -103,6 +103,9 @@ class ThreeStepArm(Robot):
         """
         what = "an angle in radians (a number or an array of shape (N,))"
         t = [as_array(v, n, what=what) for v, n in ((theta0, "theta0"), (theta1, "theta1"), (theta2, "theta2"))]
+        for v, n in zip(t, ("theta0", "theta1", "theta2"), strict=True):
+            if v.ndim > 1:
+                raise ValueError(f"{n}: expected {what}, got an array of shape {v.shape}")
         try:
             t = list(np.broadcast_arrays(*t))
         except ValueError:

@@ -26,7 +26,10 @@ def arm_axis(theta0: Any) -> np.ndarray:
     >>> np.round(rodrigues(arm_axis(0.0), np.pi / 2) @ [1, 0, 0], 12) + 0.0
     array([0., 0., 1.])
     """
-    t = as_array(theta0, "theta0", what="an angle in radians (a number or an array of shape (N,))")
+    what = "an angle in radians (a number or an array of shape (N,))"
+    t = as_array(theta0, "theta0", what=what)
+    if t.ndim > 1:
+        raise ValueError(f"theta0: expected {what}, got an array of shape {t.shape}")
     return np.stack([np.sin(t), -np.cos(t), np.zeros_like(t)], axis=-1)
 
 

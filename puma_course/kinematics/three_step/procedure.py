@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._validate import as_array, as_choice, as_count, as_rotation
+from ..._validate import MAX_MAGNITUDE, as_array, as_choice, as_count, as_rotation
 from ...euler import zyz_from_rotation
 from ...transforms import axis_angle, rodrigues, wrap_angle
 from .._ops import ARRAY, SCALAR
@@ -212,7 +212,7 @@ def solve_three_steps(
     so in ``singular``. Unreachable w, a target that is not a rotation or an unknown ``elbow``
     raise ``ValueError``.
     """
-    w = as_array(w, "w", (3,), what="a wrist-centre position of shape (3,)")
+    w = as_array(w, "w", (3,), what="a wrist-centre position of shape (3,)", max_magnitude=MAX_MAGNITUDE)
     F = as_rotation(target, "target")
     elbow = as_choice(elbow, "elbow", ("up", "down"))
     st = as_state(start)
@@ -225,12 +225,13 @@ def solve_three_steps(
     l3 = math.hypot(wx, wy, wz)  # correctly rounded, no BLAS kernel involved
     if l3 > l1 + l2 + tol:
         raise ValueError(
-            f"w: unreachable, |w| = {l3:.6g} exceeds l1 + l2 = {l1 + l2:.6g} (the arm cannot stretch that far)"
+            f"w: expected a wrist centre within reach, got an unreachable one: |w| = {l3:.6g} exceeds "
+            f"l1 + l2 = {l1 + l2:.6g} (the arm cannot stretch that far)"
         )
     if l3 < abs(l1 - l2) - tol:
         raise ValueError(
-            f"w: unreachable, |w| = {l3:.6g} is less than |l1 - l2| = {abs(l1 - l2):.6g} "
-            "(the arm cannot fold that tightly)"
+            f"w: expected a wrist centre within reach, got an unreachable one: |w| = {l3:.6g} is less than "
+            f"|l1 - l2| = {abs(l1 - l2):.6g} (the arm cannot fold that tightly)"
         )
 
     # ---- step 1: base angle (eq. 2, with atan2) --------------------------------------------
