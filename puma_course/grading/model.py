@@ -18,10 +18,38 @@ import numpy as np
 
 from .compare import Comparison, compare_close
 
-__all__ = ["Question", "Exercise", "EXERCISES", "register", "NotebookResult", "score_question", "MAX_NOTES"]
+__all__ = [
+    "Question",
+    "Exercise",
+    "EXERCISES",
+    "register",
+    "NotebookResult",
+    "Verdict",
+    "score_question",
+    "MAX_NOTES",
+]
 
 #: At most this many distinct failure reasons are kept per question (after the "k/n cases pass" line).
 MAX_NOTES = 3
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """How one returned value was judged: ``reason`` is None when it is right, else why not (for the
+    student); ``mistake`` names a recognised common mistake (e.g. ``"transposed"``), when one was
+    diagnosed, so the class summary can count them.
+
+    >>> Verdict(None).passed, Verdict("values differ", "transposed").mistake
+    (True, 'transposed')
+    """
+
+    reason: str | None
+    mistake: str | None = None
+
+    @property
+    def passed(self) -> bool:
+        """True when the value was right."""
+        return self.reason is None
 
 
 @dataclass(frozen=True)
@@ -61,6 +89,19 @@ class Question:
         """Public cases followed by hidden ones drawn from ``rng``."""
         return list(self.public) + list(self.hidden(rng))
 
+    def judge(self, got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
+        """Judge the value ``got`` that the student's function returned for ``args``.
+
+        ``expected`` is ``reference(*args)``, computed in the grader's process. The one place where
+        a returned value is judged: the grader, the self-check and ``puma-course check`` all call it.
+
+        >>> q = Question("q1", "double", 2, "twice x", public=((1.0,),), hidden=lambda rng: [],
+        ...              reference=lambda x: 2 * x)
+        >>> q.judge(2.0, 2.0, (1.0,)).passed, q.judge(3.0, 2.0, (1.0,)).reason[:25]
+        (True, 'values differ from the re')
+        """
+        return Verdict(self.compare(got, expected))
+
 
 @dataclass(frozen=True)
 class Exercise:
@@ -74,6 +115,9 @@ class Exercise:
     name: str
     title: str
     questions: tuple[Question, ...]
+    #: What the student's code may import from the package in this exercise ("module" or "module:name",
+    #: e.g. "puma_course.transforms:rotx"); everything else is absent from the grading worker.
+    allowed: tuple[str, ...] = ()
 
     @property
     def max_score(self) -> float:
@@ -115,6 +159,8 @@ class NotebookResult:
     question_notes: dict[str, list[str]] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
+    #: qid -> the keys of the common mistakes diagnosed in its failing cases (one per case)
+    mistakes: dict[str, list[str]] = field(default_factory=dict)
 
     @classmethod
     def blank(cls, student: str, exercise: Exercise, status: str = "ok", note: str | None = None) -> NotebookResult:

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from .model import EXERCISES, Exercise, NotebookResult, Question, score_question
+from .model import EXERCISES, Exercise, NotebookResult, Question, Verdict, score_question
 from .report import feedback_markdown, safe_name, write_csv
 
 __all__ = ["GradingIntegrityWarning", "make_plan", "grade_notebook", "grade", "MAX_NOTEBOOK_BYTES", "PACKAGE_PARENT"]
@@ -74,12 +74,18 @@ def make_plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
     >>> calls = make_plan(EXERCISES["ex01_rotations"], seed=1)
     >>> calls[0]["qid"], calls[0]["function"], calls[0]["args"], calls[0]["expected"].shape
     ('q1', 'elementary_rotation', ['x', 0.3], (3, 3))
+
+    ``expected`` is whatever the question's reference returns (an array for most questions; a
+    question judged by equivalence may return what its judge needs) and ``call_args`` keeps the
+    original arguments for the judge; neither ever reaches the student's process.
     """
     calls = []
     for q in exercise.questions:
         rng = np.random.default_rng([seed, zlib.crc32(f"{exercise.name}:{q.qid}".encode())])
         for case, args in enumerate(q.cases(rng)):
-            expected = np.asarray(q.reference(*copy.deepcopy(args)), dtype=float)
+            expected = q.reference(*copy.deepcopy(args))
+            if not callable(expected):
+                expected = np.asarray(expected, dtype=float) if not isinstance(expected, dict) else expected
             calls.append(
                 {
                     "qid": q.qid,
@@ -87,6 +93,7 @@ def make_plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
                     "function": q.function,
                     "args": [_jsonable(a) for a in args],
                     "expected": expected,
+                    "call_args": tuple(args),
                 }
             )
     return calls
@@ -212,18 +219,18 @@ def _run_child(
     return events, timed_out, proc.returncode, overflow[0]
 
 
-def _judge(q: Question, event: dict[str, Any] | None, expected: np.ndarray) -> str | None:
-    """None if the child's answer to one call (its event) is right, else the reason for the student."""
+def _judge(q: Question, event: dict[str, Any] | None, expected: Any, args: tuple[Any, ...]) -> Verdict:
+    """The verdict on the child's answer to one call (its event): right, or the reason for the student."""
     if event is None:
-        return "no answer came back (the notebook stopped before this call)"
+        return Verdict("no answer came back (the notebook stopped before this call)")
     if "error" in event:
-        return str(event["error"])[:300]
+        return Verdict(str(event["error"])[:300])
     if "value" not in event:
-        return "no value came back"
+        return Verdict("no value came back")
     try:
-        return q.compare(event["value"], expected)
+        return q.judge(event["value"], expected, args)
     except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the grading
-        return f"could not compare the value ({type(exc).__name__})"
+        return Verdict(f"could not compare the value ({type(exc).__name__})")
 
 
 def grade_notebook(
@@ -256,7 +263,7 @@ def grade_notebook(
     result = NotebookResult.blank(student, exercise)
     calls_plan = make_plan(exercise, seed) if plan is None else plan
     # the child gets what to call, never what is expected
-    child_calls = [{k: v for k, v in item.items() if k != "expected"} for item in calls_plan]
+    child_calls = [{k: v for k, v in item.items() if k not in ("expected", "call_args")} for item in calls_plan]
     with tempfile.TemporaryDirectory(prefix="puma-grade-") as workdir:
         (Path(workdir) / path.name).write_bytes(data)
         forbidden = {q.qid: list(q.forbidden) for q in exercise.questions if q.forbidden}
@@ -275,8 +282,10 @@ def grade_notebook(
     for item in calls_plan:
         q = exercise.question(item["qid"])
         kind = "public case" if item["case"] < len(q.public) else "hidden case"
-        reason = _judge(q, got.get((q.qid, item["case"])), item["expected"])
-        outcomes[q.qid].append((f"{kind} {item['case'] + 1}", reason))
+        verdict = _judge(q, got.get((q.qid, item["case"])), item["expected"], item.get("call_args", ()))
+        outcomes[q.qid].append((f"{kind} {item['case'] + 1}", verdict.reason))
+        if verdict.mistake is not None:
+            result.mistakes.setdefault(q.qid, []).append(verdict.mistake)
     for q in exercise.questions:
         result.scores[q.qid], result.question_notes[q.qid] = score_question(q.points, outcomes[q.qid])
     if timed_out:

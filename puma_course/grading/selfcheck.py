@@ -70,7 +70,9 @@ def public_outcomes(q: Question, answer: Callable[..., Any]) -> list[tuple[str, 
     outcomes: list[tuple[str, str | None]] = []
     for i, args in enumerate(q.public, start=1):
         label = f"case {i} ({q.function}({', '.join(_short_repr(a) for a in args)}))"
-        expected = np.asarray(q.reference(*copy.deepcopy(args)), dtype=float)
+        expected = q.reference(*copy.deepcopy(args))
+        if not callable(expected) and not isinstance(expected, dict):
+            expected = np.asarray(expected, dtype=float)
         reason: str | None
         try:
             got, hit = guarded_call(answer, copy.deepcopy(args), codes)
@@ -83,7 +85,7 @@ def public_outcomes(q: Question, answer: Callable[..., Any]) -> list[tuple[str, 
                 reason = f"used the course package's answer ({hit.replace(':', '.')}) instead of your own code"
             else:
                 try:
-                    reason = q.compare(got, expected)
+                    reason = q.judge(got, expected, tuple(args)).reason
                 except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the check
                     reason = f"could not compare the value ({type(exc).__name__})"
         outcomes.append((label, reason))
