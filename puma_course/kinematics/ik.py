@@ -146,6 +146,8 @@ class IKSolutions(Sequence[np.ndarray]):
     robot: str = ""
     method: str = ""
     revolute: np.ndarray | None = None
+    #: how the lectures write the joint variables (θ1, ..., or α1, α2, q2, ...): the display's column names
+    joints: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         q = np.array(self.q, dtype=float)
@@ -162,6 +164,10 @@ class IKSolutions(Sequence[np.ndarray]):
         object.__setattr__(self, "flags", flags)
         object.__setattr__(self, "messages", dict(self.messages))
         object.__setattr__(self, "revolute", _revolute_mask(self.revolute, q.shape[1]))
+        joints = tuple(self.joints) if self.joints else tuple(f"q{j + 1}" for j in range(q.shape[1]))
+        if len(joints) != q.shape[1]:
+            raise ValueError(f"joints: expected {q.shape[1]} joint names, got {len(joints)}")
+        object.__setattr__(self, "joints", joints)
 
     # ---- array-like -------------------------------------------------------------------
     def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
@@ -250,7 +256,10 @@ class IKSolutions(Sequence[np.ndarray]):
         if not self.success:
             return f"<p><b>Unreachable</b>: {html.escape(self.reason)}</p>"
         assert self.revolute is not None
-        head = "".join(f"<th>q{j + 1}{' [deg]' if r else ''}</th>" for j, r in enumerate(self.revolute))
+        head = "".join(
+            f"<th>{html.escape(name, quote=False)}{' [deg]' if r else ''}</th>"
+            for name, r in zip(self.joints, self.revolute, strict=True)
+        )
         rows = []
         for lab, row, f in zip(self.labels, self.q, self.flags, strict=True):
             cells = "".join(
@@ -289,6 +298,7 @@ class IKBatch:
     robot: str = ""
     method: str = ""
     revolute: np.ndarray | None = None
+    joints: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         N, k, n = self.q.shape
@@ -314,7 +324,7 @@ class IKBatch:
         if not self.reachable[i]:
             return IKSolutions(
                 np.zeros((0, self.q.shape[2])), (), (), self.messages, False, str(self.reason[i]),
-                self.robot, self.method, self.revolute,
+                self.robot, self.method, self.revolute, self.joints,
             )  # fmt: skip
         flags = tuple(self.keys(i, int(j)) for j in keep)
         present = {k for f in flags for k in f}
@@ -328,4 +338,5 @@ class IKBatch:
             self.robot,
             self.method,
             self.revolute,
+            self.joints,
         )

@@ -220,4 +220,4 @@ class MK3(DHChain):
                             "|a2 - a3|) from joint 2 in both arm planes"
                         )
         return IKBatch(q, valid, BRANCH_LABELS, flags, FLAG_KEYS, MESSAGES, reason.astype(str), self.name,
-                       "closed form", self.revolute)  # fmt: skip
+                       "closed form", self.revolute, joints=self.joint_symbols)  # fmt: skip

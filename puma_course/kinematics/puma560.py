@@ -300,7 +300,7 @@ class Puma560(DHChain):
         terms = _reach(o, px, py, pz, L, self._ltol)
         if terms[4] or terms[5]:
             return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, _reason(terms, 0, L), self.name,
-                               "closed form", self.revolute)  # fmt: skip
+                               "closed form", self.revolute, joints=self.joint_symbols)  # fmt: skip
         sh_sing, el_sing, axis = terms[6], terms[7], terms[8]
         rows, labels, flags = [], [], []
         for ish, sh in enumerate((1.0, -1.0)):
@@ -322,7 +322,7 @@ class Puma560(DHChain):
         keys = FLAG_KEYS if any(flags) else ()
         sol = IKSolutions(wrap_angle(np.array(rows)), tuple(labels), tuple(flags),
                           {k: MESSAGES[k] for k in keys if any(k in f for f in flags)}, True, "", self.name,
-                          "closed form", self.revolute)  # fmt: skip
+                          "closed form", self.revolute, joints=self.joint_symbols)  # fmt: skip
         return self._finish(sol, nr)
 
     def ik_batch(self, T: Any, near: Any = None, *, tol: float = 1e-7) -> IKBatch:
@@ -351,7 +351,7 @@ class Puma560(DHChain):
                 sl = slice(start, min(start + _BLOCK, N))
                 self._batch_block(Tb[sl], None if nr is None else nr[sl], tol, q[sl], valid[sl], flags[sl], reason[sl])
         return IKBatch(q, valid, BRANCH_LABELS, flags, FLAG_KEYS, MESSAGES, reason.astype(str), self.name,
-                       "closed form", self.revolute)  # fmt: skip
+                       "closed form", self.revolute, joints=self.joint_symbols)  # fmt: skip
 
     def _batch_block(self, T: np.ndarray, near: np.ndarray | None, tol: float, q: np.ndarray, valid: np.ndarray,
                      flags: np.ndarray, reason: np.ndarray) -> None:  # fmt: skip

@@ -139,7 +139,8 @@ class Robot(ABC):
             sol = sol._sorted(near)
         if sol.singular:
             text = "; ".join(f"{k}: {sol.messages.get(k, k)}" for k in sol.singular)
-            warnings.warn(f"{self.name} IK: singular pose ({text})", SingularityWarning, stacklevel=stacklevel + 1)
+            how = f" ({sol.method})" if sol.method else ""
+            warnings.warn(f"{self.name} IK{how}: singular pose ({text})", SingularityWarning, stacklevel=stacklevel + 1)
         return sol
 
     # ---- display ------------------------------------------------------------------------

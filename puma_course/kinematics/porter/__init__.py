@@ -155,8 +155,21 @@ class Porter(Robot):
             err = np.abs(self.fk(Q) - Tm[0]).max(axis=(-2, -1)) / max(1.0, float(np.abs(Tm[0, :3, 3]).max()))
             keep = np.flatnonzero(err < 1e-8)
             if len(keep) == 0:  # never silently "success" with nothing: say the solver failed
-                why = f"the {method} solver found no configuration reaching T (pose error {err.min():.3g}): please report"
-                return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, why, self.name, method, REVOLUTE)
+                why = (
+                    f"the {method} solver found no configuration reaching T (pose error {err.min():.3g}): please report"
+                )
+                return IKSolutions(
+                    np.zeros((0, 6)),
+                    (),
+                    (),
+                    MESSAGES,
+                    False,
+                    why,
+                    self.name,
+                    method,
+                    REVOLUTE,
+                    joints=self.joint_symbols,
+                )
             keep = keep[dedupe_mask(Q[keep], REVOLUTE)]
             Q, keys, labels = Q[keep], [keys[i] for i in keep], [labels[i] for i in keep]
         present = {k for f in keys for k in f}
@@ -166,11 +179,22 @@ class Porter(Robot):
                 need = float(Q[:, 2].min())
                 why = (f"unreachable: every configuration needs q2 > q2_max = {self.q2_max:g} "
                        f"(the smallest is {need:.6g})")  # fmt: skip
-                return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, why, self.name, method, REVOLUTE)
+                return IKSolutions(
+                    np.zeros((0, 6)),
+                    (),
+                    (),
+                    MESSAGES,
+                    False,
+                    why,
+                    self.name,
+                    method,
+                    REVOLUTE,
+                    joints=self.joint_symbols,
+                )
             Q, keys, labels = Q[~over], [k for k, o in zip(keys, over, strict=True) if not o], \
                 [lab for lab, o in zip(labels, over, strict=True) if not o]  # fmt: skip
         sol = IKSolutions(Q, tuple(labels), tuple(keys), {k: MESSAGES[k] for k in present}, True, "", self.name,
-                          method, REVOLUTE)  # fmt: skip
+                          method, REVOLUTE, joints=self.joint_symbols)  # fmt: skip
         return self._finish(sol, nr)
 
     def _explicit_one(self, T: np.ndarray, near: np.ndarray | None, tol: float) -> tuple[list, list, list]:
@@ -234,4 +258,4 @@ class Porter(Robot):
         for i in np.flatnonzero(~valid.any(axis=1)):
             reason[i] = f"unreachable: every configuration needs q2 > q2_max = {self.q2_max:g}"
         return IKBatch(q, valid, BRANCH_LABELS, flags, FLAG_KEYS, MESSAGES, reason.astype(str), self.name,
-                       "explicit", REVOLUTE)  # fmt: skip
+                       "explicit", REVOLUTE, joints=self.joint_symbols)  # fmt: skip

@@ -235,4 +235,4 @@ class ThreeStepArm(Robot):
         ).astype(str)  # fmt: skip
         del l3s
         return IKBatch(q, valid, BRANCH_LABELS, flags, FLAG_KEYS, MESSAGES, reason, self.name, "closed form",
-                       self.revolute)  # fmt: skip
+                       self.revolute, joints=self.joint_symbols)  # fmt: skip
