@@ -262,6 +262,17 @@ class DHChain(Robot):
         T = frame_array(F[-1], batch)
         return T if self.tool is None else T @ self.tool
 
+    def jacobian(self, q: Any) -> np.ndarray:
+        """The geometric Jacobian [J_v; J_ω] (6, n), or (N, 6, n): see :mod:`~.jacobian`.
+
+        >>> from puma_course import Puma560
+        >>> Puma560().jacobian(np.zeros(6)).shape
+        (6, 6)
+        """
+        from .jacobian import geometric_jacobian
+
+        return geometric_jacobian(self, q)
+
     def ik(self, T: Any, near: Any = None) -> IKSolutions:
         """Not available for a general chain (the course's arms add their closed forms)."""
         raise NotImplementedError(f"{self.name}: a general DH chain has no closed-form inverse kinematics here")
