@@ -78,6 +78,8 @@ BAD: dict[str, list[Any]] = {
     "kind": ["X", None, 1],
     "robot": [None, "PUMA", object()],
     "result": [None, {"theta0": 0.0}],
+    "scaling": ["cubic", None, 1, np.array(["quintic"])],
+    "times2": [*_REAL, [0.0], [1.0, 0.0], [0.0, np.nan], [0.0, 1j]],
 }
 
 PUMA, MK3_, PORTER, TS = Puma560(), MK3(), Porter(1.0, 0.5, 0.3), ThreeStepArm(1.5, 1.0)
@@ -267,6 +269,17 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
         [("robot", "robot", PUMA), ("path_Ts", "path", PATH), ("q0", "q6", PUMA.q("qn"))],
     ),  # fmt: skip
     (
+        "trajectories.time_scaling",
+        tr.time_scaling,
+        [("duration", "positive", 2.0), ("n", "count", 5), ("kind", "scaling", "quintic")],
+    ),
+    (
+        "trajectories.joint_velocities",
+        tr.joint_velocities,
+        [("q", "path2", [[3.0, 1.0], [-3.0, 2.0]]), ("t", "times2", [0.0, 1.0]), ("revolute", "mask2", [True, False])],
+    ),
+    ("Puma560.jacobian", PUMA.jacobian, [("q", "q6", np.zeros(6))]),
+    (
         "trajectories.unwrap",
         tr.unwrap,
         [("q", "path2", [[3.0, 1.0], [-3.0, 2.0]]), ("revolute", "mask2", [True, False])],
@@ -281,6 +294,7 @@ EXEMPT = {
     "ik.IKBatch": "a result type built by the solvers",
     "ik.keys_from_bits": "decodes the solvers' own bit masks (internal integers)",
     "trajectories.JointPath": "a result type built by follow() and naive()",
+    "trajectories.TimeScaling": "a result type built by time_scaling()",
     "three_step.ThreeStepSolution": "a result type built by three_step()",
     "three_step.Motion": "a result type built by motion()",
 }

@@ -1,7 +1,8 @@
 """Cartesian paths of the end effector and the joint paths that follow them, for any robot (lecture 10).
 
 A path is a sequence of poses (n, 4, 4) with a fixed orientation: a straight line
-(:func:`line_path`) or a circle (:func:`circle_path`). An arm with several inverse-kinematics
+(:func:`line_path`) or a circle (:func:`circle_path`), sampled evenly or along a
+:func:`time_scaling` (a quintic s(t) starts and ends at rest). An arm with several inverse-kinematics
 solutions per pose must pick one at every step: :func:`follow` picks the solution nearest the
 previous configuration (wrapped joint distance, :func:`~.ik.joint_distance`), :func:`naive` the first
 valid solution the solver lists. Both take any :class:`~.robot.Robot`: they call its batched
@@ -20,7 +21,17 @@ from .._validate import MAX_MAGNITUDE, as_array, as_count, as_positive, as_rotat
 from .ik import joint_distance, nearest_index
 from .robot import Robot
 
-__all__ = ["line_path", "circle_path", "JointPath", "follow", "naive", "unwrap"]
+__all__ = [
+    "line_path",
+    "circle_path",
+    "JointPath",
+    "follow",
+    "naive",
+    "unwrap",
+    "TimeScaling",
+    "time_scaling",
+    "joint_velocities",
+]
 
 
 def _poses(R: np.ndarray, P: np.ndarray) -> np.ndarray:
@@ -32,8 +43,24 @@ def _poses(R: np.ndarray, P: np.ndarray) -> np.ndarray:
     return T
 
 
-def line_path(T0: Any, T1: Any, n: int) -> np.ndarray:
+def _path_parameter(n: Any, s: Any) -> np.ndarray:
+    """The path parameter: n evenly spaced values in [0, 1], or the given ``s`` (a time scaling's)."""
+    if s is None:
+        n = as_count(n, "n", minimum=2)
+        return np.linspace(0.0, 1.0, n)
+    sv = as_array(s, "s", (None,), what="path parameters of shape (n,) in [0, 1] (e.g. a time scaling's s)")
+    if len(sv) < 2 or sv.min() < -1e-12 or sv.max() > 1 + 1e-12:
+        raise ValueError(
+            f"s: expected at least 2 path parameters in [0, 1], got {len(sv)} in [{sv.min():g}, {sv.max():g}]"
+        )
+    return np.clip(sv, 0.0, 1.0)
+
+
+def line_path(T0: Any, T1: Any, n: int | None = None, *, s: Any = None) -> np.ndarray:
     """n poses (n, 4, 4) from T0's position to T1's on a straight line, keeping T0's orientation.
+
+    The points are p(s) = (1 - s) p0 + s p1 for n evenly spaced s in [0, 1], or for the values ``s``
+    given (a :func:`time_scaling`'s s, to move along the line with that timing).
 
     ``T1`` may be a pose (4, 4) (its rotation is ignored: the orientation stays
     fixed) or a point (3,). Positions p(s) = (1 - s) p0 + s p1, s = 0..1.
@@ -53,13 +80,16 @@ def line_path(T0: Any, T1: Any, n: int) -> np.ndarray:
         p1 = as_transform(T1, "T1")[:3, 3]
     else:
         p1 = as_array(T1, "T1", (3,), what="a pose (4, 4) or a point (3,)", max_magnitude=MAX_MAGNITUDE)
-    n = as_count(n, "n", minimum=2)
-    s = np.linspace(0.0, 1.0, n)[:, None]
-    return _poses(T0[:3, :3], (1.0 - s) * T0[:3, 3] + s * p1)
+    sv = _path_parameter(n, s)[:, None]
+    return _poses(T0[:3, :3], (1.0 - sv) * T0[:3, 3] + sv * p1)
 
 
-def circle_path(center: Any, radius: float, normal: Any, R: Any, n: int, start: Any | None = None) -> np.ndarray:
+def circle_path(
+    center: Any, radius: float, normal: Any, R: Any, n: int | None = None, start: Any | None = None, *, s: Any = None
+) -> np.ndarray:
     """n poses (n, 4, 4) around a full circle (closed: the last equals the first), orientation R fixed.
+
+    The angle along the circle is 2π s, for n evenly spaced s in [0, 1] or the values ``s`` given.
 
     The circle lies in the plane through ``center`` perpendicular to ``normal``
     and runs counter-clockwise seen from the tip of ``normal``, starting in the
@@ -82,7 +112,7 @@ def circle_path(center: Any, radius: float, normal: Any, R: Any, n: int, start: 
         raise ValueError("normal: expected a non-zero vector perpendicular to the circle's plane, got zeros")
     nv = nv / norm
     Rm = as_rotation(R, "R")
-    n = as_count(n, "n", minimum=2)
+    sv = _path_parameter(n, s)
     if start is None:
         guess = np.array([1.0, 0.0, 0.0]) if abs(nv[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
     else:
@@ -92,7 +122,7 @@ def circle_path(center: Any, radius: float, normal: Any, R: Any, n: int, start: 
         raise ValueError("start: expected a direction not parallel to normal, got a parallel one")
     e1 /= math.hypot(*e1.tolist())
     e2 = np.cross(nv, e1)
-    t = np.linspace(0.0, 2 * np.pi, n)[:, None]
+    t = 2 * np.pi * sv[:, None]
     return _poses(Rm, c + r * (np.cos(t) * e1 + np.sin(t) * e2))
 
 
@@ -227,3 +257,61 @@ def naive(robot: Robot, path_Ts: Any, q0: Any = None) -> JointPath:
         start = float(joint_distance(q[0], q0, rev))
     return JointPath(q=q, choice=choice, step=joint_distance(q[1:], q[:-1], rev), start_jump=start,
                      labels=tuple(labels[j] for j in choice))  # fmt: skip
+
+
+@dataclass(frozen=True)
+class TimeScaling:
+    """A time law along a path: at the times ``t`` (n,), the path parameter ``s`` in [0, 1] and its
+    first and second time derivatives ``sdot`` (1/s) and ``sddot`` (1/s²)."""
+
+    t: np.ndarray
+    s: np.ndarray
+    sdot: np.ndarray
+    sddot: np.ndarray
+
+
+def time_scaling(duration: float, n: int, kind: str = "quintic") -> TimeScaling:
+    """The path parameter s(t) for a motion of ``duration`` seconds, sampled at n times.
+
+    ``"quintic"``: s = 10 τ³ - 15 τ⁴ + 6 τ⁵ with τ = t / duration, the lowest-degree polynomial with
+    s, ṡ and s̈ all zero at the start and at s = 1 with ṡ = s̈ = 0 at the end (the arm starts and
+    stops at rest, with no jump in acceleration); its peak speed is ṡ(duration / 2) = 15 / (8
+    duration). ``"linear"``: s = τ, a constant speed with jumps in velocity at both ends.
+
+    >>> ts = time_scaling(2.0, 5)
+    >>> ts.t.tolist(), ts.s.tolist()
+    ([0.0, 0.5, 1.0, 1.5, 2.0], [0.0, 0.103515625, 0.5, 0.896484375, 1.0])
+    >>> float(ts.sdot[2])  # 15 / (8 * 2.0)
+    0.9375
+    """
+    from .._validate import as_choice
+
+    T = as_positive(duration, "duration")
+    n = as_count(n, "n", minimum=2)
+    kind = as_choice(kind, "kind", ("quintic", "linear"))
+    t = np.linspace(0.0, T, n)
+    tau = t / T
+    if kind == "linear":
+        return TimeScaling(t, tau, np.full(n, 1.0 / T), np.zeros(n))
+    s = tau**3 * (10.0 - 15.0 * tau + 6.0 * tau**2)
+    sdot = 30.0 * tau**2 * (1.0 - tau) ** 2 / T
+    sddot = 60.0 * tau * (1.0 - tau) * (1.0 - 2.0 * tau) / T**2
+    return TimeScaling(t, s, sdot, sddot)
+
+
+def joint_velocities(q: Any, t: Any, revolute: Any = None) -> np.ndarray:
+    """Joint speeds (n, m) along a joint path q (n, m) sampled at the times t (n,): central differences.
+
+    Angle columns (``revolute``, default all) are unwrapped first, so a step from 179° to -179° is
+    2°, not 358°. Units: radians (or lengths) per second.
+
+    >>> t = np.linspace(0.0, 1.0, 5)
+    >>> q = np.column_stack([3.0 + 0.5 * t, 2.0 * t])  # crosses +π at t = 0.28
+    >>> np.round(joint_velocities(q, t), 12).tolist()[0]
+    [0.5, 2.0]
+    """
+    qq = unwrap(q, revolute)
+    tt = as_array(t, "t", (qq.shape[0],), what=f"times of shape ({qq.shape[0]},), one per row of q")
+    if np.any(np.diff(tt) <= 0):
+        raise ValueError("t: expected strictly increasing times, got a step that is zero or negative")
+    return np.gradient(qq, tt, axis=0)

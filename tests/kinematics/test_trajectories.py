@@ -222,3 +222,41 @@ def _short_path() -> np.ndarray:
 def test_bad_joint_path_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+# ---------------------------------------------------------------- time
+def test_quintic_time_scaling_starts_and_stops_at_rest():
+    ts = tr.time_scaling(2.0, 201)
+    assert ts.s[0] == 0.0 and ts.s[-1] == 1.0
+    assert ts.sdot[0] == ts.sdot[-1] == 0.0 and ts.sddot[0] == ts.sddot[-1] == 0.0
+    # hand values at the middle: s = 1/2 by symmetry, the peak speed 15 / (8 T), no acceleration
+    assert ts.s[100] == pytest.approx(0.5) and ts.sdot[100] == pytest.approx(15 / 16) and abs(ts.sddot[100]) < 1e-12
+    # the derivatives are the derivatives: compare with finite differences of s
+    assert np.allclose(np.gradient(ts.s, ts.t)[1:-1], ts.sdot[1:-1], atol=1e-3)
+    assert np.allclose(np.gradient(ts.sdot, ts.t)[1:-1], ts.sddot[1:-1], atol=1e-2)
+    assert (np.diff(ts.s) >= 0).all()  # monotonic: the path is never walked back
+    lin = tr.time_scaling(4.0, 5, kind="linear")
+    assert lin.s.tolist() == [0.0, 0.25, 0.5, 0.75, 1.0] and np.allclose(lin.sdot, 0.25)
+
+
+def test_paths_follow_a_time_scaling():
+    T0 = ARM.fk(ARM.q("qn"))
+    ts = tr.time_scaling(1.0, 11)
+    P = tr.line_path(T0, T0[:3, 3] + [0.0, 0.1, 0.0], s=ts.s)
+    assert np.allclose(P[:, 1, 3] - T0[1, 3], 0.1 * ts.s)  # y advances by 0.1 s(t)
+    C = tr.circle_path([0, 0, 0], 1.0, [0, 0, 1], np.eye(3), s=ts.s)
+    assert np.allclose(C[:, :2, 3], np.column_stack([np.cos(2 * np.pi * ts.s), np.sin(2 * np.pi * ts.s)]))
+    with pytest.raises(ValueError, match="^s: expected at least 2 path parameters in \\[0, 1\\]"):
+        tr.line_path(T0, [0, 0, 0], s=[0.0, 1.5])
+
+
+def test_joint_velocities_by_hand_and_across_the_wrap():
+    t = np.linspace(0.0, 2.0, 21)
+    q = np.column_stack([np.pi - 0.3 + 0.4 * t, -1.0 + 3.0 * t])  # the first crosses +π
+    q[:, 0] = np.angle(np.exp(1j * q[:, 0]))  # stored wrapped, as the solvers give it
+    v = tr.joint_velocities(q, t, revolute=np.array([True, False]))
+    assert np.allclose(v, [[0.4, 3.0]] * 21)
+    with pytest.raises(ValueError, match="^t: expected strictly increasing times"):
+        tr.joint_velocities(q, np.zeros(21))
+    with pytest.raises(ValueError, match="^t: expected times of shape \\(21,\\)"):
+        tr.joint_velocities(q, t[:5])
