@@ -24,7 +24,9 @@ import pytest
 
 import puma_course
 from puma_course import euler, transforms
-from puma_course.kinematics import MK3, DHChain, Link, Porter, Puma560, ThreeStepArm, dh, ik
+from puma_course.kinematics import MK3, DHChain, Link, Porter, Puma560, ThreeStepArm, dh, ik, spaces
+from puma_course.kinematics import frame_assignment as fa
+from puma_course.kinematics import jacobian as jac
 from puma_course.kinematics import three_step as ts
 from puma_course.kinematics import trajectories as tr
 from puma_course.kinematics.porter import angle
@@ -80,6 +82,9 @@ BAD: dict[str, list[Any]] = {
     "result": [None, {"theta0": 0.0}],
     "scaling": ["cubic", None, 1, np.array(["quintic"])],
     "times2": [*_REAL, [0.0], [1.0, 0.0], [0.0, np.nan], [0.0, 1j]],
+    "path3": [*_REAL, [[0.0, 0.0]], [[np.nan, 0, 0], [0, 0, 1]], [[1j, 0, 0], [0, 0, 1]], [0.0, 0.0, 1.0]],
+    "kinds": [["R"], ["R", "X"], "RX", None],
+    "stroke": [*_REAL, 8.0, 0.5, -1.0],
 }
 
 PUMA, MK3_, PORTER, TS = Puma560(), MK3(), Porter(1.0, 0.5, 0.3), ThreeStepArm(1.5, 1.0)
@@ -279,6 +284,48 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
         [("q", "path2", [[3.0, 1.0], [-3.0, 2.0]]), ("t", "times2", [0.0, 1.0]), ("revolute", "mask2", [True, False])],
     ),
     ("Puma560.jacobian", PUMA.jacobian, [("q", "q6", np.zeros(6))]),
+    ("jacobian.geometric_jacobian", jac.geometric_jacobian, [("chain", "robot", PUMA), ("q", "q6", np.zeros(6))]),
+    (
+        "frame_assignment.common_normal",
+        fa.common_normal,
+        [
+            ("p1", "vec3", [0.0, 0, 0]),
+            ("u1", "direction", [0, 0, 1.0]),
+            ("p2", "vec3", [1.0, 0, 5]),
+            ("u2", "direction", [0, 1.0, 0]),
+            ("tol", "tol", 1e-9),
+        ],
+    ),  # fmt: skip
+    (
+        "frame_assignment.dh_from_axes",
+        fa.dh_from_axes,
+        [
+            ("points", "path3", [[0.0, 0, 0], [0, 0, 0]]),
+            ("directions", "path3", [[0, 0, 1.0], [0, 1.0, 0]]),
+            ("kinds", "kinds", ["R", "R"]),
+        ],
+    ),  # fmt: skip
+    (
+        "spaces.actuator_from_joint",
+        spaces.actuator_from_joint,
+        [("theta", "angle_any", 0.3), ("b", "positive", 3.0), ("c", "positive", 4.0), ("gamma0", "angle", 0.0)],
+    ),
+    (
+        "spaces.joint_from_actuator",
+        spaces.joint_from_actuator,
+        [("s", "stroke", 5.0), ("b", "positive", 3.0), ("c", "positive", 4.0), ("gamma0", "angle", 0.0)],
+    ),
+    (
+        "spaces.actuator_rate",
+        spaces.actuator_rate,
+        [
+            ("theta", "angle_any", 0.3),
+            ("theta_dot", "angle_any", 1.0),
+            ("b", "positive", 3.0),
+            ("c", "positive", 4.0),
+            ("gamma0", "angle", 0.0),
+        ],
+    ),  # fmt: skip
     (
         "trajectories.unwrap",
         tr.unwrap,
@@ -295,6 +342,8 @@ EXEMPT = {
     "ik.keys_from_bits": "decodes the solvers' own bit masks (internal integers)",
     "trajectories.JointPath": "a result type built by follow() and naive()",
     "trajectories.TimeScaling": "a result type built by time_scaling()",
+    "frame_assignment.CommonNormal": "a result type built by common_normal()",
+    "frame_assignment.DerivedTable": "a result type built by dh_from_axes()",
     "three_step.ThreeStepSolution": "a result type built by three_step()",
     "three_step.Motion": "a result type built by motion()",
 }
@@ -376,6 +425,7 @@ def test_every_public_function_is_swept():
 
     public = (
         _public(transforms, "transforms") | _public(euler, "euler") | _public(dh, "dh") | _public(ik, "ik")
+        | _public(fa, "frame_assignment") | _public(jac, "jacobian") | _public(spaces, "spaces")
         | _public(ts, "three_step") | _public(tr, "trajectories")
         | {f"porter.{n}" for n in ("angle",)}
     )  # fmt: skip

@@ -32,6 +32,10 @@ def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
            [ 1.,  0.,  0.],
            [ 1.,  1.,  1.]])
     """
+    from .dh import DHChain
+
+    if not isinstance(chain, DHChain):
+        raise ValueError(f"chain: expected a DH chain (Puma560(), MK3(), DHChain(...)), got {type(chain).__name__}")
     F = chain.frames(q)
     n = chain.n
     F = F[..., : n + 1, :, :]  # drop a tool frame, if any
