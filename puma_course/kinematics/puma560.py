@@ -21,8 +21,9 @@ column p of ^0T_6 depends on θ1, θ2, θ3 only and the orientation then fixes �
   θ1 = atan2(py, px) - atan2(d3, ±sqrt(ρ² - d3²)); the sign is the *shoulder*: "left" (+, the
   reach X = c1 px + s1 py ≥ 0) or "right" (-).
 * θ3: |p|² = a2² + a3² + d3² + d4² + 2 a2 (a3 c3 - d4 s3), so with
-  K = (|p|² - a2² - a3² - d3² - d4²) / (2 a2), |K| ≤ sqrt(a3² + d4²):
-  θ3 = atan2(a3, d4) - atan2(K, ±sqrt(a3² + d4² - K²)). The *elbow* is "up" when it lies above
+  κ = (|p|² - a2² - a3² - d3² - d4²) / (2 a2) (Craig's K, renamed: K is a rotation in this course),
+  |κ| ≤ sqrt(a3² + d4²):
+  θ3 = atan2(a3, d4) - atan2(κ, ±sqrt(a3² + d4² - κ²)). The *elbow* is "up" when it lies above
   the shoulder-wrist line seen facing the wrist: sign(X) (a3 s3 + d4 c3) > 0.
 * θ2: in the arm plane (X, -pz) = Rot(θ2) (a2 + a3 c3 - d4 s3, a3 s3 + d4 c3).
 * wrist: ^3R_6 = (^0R_3)^T R has third column (-s5 c4, c5, s4 s5) and second row
@@ -60,7 +61,7 @@ FLAG_KEYS = ("shoulder", "elbow", "wrist", "base_axis", "joint2_axis")
 MESSAGES = {
     "shoulder": "the wrist centre lies on the cylinder ρ = |d3| around the base axis, so the left and right "
     "shoulder solutions coincide",
-    "elbow": "the arm is fully stretched or folded (|K| = sqrt(a3² + d4²)), so elbow up and elbow down coincide",
+    "elbow": "the arm is fully stretched or folded (|κ| = sqrt(a3² + d4²)), so elbow up and elbow down coincide",
     "wrist": "sin θ5 = 0: the axes of joints 4 and 6 are aligned and only θ4 + θ6 (θ5 = 0) or θ4 - θ6 (θ5 = π) "
     "is defined; θ4 takes its value in `near` (else 0) and flip = noflip",
     "base_axis": "d3 = 0 and the wrist centre is on the base axis: θ1 is free (its value in `near`, else 0)",
@@ -94,7 +95,7 @@ def _fk_entries(o: Any, q: list[Any], a2: float, a3: float, d3: float, d4: float
 
 
 def _reach(o: Any, px: Any, py: Any, pz: Any, L: tuple[float, ...], ltol: float) -> tuple[Any, ...]:
-    """Pose terms shared by every branch: ρ², K, S1 = sqrt(ρ² - d3²), S3 = sqrt(a3² + d4² - K²),
+    """Pose terms shared by every branch: ρ², κ, S1 = sqrt(ρ² - d3²), S3 = sqrt(a3² + d4² - κ²),
     unreachable flags and the singular flags; the square roots are snapped to exactly 0 within ``ltol``."""
     a2, a3, d3, d4 = L
     sqtol = ltol * ltol * 1e2  # 1e-12 L²: how far inside the boundary rounding may land
@@ -168,7 +169,7 @@ def _reason(terms: tuple[Any, ...], i: Any, L: tuple[float, ...]) -> str:
             f"from the base (z0) axis, less than the shoulder offset |d3| = {abs(d3):.6g}"
         )
     return (
-        f"out of reach: |K| = {abs(K_i):.6g} exceeds sqrt(a3² + d4²) = {math.hypot(a3, d4):.6g} "
+        f"out of reach: |κ| = {abs(K_i):.6g} exceeds sqrt(a3² + d4²) = {math.hypot(a3, d4):.6g} "
         f"(the wrist centre is too far from, or too near to, the shoulder)"
     )
 
