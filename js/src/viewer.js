@@ -186,7 +186,8 @@ function render({ model, el }) {
   camera.add(sun);
   scene.add(camera);
 
-  const center = new Vector3(...sceneSpec.center);
+  // the sphere the starting view frames: the scene's, or an animation's (all its poses)
+  let home = { center: sceneSpec.center, radius: sceneSpec.radius };
   const radius = sceneSpec.radius;
   const near = radius / 100;
   camera.near = near;
@@ -229,12 +230,15 @@ function render({ model, el }) {
   let ghostArms = [];
   let targetLabels = [];
 
-  const stats = { renders: 0, poseRenders: 0, lastRender: 0, lastPoseRender: 0, lastPoseMessage: 0, poseSeq: -1, labels: [] };
+  // what was drawn, for the browser tests: counts and times, the frames' origins as drawn, labels' boxes
+  const stats = { renders: 0, poseRenders: 0, lastRender: 0, lastPoseRender: 0, lastPoseMessage: 0, poseSeq: -1,
+    labels: [], origins: [], ghosts: 0, selected: -1, animStep: -1, animSteps: 0 };
   box.__puma = stats;
   box.dataset.poseRenders = "0";
 
   let pending = false;
   let poseDirty = false;
+  let started = false; // the first view is set once the box has its size on the page
   let pose = model.get("pose");
 
   function applyPose(p) {
@@ -301,6 +305,7 @@ function render({ model, el }) {
     stats.lastRender = now;
     if (poseDirty) {
       poseDirty = false;
+      stats.origins = triads.map((g) => [g.matrix.elements[12], g.matrix.elements[13], g.matrix.elements[14]]);
       stats.poseRenders += 1;
       stats.lastPoseRender = now;
       stats.poseSeq = pose.seq ?? -1;
@@ -319,9 +324,9 @@ function render({ model, el }) {
   const controls = new OrbitControls(camera, renderer.domElement);
   function homeView() {
     const aspect = Math.max(box.clientWidth, 1) / Math.max(box.clientHeight, 1);
-    const dist = fitDistance(radius, FOV, aspect);
-    camera.position.set(...orbitPosition(sceneSpec.center, dist, sceneSpec.view.azim, sceneSpec.view.elev));
-    controls.target.copy(center);
+    const dist = fitDistance(home.radius, FOV, aspect);
+    camera.position.set(...orbitPosition(home.center, dist, sceneSpec.view.azim, sceneSpec.view.elev));
+    controls.target.set(...home.center);
     camera.zoom = 1;
     camera.updateProjectionMatrix();
     controls.update();
@@ -354,6 +359,8 @@ function render({ model, el }) {
       ghostGroup.add(l.group, t);
       return l;
     });
+    stats.ghosts = ghostArms.length;
+    stats.selected = arms.length ? g.selected : -1;
     requestDraw();
   }
 
@@ -393,6 +400,8 @@ function render({ model, el }) {
     const i = Math.min(Math.max(k, 0), poses.length - 1);
     player.range.value = String(i);
     player.count.textContent = `${i + 1} / ${poses.length}`;
+    stats.animStep = i;
+    stats.animSteps = poses.length;
     applyPose({ ...poses[i], seq: pose.seq });
     requestDraw();
   }
@@ -402,6 +411,11 @@ function render({ model, el }) {
     player = null;
     const anim = model.get("animation") || {};
     const poses = anim.poses || [];
+    const view = anim.view || { center: sceneSpec.center, radius: sceneSpec.radius };
+    if (view.center !== home.center || view.radius !== home.radius) {
+      home = view;
+      if (started) homeView();
+    }
     if (!poses.length) {
       applyPose(model.get("pose"));
       requestDraw();
@@ -468,6 +482,7 @@ function render({ model, el }) {
   resize.observe(box);
   // the first view is set once the box has its size on the page
   requestAnimationFrame(() => {
+    started = true;
     homeView();
     controls.saveState();
     requestDraw();

@@ -197,7 +197,8 @@ class Viewer(anywidget.AnyWidget):
         """Precomputed poses (T, m, 4, 4) (and link points (T, p, 3)) played in the browser with a play button.
 
         The browser steps through them at ``fps`` with no round trip to the kernel; a step
-        slider scrubs. A new pose from the kernel (a slider) stops the animation.
+        slider scrubs; the starting view frames every pose. A new pose from the kernel (a
+        slider) stops the animation.
         """
         sc = self.scene
         m, p = len(sc["frames"]), sc["points"]
@@ -205,8 +206,10 @@ class Viewer(anywidget.AnyWidget):
         Q = S[:, :, :3, 3] if points_seq is None else as_array(points_seq, "points_seq", (len(S), p, 3))
         if not fps > 0:
             raise ValueError(f"fps: expected a positive number of frames per second, got {fps!r}")
+        centre, radius = view_box(np.vstack([Q.reshape(-1, 3), S[:, :, :3, 3].reshape(-1, 3), np.zeros((1, 3))]))
         self.animation = {"poses": [{"frames": _flat(F), "points": _flat(P)} for F, P in zip(S, Q, strict=True)],
-                          "fps": float(fps), "loop": bool(loop)}  # fmt: skip
+                          "fps": float(fps), "loop": bool(loop),
+                          "view": {"center": _flat(centre), "radius": max(radius, self.scene["radius"])}}  # fmt: skip
 
     # ---- the static picture -------------------------------------------------------------
     def _draw_static(self, ax: Any) -> None:

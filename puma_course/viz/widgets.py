@@ -137,8 +137,8 @@ def joint_sliders(
                 description=label,
                 continuous_update=continuous_update,
                 readout_format=".1f" if deg[i] else ".3g",
-                style={"description_width": "70px"},
-                layout=widgets.Layout(width="330px"),
+                style={"description_width": "95px"},
+                layout=widgets.Layout(width="340px"),
             )
         )
     return SliderList(sliders, deg)
@@ -191,6 +191,8 @@ class Panel(widgets.HBox):
     ``pose(q)`` returns the frames (m, 4, 4) and the link points (p, 3) to show for the joint
     vector ``q`` (radians); each slider move calls it and sends them to ``viewer`` (only what
     moved). ``readout(q)`` or ``readout(q, frames)`` returns the text shown under the sliders.
+    ``q`` is the joint vector shown: :meth:`set_radians` keeps it exact (an IK solution stays
+    on its pose) while the sliders show it rounded to their steps.
     ``controls`` are more widgets put under the sliders. After each update ``last_q``,
     ``last_frames``, ``last_points`` and ``last_readout`` hold what was sent, so a test (or a
     curious student) can inspect it.
@@ -220,6 +222,7 @@ class Panel(widgets.HBox):
         self._pose = pose
         self._readout_fn = readout
         self._holding = False
+        self.q = sliders.radians()  # the joint vector shown, exact (a slider shows it rounded to its step)
         self.last_q: np.ndarray | None = None
         self.last_frames: np.ndarray | None = None
         self.last_points: np.ndarray | None = None
@@ -230,17 +233,25 @@ class Panel(widgets.HBox):
         left = list(sliders) + list(controls) + ([self.readout_widget] if readout is not None else [])
         viewer.layout = widgets.Layout(flex="1 1 auto", min_width="320px")
         super().__init__(
-            [widgets.VBox(left, layout=widgets.Layout(flex="0 0 auto", width="345px")), viewer],
+            [widgets.VBox(left, layout=widgets.Layout(flex="0 0 auto", width="350px")), viewer],
             layout=widgets.Layout(width="100%", align_items="flex-start"),
         )
         self._update()
 
     def _on_slider(self, change: Any) -> None:
-        if not self._holding:
-            self._update()
+        if self._holding:
+            return
+        k = next(i for i, s in enumerate(self.sliders) if s is change["owner"])
+        deg = self.sliders.degrees[k]
+        shown = float(np.degrees(self.q[k])) if deg else float(self.q[k])
+        if abs(change["new"] - shown) <= 0.5 * float(change["owner"].step) + 1e-9:
+            return  # the browser snapped an exact value (set_radians) to the slider's step: keep the exact one
+        self.q = self.q.copy()
+        self.q[k] = np.radians(change["new"]) if deg else float(change["new"])
+        self._update()
 
     def _update(self) -> None:
-        q = self.sliders.radians()
+        q = self.q
         frames, points = self._pose(q)
         self.viewer.show(frames, points)
         self.last_q, self.last_frames, self.last_points = q, np.asarray(frames), np.asarray(points)
@@ -257,18 +268,20 @@ class Panel(widgets.HBox):
         """Called after every update with the joint vector shown (a hook for subclasses)."""
 
     def set_radians(self, q: Any) -> None:
-        """Move all sliders to ``q`` (radians / lengths); the view follows once.
+        """Move all sliders to ``q`` (radians / lengths); the view follows once, at ``q`` exactly.
 
         >>> from puma_course import MK3
         >>> panel = robot_panel(MK3(), readout=None)
         >>> panel.set_radians(MK3().q("qr")); np.degrees(panel.last_q).round(6).tolist()
         [0.0, 90.0, -90.0, 0.0, 0.0]
         """
+        q = as_array(q, "q", (len(self.sliders),), what=f"a joint vector of shape ({len(self.sliders)},)")
         self._holding = True
         try:
             self.sliders.set_radians(q)
         finally:
             self._holding = False
+        self.q = q.copy()
         self._update()
 
     def _repr_mimebundle_(self, **kwargs: Any) -> Any:
@@ -283,6 +296,7 @@ class RobotPanel(Panel):
         self.robot = robot
         self.ik = ik
         self.solutions: IKSolutions | None = None
+        self._branches: list[str] = []
         controls: list[widgets.Widget] = []
         if ik:
             self.ik_selector = widgets.Dropdown(description="IK solution", options=[], style={"description_width": "70px"},
@@ -304,12 +318,15 @@ class RobotPanel(Panel):
             warnings.simplefilter("ignore", SingularityWarning)
             sol = self.robot.ik(self.robot.fk(q), near=q)
         self.solutions = sol
-        options = [(f"{k + 1}: {lab}", k) for k, lab in enumerate(sol.labels or [f"solution {k + 1}" for k in range(len(sol))])]
-        keep = self.ik_selector.value if self.ik_selector.value is not None else 0
+        names = list(sol.labels) or [f"solution {k + 1}" for k in range(len(sol))]
+        # the selected branch (its label) stays selected while the arm moves; the order is nearest first
+        old = self.ik_selector.value
+        keep = self._branches[old] if old is not None and old < len(self._branches) else None
+        self._branches = names
         self.ik_selector.unobserve(self._on_select, names="value")
         try:
-            self.ik_selector.options = options
-            self.ik_selector.value = min(keep, len(options) - 1) if options else None
+            self.ik_selector.options = [(f"{k + 1}: {lab}", k) for k, lab in enumerate(names)]
+            self.ik_selector.value = names.index(keep) if keep in names else (0 if names else None)
         finally:
             self.ik_selector.observe(self._on_select, names="value")
         if sol.success:

@@ -84,6 +84,10 @@ class Lab:
         (settings / "@jupyterlab" / "apputils-extension" / "notification.jupyterlab-settings").write_text(
             json.dumps({"fetchNews": "false", "checkForUpdates": False})
         )
+        (settings / "@jupyterlab" / "notebook-extension").mkdir(parents=True)
+        (settings / "@jupyterlab" / "notebook-extension" / "tracker.jupyterlab-settings").write_text(
+            json.dumps({"windowingMode": "none"})  # every cell in the page, as a reader scrolling would see it
+        )
         env = dict(os.environ)
         env.update(
             JUPYTERLAB_SETTINGS_DIR=str(settings),
@@ -175,9 +179,12 @@ def browser() -> Iterator[Any]:
 # ---- pages -------------------------------------------------------------------------------------
 
 def open_notebook(page: Any, lab: Lab, name: str, timeout: float = 60_000) -> None:
-    """Open a notebook in JupyterLab and wait until its cells are on the page and its kernel is idle."""
+    """Open a notebook in JupyterLab and wait until all its cells are on the page and its kernel is idle."""
+    count = len(json.loads((lab.root / name).read_text(encoding="utf-8"))["cells"])
     page.goto(lab.url(name))
-    page.wait_for_selector(".jp-NotebookPanel .jp-Cell", timeout=timeout)
+    page.wait_for_function(
+        "n => document.querySelectorAll('.jp-Notebook .jp-Cell').length === n", arg=count, timeout=timeout
+    )
     wait_idle(page, timeout)
 
 
