@@ -94,7 +94,7 @@ class Viewer(anywidget.AnyWidget):
     scene = traitlets.Dict().tag(sync=True)
     pose = traitlets.Dict().tag(sync=True)
     ghosts = traitlets.Dict().tag(sync=True)
-    targets = traitlets.List().tag(sync=True)
+    targets: traitlets.List[Any] = traitlets.List().tag(sync=True)
     animation = traitlets.Dict().tag(sync=True)
     height = traitlets.Int(420).tag(sync=True)
 
@@ -256,7 +256,7 @@ class Viewer(anywidget.AnyWidget):
             plt.close(fig)
         return buf.getvalue()
 
-    def _repr_mimebundle_(self, **kwargs: Any) -> dict[str, Any] | None:
+    def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[Any, Any], dict[Any, Any]] | None:
         data = super()._repr_mimebundle_(**kwargs)
         return _with_picture(data, self)
 
@@ -324,7 +324,9 @@ class RobotViewer(Viewer):
         **kw: Any,
     ) -> None:
         if not isinstance(robot, Robot):
-            raise ValueError(f"robot: expected a Robot (Puma560(), MK3(), Porter(...), ...), got {type(robot).__name__}")
+            raise ValueError(
+                f"robot: expected a Robot (Puma560(), MK3(), Porter(...), ...), got {type(robot).__name__}"
+            )
         self.robot = robot
         q0 = start_q(robot, q)
         F = robot.frames(q0)
@@ -332,7 +334,7 @@ class RobotViewer(Viewer):
         P0 = robot.points(q0)
         R = reach_points(robot, q0)
         _, r = view_box(R)
-        lengths = np.full(m, 0.11 * r)
+        lengths: Any = np.full(m, 0.11 * r)
         lengths[[0, -1]] *= 1.3  # the base and the tool stand out
         kw.setdefault("note", "drag: turn · wheel: zoom · right-drag: pan")
         tips = F[:, None, :3, 3] + lengths[:, None, None] * np.swapaxes(F[:, :3, :3], 1, 2)  # (m, 3 axes, 3)

@@ -33,7 +33,16 @@ from ..kinematics.ik import IKSolutions, SingularityWarning
 from ..kinematics.robot import Robot
 from .viewer import RobotViewer, Viewer, _with_picture, start_q
 
-__all__ = ["SliderList", "joint_sliders", "Panel", "RobotPanel", "robot_panel", "dh_link_panel", "pose_readout", "frame_name"]
+__all__ = [
+    "SliderList",
+    "joint_sliders",
+    "Panel",
+    "RobotPanel",
+    "robot_panel",
+    "dh_link_panel",
+    "pose_readout",
+    "frame_name",
+]
 
 
 class SliderList(list[Any]):
@@ -299,10 +308,14 @@ class RobotPanel(Panel):
         self._branches: list[str] = []
         controls: list[widgets.Widget] = []
         if ik:
-            self.ik_selector = widgets.Dropdown(description="IK solution", options=[], style={"description_width": "70px"},
-                                                layout=widgets.Layout(width="330px"))  # fmt: skip
-            self.ik_go = widgets.Button(description="move the arm there", layout=widgets.Layout(width="330px"),
-                                        tooltip="set the sliders to the selected solution (same hand pose)")  # fmt: skip
+            wide = widgets.Layout(width="340px")
+            self.ik_selector = widgets.Dropdown(
+                description="IK solution", options=[], style={"description_width": "95px"}, layout=wide
+            )
+            self.ik_go = widgets.Button(
+                description="move the arm there", layout=wide,
+                tooltip="set the sliders to the selected solution (same hand pose)",
+            )  # fmt: skip
             self.ik_status = widgets.HTML(value="")
             self.ik_selector.observe(self._on_select, names="value")
             self.ik_go.on_click(lambda _: self.go_to_solution())
@@ -335,7 +348,7 @@ class RobotPanel(Panel):
                 text += "; singular: " + "; ".join(sol.messages.get(k, k) for k in sol.singular)
         else:
             text = f"no solution: {sol.reason}"
-        self.ik_status.value = f"<div style='font-size:12px; line-height:1.3; width:330px'>{_escape(text)}</div>"
+        self.ik_status.value = f"<div style='font-size:12px; line-height:1.3; width:340px'>{_escape(text)}</div>"
         self.viewer.show_ik(sol, selected=self.ik_selector.value)
 
     def _on_select(self, change: Any) -> None:

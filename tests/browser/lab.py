@@ -100,12 +100,21 @@ class Lab:
         self.log = open(self.tmp / "server.log", "wb")  # noqa: SIM115 - closed in stop()
         self.proc = subprocess.Popen(
             [
-                sys.executable, "-m", "jupyter", "lab", "--no-browser",
-                "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
-                f"--IdentityProvider.token={self.token}", f"--ServerApp.root_dir={self.root}",
-                "--LabApp.news_url=", "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+                sys.executable,
+                "-m",
+                "jupyter",
+                "lab",
+                "--no-browser",
+                "--ServerApp.ip=127.0.0.1",
+                f"--ServerApp.port={self.port}",
+                "--ServerApp.port_retries=0",
+                f"--IdentityProvider.token={self.token}",
+                f"--ServerApp.root_dir={self.root}",
+                "--LabApp.news_url=",
+                "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
                 "--LabApp.extension_manager=readonly",
-            ] + (["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else []),  # fmt: skip
+            ]
+            + (["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else []),  # fmt: skip
             stdout=self.log,
             stderr=subprocess.STDOUT,
             env=env,
@@ -178,6 +187,7 @@ def browser() -> Iterator[Any]:
 
 # ---- pages -------------------------------------------------------------------------------------
 
+
 def open_notebook(page: Any, lab: Lab, name: str, timeout: float = 60_000) -> None:
     """Open a notebook in JupyterLab and wait until all its cells are on the page and its kernel is idle."""
     count = len(json.loads((lab.root / name).read_text(encoding="utf-8"))["cells"])
@@ -219,7 +229,8 @@ def run_all(page: Any, timeout: float = 240_000) -> None:
 def output_texts(page: Any) -> list[str]:
     """The text of every code cell's output area, in order."""
     return page.eval_on_selector_all(
-        ".jp-Notebook .jp-CodeCell", "cells => cells.map(c => (c.querySelector('.jp-OutputArea') || {}).innerText || '')"
+        ".jp-Notebook .jp-CodeCell",
+        "cells => cells.map(c => (c.querySelector('.jp-OutputArea') || {}).innerText || '')",
     )
 
 

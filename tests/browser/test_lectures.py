@@ -47,7 +47,7 @@ def _set_slider(page: Any, box: Any, index: int, value: float) -> None:
 
 def _no_overlap(labels: list[dict[str, float]]) -> None:
     for i, a in enumerate(labels):
-        for b in labels[i + 1:]:
+        for b in labels[i + 1 :]:
             apart = a["x"] + a["w"] <= b["x"] or b["x"] + b["w"] <= a["x"] or a["y"] + a["h"] <= b["y"] or \
                 b["y"] + b["h"] <= a["y"]  # fmt: skip
             assert apart, f"labels {a['text']} and {b['text']} overlap: {a} {b}"
@@ -61,7 +61,8 @@ def _hand_dh() -> tuple[list[tuple[int, float]], np.ndarray, np.ndarray]:
 
 
 def _hand_puma() -> tuple[list[tuple[int, float]], np.ndarray, np.ndarray]:
-    # θ2 = 90° turns the arm at q = 0 about +y0 (the shoulder axis): p = (-d4, d3, -(a2 + a3)), R = Ry(90°) diag(1, -1, -1)
+    # θ2 = 90° turns the arm at q = 0 about +y0 (the shoulder axis):
+    # p = (-d4, d3, -(a2 + a3)), R = Ry(90°) diag(1, -1, -1)
     T = np.array([[0, 0, -1, -0.4318], [0, -1, 0, 0.15005], [-1, 0, 0, -0.4521], [0, 0, 0, 1]])
     return [(1, 90.0)], T, T[:3, 3]
 
@@ -201,7 +202,12 @@ def test_ik_ghosts_and_animation_in_chromium(lab: Lab, page: Any, artifacts: Pat
     page.wait_for_function("([b, n]) => b.__puma.poseRenders > n", arg=[panel_box.element_handle(), before])
     page.wait_for_timeout(300)
     np.testing.assert_allclose(_readout(page), T0, atol=2e-4)
-    moved = np.radians([float(x.replace("\u2212", "-")) for x in page.locator(".jp-Notebook .widget-slider .widget-readout").all_inner_texts()[:6]])
+    moved = np.radians(
+        [
+            float(x.replace("\u2212", "-"))
+            for x in page.locator(".jp-Notebook .widget-slider .widget-readout").all_inner_texts()[:6]
+        ]
+    )
     assert np.abs(moved - arm_q).max() > 0.1  # another configuration ...
     panel_box.scroll_into_view_if_needed()
     _panel_cells(page).first.locator(".jp-OutputArea").screenshot(path=str(artifacts / "ik_ghosts.png"))
