@@ -7,8 +7,9 @@
 * :mod:`~puma_course.viz.three_step`: the pictures and the animation of the three-step procedure;
 * :mod:`~puma_course.viz.viewer`: the WebGL viewer (an anywidget with three.js bundled): any
   chain or robot, turned with the mouse, ghost arms, targets, animations;
-* :mod:`~puma_course.viz.widgets`: joint panels, ipywidgets sliders driving the viewer
-  (:func:`robot_panel`, :func:`dh_link_panel`).
+* :mod:`~puma_course.viz.widgets`: joint sliders and the :class:`Panel` joining them to a viewer;
+* :mod:`~puma_course.viz.panels`: the lectures' panels, :func:`robot_panel` (any robot, optional
+  IK ghosts) and :func:`dh_link_panel`.
 
 It loads matplotlib, ipywidgets and anywidget; ``import puma_course`` does not import it.
 
@@ -24,11 +25,12 @@ It loads matplotlib, ipywidgets and anywidget; ``import puma_course`` does not i
 
 from __future__ import annotations
 
-from . import arms, frames, three_step, viewer, widgets
+from . import arms, frames, panels, three_step, viewer, widgets
 from .arms import animate_frames, animate_robot, draw_chain, draw_robot, plot_chain, plot_robot
 from .frames import AXIS_COLORS, draw_frame, draw_frames, draw_points, new_axes, set_equal
+from .panels import RobotPanel, dh_link_panel, robot_panel
 from .viewer import RobotViewer, Viewer
-from .widgets import Panel, RobotPanel, SliderList, dh_link_panel, frame_name, joint_sliders, pose_readout, robot_panel
+from .widgets import Panel, SliderList, frame_name, joint_sliders, pose_readout
 
 __all__ = [
     "AXIS_COLORS",
@@ -50,6 +52,7 @@ __all__ = [
     "frames",
     "joint_sliders",
     "new_axes",
+    "panels",
     "plot_chain",
     "plot_robot",
     "pose_readout",

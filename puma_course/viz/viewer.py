@@ -229,6 +229,12 @@ class Viewer(anywidget.AnyWidget):
             draw_frame(ax, np.reshape(t["frame"], (4, 4)), t["label"], length=1.3 * sc["frames"][-1]["length"],
                        alpha=0.5)  # fmt: skip
 
+    def _tips(self) -> list[np.ndarray]:
+        """The tips of the triads' three axes as drawn (each (m, 3)), so the picture frames them too."""
+        F, _ = self._last
+        L = np.array([f["length"] for f in self.scene["frames"]])[:, None]
+        return [L * F[:, :3, k] for k in range(3)]
+
     def static_png(self, dpi: int = 90) -> bytes:
         """A PNG of the pose shown (matplotlib, the same view as the live one): the picture left in the notebook.
 
@@ -246,8 +252,8 @@ class Viewer(anywidget.AnyWidget):
             shown = [P, F[:, :3, 3], np.zeros((1, 3))]
             shown += [np.reshape(a["points"], (-1, 3)) for a in self.ghosts.get("arms", [])]
             shown += [np.reshape(t["frame"], (4, 4))[None, :3, 3] for t in self.targets]
-            set_equal(ax, np.vstack(shown), margin=0.15)
-            ax.locator_params(nbins=5)
+            set_equal(ax, np.vstack(shown + [F[:, :3, 3] + 1.1 * L for L in self._tips()]), margin=0.1)
+            ax.locator_params(nbins=4)  # few tick numbers: more overlap on a small 3-D axes
             if sc["units"]:
                 ax.set(xlabel=f"x [{sc['units']}]", ylabel=f"y [{sc['units']}]", zlabel=f"z [{sc['units']}]")
             buf = io.BytesIO()
