@@ -212,18 +212,47 @@ def wait_idle(page: Any, timeout: float = 60_000) -> None:
 
 
 def run_all(page: Any, timeout: float = 240_000) -> None:
-    """Run every cell (menu Run > Run All Cells) and wait until none is queued or running."""
+    """Clear the outputs, run every cell (menu Run > Run All Cells), wait until none is queued or running.
+
+    The menu is tried again when no cell has started after 30 s (a click that landed while the
+    page was still settling); on a time-out a screenshot is left in tests/artifacts/.
+    """
+    prompts = "[...document.querySelectorAll('.jp-Notebook .jp-CodeCell .jp-InputPrompt')]"
+    started = f"() => {prompts}.some((p) => /\\[(\\*|\\d+)\\]/.test(p.textContent))"
     page.locator(".jp-NotebookPanel .jp-Cell").first.click()
-    page.get_by_role("menuitem", name="Run", exact=True).click()
-    page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
-    page.wait_for_function(
-        """() => {
-            const prompts = [...document.querySelectorAll('.jp-Notebook .jp-CodeCell .jp-InputPrompt')];
-            return prompts.length > 0 && prompts.every((p) => /\\[\\d+\\]/.test(p.textContent));
-        }""",
-        timeout=timeout,
-    )
-    wait_idle(page, timeout)
+    # clear the saved outputs first, so the prompts' numbers below are this run's
+    page.get_by_role("menuitem", name="Edit", exact=True).click()
+    page.get_by_role("menuitem", name="Clear Outputs of All Cells", exact=True).click()
+    page.wait_for_function(f"() => !{prompts}.some((p) => /\\d/.test(p.textContent))", timeout=30_000)
+    for attempt in range(2):
+        page.get_by_role("menuitem", name="Run", exact=True).click()
+        page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
+        try:
+            page.wait_for_function(started, timeout=30_000)
+            break
+        except Exception:
+            if attempt:
+                _snapshot(page, "run_all_not_started")
+                raise
+    try:
+        page.wait_for_function(
+            """() => {
+                const prompts = [...document.querySelectorAll('.jp-Notebook .jp-CodeCell .jp-InputPrompt')];
+                return prompts.length > 0 && prompts.every((p) => /\\[\\d+\\]/.test(p.textContent));
+            }""",
+            timeout=timeout,
+        )
+        wait_idle(page, timeout)
+    except Exception:
+        _snapshot(page, "run_all_timeout")
+        raise
+
+
+def _snapshot(page: Any, name: str) -> None:
+    """A screenshot of the whole page for a failure's diagnosis (tests/artifacts/, git-ignored)."""
+    out = ROOT / "tests" / "artifacts"
+    out.mkdir(exist_ok=True)
+    page.screenshot(path=str(out / f"{name}.png"), full_page=True)
 
 
 def output_texts(page: Any) -> list[str]:
