@@ -103,6 +103,15 @@ function makeTriad(length, { opacity = 1, axis = false, shaft = 0.035 } = {}) {
   return group;
 }
 
+/** Free the GPU memory of everything under a group, then empty it (ghosts and targets are rebuilt when they change). */
+function disposeChildren(group) {
+  group.traverse((o) => {
+    if (o.geometry) o.geometry.dispose();
+    if (o.material) o.material.dispose();
+  });
+  group.clear();
+}
+
 /** The links of one arm: a cylinder per segment of the polyline and a ball at each vertex. */
 class Links {
   constructor(count, radius, color, opacity = 1) {
@@ -347,7 +356,7 @@ function render({ model, el }) {
   box.appendChild(bar);
 
   function buildGhosts() {
-    ghostGroup.clear();
+    disposeChildren(ghostGroup);
     const g = model.get("ghosts") || {};
     const arms = g.arms || [];
     ghostArms = arms.map((arm, k) => {
@@ -365,7 +374,7 @@ function render({ model, el }) {
   }
 
   function buildTargets() {
-    targetGroup.clear();
+    disposeChildren(targetGroup);
     targetLabels.forEach(({ node }) => node.remove());
     targetLabels = [];
     const targets = model.get("targets") || [];
@@ -496,6 +505,7 @@ function render({ model, el }) {
     model.off("change:targets", buildTargets);
     model.off("change:animation", buildPlayer);
     controls.dispose();
+    disposeChildren(scene);
     renderer.dispose();
     renderer.forceContextLoss();
     ghostArms = [];
