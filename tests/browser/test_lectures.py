@@ -20,6 +20,8 @@ import pytest
 
 from .lab import VIEWER_STATE, Lab, open_notebook, output_texts, run_all, viewers
 
+pytestmark = pytest.mark.browser
+
 REPR = re.compile(r"\b(Robot)?Panel\(children=|\bViewer\(|HBox\(children=")
 
 
