@@ -83,3 +83,22 @@ export function formatLength(value, units) {
   const v = Number.parseFloat(value.toPrecision(6)).toString();
   return units ? `${v} ${units}` : v;
 }
+
+/**
+ * The sphere a view must hold: centred on the bounding box of `points` ([x, y, z] each), its
+ * radius the farthest point's distance plus `pad` (e.g. the longest triad).
+ */
+export function boundingSphere(points, pad = 0) {
+  const lo = [Infinity, Infinity, Infinity];
+  const hi = [-Infinity, -Infinity, -Infinity];
+  for (const p of points) {
+    for (let k = 0; k < 3; k += 1) {
+      lo[k] = Math.min(lo[k], p[k]);
+      hi[k] = Math.max(hi[k], p[k]);
+    }
+  }
+  const center = [0, 1, 2].map((k) => (lo[k] + hi[k]) / 2);
+  let radius = 0;
+  for (const p of points) radius = Math.max(radius, Math.hypot(p[0] - center[0], p[1] - center[1], p[2] - center[2]));
+  return { center, radius: Math.max(radius + pad, 1e-9) };
+}

@@ -29,7 +29,17 @@ import {
 } from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 
-import { fitDistance, formatLength, frameAt, gridLines, niceStep, orbitPosition, pointAt, segmentPlacement } from "./geometry.js";
+import {
+  boundingSphere,
+  fitDistance,
+  formatLength,
+  frameAt,
+  gridLines,
+  niceStep,
+  orbitPosition,
+  pointAt,
+  segmentPlacement,
+} from "./geometry.js";
 import { placeLabels } from "./labels.js";
 
 const AXIS_COLORS = [0xd62728, 0x2ca02c, 0x1f77b4]; // x red, y green, z blue (matplotlib's tab colours)
@@ -195,8 +205,10 @@ function render({ model, el }) {
   camera.add(sun);
   scene.add(camera);
 
-  // the sphere the starting view frames: the scene's, or an animation's (all its poses)
+  // the sphere the starting view frames: the scene's, or an animation's (all its poses); "reset
+  // view" frames the pose shown at that moment instead (an arm moved out of view comes back)
   let home = { center: sceneSpec.center, radius: sceneSpec.radius };
+  let animView = null;
   const radius = sceneSpec.radius;
   const near = radius / 100;
   camera.near = near;
@@ -349,6 +361,16 @@ function render({ model, el }) {
   reset.textContent = "reset view";
   reset.title = "back to the starting view (drag: turn, wheel: zoom, right-drag or shift-drag: pan)";
   reset.addEventListener("click", () => {
+    if (!animView) {
+      const pts = [[0, 0, 0]];
+      for (let k = 0; k < sceneSpec.points; k += 1) pts.push(pointAt(pose.points, k));
+      styles.forEach((_, k) => {
+        const f = frameAt(pose.frames, k);
+        pts.push([f[3], f[7], f[11]]);
+      });
+      const sphere = boundingSphere(pts, Math.max(...styles.map((st) => st.length)));
+      home = { center: sphere.center, radius: Math.max(sphere.radius, 0.5 * sceneSpec.radius) };
+    }
     homeView();
     requestDraw();
   });
@@ -420,7 +442,8 @@ function render({ model, el }) {
     player = null;
     const anim = model.get("animation") || {};
     const poses = anim.poses || [];
-    const view = anim.view || { center: sceneSpec.center, radius: sceneSpec.radius };
+    animView = anim.view || null;
+    const view = animView || { center: sceneSpec.center, radius: sceneSpec.radius };
     if (view.center !== home.center || view.radius !== home.radius) {
       home = view;
       if (started) homeView();

@@ -2,7 +2,7 @@
 import assert from "node:assert/strict";
 import { test } from "node:test";
 
-import { fitDistance, formatLength, frameAt, gridLines, niceStep, orbitPosition, pointAt, segmentPlacement } from "../src/geometry.js";
+import { boundingSphere, fitDistance, formatLength, frameAt, gridLines, niceStep, orbitPosition, pointAt, segmentPlacement } from "../src/geometry.js";
 
 const close = (a, b, tol = 1e-12) => a.forEach((x, i) => assert.ok(Math.abs(x - b[i]) <= tol, `${a} != ${b}`));
 
@@ -66,4 +66,10 @@ test("lengths with their unit", () => {
   assert.equal(formatLength(0.2, "m"), "0.2 m");
   assert.equal(formatLength(100, "mm"), "100 mm");
   assert.equal(formatLength(0.30000000000000004, ""), "0.3");
+});
+
+test("the bounding sphere of a pose: box centre, farthest point, plus the pad", () => {
+  const { center, radius } = boundingSphere([[0, 0, 0], [2, 0, 0], [1, 1, 0]], 0.5);
+  close(center, [1, 0.5, 0]);
+  assert.ok(Math.abs(radius - (Math.hypot(1, 0.5) + 0.5)) < 1e-12);
 });

@@ -4,7 +4,8 @@ For each lecture: opened from disk (no kernel output yet), every panel cell show
 picture (an <img>), never a text repr; after Run All every panel is a WebGL canvas, no cell shows
 "Error displaying widget" or a repr, the frame labels do not overlap; typing a value into a
 slider's readout moves the drawn arm (the origins the viewer drew, and the pixels) and the
-readout matrix to the value worked out by hand here. A last test checks the IK ghosts with
+readout matrix to the value worked out by hand here; the mouse turns the view and "reset
+view" frames the arm where it is. A last test checks the IK ghosts with
 their selector and the animation's play button on a scratch notebook.
 """
 
@@ -144,7 +145,7 @@ def test_lecture_panels_in_chromium(name: str, lab: Lab, page: Any, artifacts: P
     _no_overlap(state["labels"])
     panel.screenshot(path=str(artifacts / f"{stem}_panel_moved.png"))
 
-    # 4. the mouse turns the view (the labels move on the screen), "reset view" brings it back
+    # 4. the mouse turns the view (the labels move on the screen), "reset view" frames the arm again
     canvas = box.locator("canvas")
     bb = canvas.bounding_box()
     start = [(lab_["x"], lab_["y"]) for lab_ in state["labels"]]
@@ -156,10 +157,14 @@ def test_lecture_panels_in_chromium(name: str, lab: Lab, page: Any, artifacts: P
     turned = [(lab_["x"], lab_["y"]) for lab_ in box.evaluate("b => b.__puma.labels")]
     assert turned != start, f"{name}: dragging did not turn the view"
     panel.screenshot(path=str(artifacts / f"{stem}_panel_turned.png"))
+    # "reset view" frames the arm where it is now: every labelled frame's origin inside the picture
     box.get_by_role("button", name="reset view").click()
     page.wait_for_timeout(200)
-    back = [(lab_["x"], lab_["y"]) for lab_ in box.evaluate("b => b.__puma.labels")]
-    np.testing.assert_allclose(np.array(sorted(back)), np.array(sorted(start)), atol=1.0)
+    back = box.evaluate("b => b.__puma.labels")
+    assert [(lab_["x"], lab_["y"]) for lab_ in back] != turned
+    assert all(0 <= lab_["ax"] <= bb["width"] and 0 <= lab_["ay"] <= bb["height"] for lab_ in back), back
+    _no_overlap(back)
+    panel.screenshot(path=str(artifacts / f"{stem}_panel_reset.png"))
     assert not page.errors, f"{name}: errors on the page: {page.errors}"
 
 
