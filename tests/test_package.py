@@ -13,7 +13,8 @@ ROOT = Path(__file__).resolve().parents[1]
 def test_import_is_light():
     code = (
         "import sys, puma_course\n"
-        "heavy = [m for m in ('sympy', 'matplotlib', 'ipywidgets', 'nbclient', 'IPython') if m in sys.modules]\n"
+        "heavy = [m for m in ('sympy', 'matplotlib', 'ipywidgets', 'anywidget', 'nbclient', 'IPython')\n"
+        "         if m in sys.modules]\n"
         "print(','.join(heavy))\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

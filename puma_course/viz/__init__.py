@@ -5,9 +5,13 @@
   ``robot.points(q)``, triads ``robot.frames(q)``), any chain from its frames
   (:func:`draw_chain`), pictures and jshtml animations;
 * :mod:`~puma_course.viz.three_step`: the pictures and the animation of the three-step procedure;
-* :mod:`~puma_course.viz.widgets`: slider panels (ipywidgets + the inline backend).
+* :mod:`~puma_course.viz.viewer`: the WebGL viewer (an anywidget with three.js bundled): any
+  chain or robot, turned with the mouse, ghost arms, targets, animations;
+* :mod:`~puma_course.viz.widgets`: joint sliders and the :class:`Panel` joining them to a viewer;
+* :mod:`~puma_course.viz.panels`: the lectures' panels, :func:`robot_panel` (any robot, optional
+  IK ghosts) and :func:`dh_link_panel`.
 
-It loads matplotlib and ipywidgets; ``import puma_course`` does not import it.
+It loads matplotlib, ipywidgets and anywidget; ``import puma_course`` does not import it.
 
 >>> import matplotlib
 >>> matplotlib.use("Agg")
@@ -21,15 +25,20 @@ It loads matplotlib and ipywidgets; ``import puma_course`` does not import it.
 
 from __future__ import annotations
 
-from . import arms, frames, three_step, widgets
+from . import arms, frames, panels, three_step, viewer, widgets
 from .arms import animate_frames, animate_robot, draw_chain, draw_robot, plot_chain, plot_robot
 from .frames import AXIS_COLORS, draw_frame, draw_frames, draw_points, new_axes, set_equal
-from .widgets import Panel, SliderList, dh_link_panel, joint_sliders, pose_readout, robot_panel
+from .panels import RobotPanel, dh_link_panel, robot_panel
+from .viewer import RobotViewer, Viewer
+from .widgets import Panel, SliderList, frame_name, joint_sliders, pose_readout
 
 __all__ = [
     "AXIS_COLORS",
     "Panel",
+    "RobotPanel",
+    "RobotViewer",
     "SliderList",
+    "Viewer",
     "animate_frames",
     "animate_robot",
     "arms",
@@ -39,14 +48,17 @@ __all__ = [
     "draw_frames",
     "draw_points",
     "draw_robot",
+    "frame_name",
     "frames",
     "joint_sliders",
     "new_axes",
+    "panels",
     "plot_chain",
     "plot_robot",
     "pose_readout",
     "robot_panel",
     "set_equal",
     "three_step",
+    "viewer",
     "widgets",
 ]

@@ -1,13 +1,15 @@
-"""Slider panels for the lectures: ipywidgets 8 + ``interactive_output`` + matplotlib (inline).
+"""Joint sliders and the panel that joins them to the WebGL viewer (:mod:`.viewer`); the readout.
+
+The lectures' panels are built in :mod:`.panels` (``robot_panel``, ``dh_link_panel``).
 
 Convention: sliders show degrees (their labels say ``θ1 [deg]``) for angles and the robot's
-units for lengths (``d3 [m]``); every callback, drawing and ``readout`` receives joint values
-in *radians* (lengths unchanged), as everywhere else in the course. Each redraw builds a fresh
-matplotlib figure, displays it in the panel's ``Output`` and closes it, so the panel works with
-the inline backend in JupyterLab 4 with nothing to install (no ipympl). Axis limits are fixed
-when the panel is built, so the view does not jump while a slider moves.
+units for lengths (``d3 [m]``); every callback, the viewer and the readout receive joint values
+in *radians* (lengths unchanged), as everywhere else in the course. A slider move sends the new
+frames to the browser (no picture is drawn on the kernel), so the arm follows the slider while
+it is dragged; the view turns with the mouse. Displayed, a panel also leaves a static picture
+(PNG) of its first pose in the notebook for readers who have not run it.
 
-This is a display module: it imports ipywidgets and matplotlib. ``import puma_course`` never
+This is a display module: it imports ipywidgets and anywidget. ``import puma_course`` never
 imports it.
 
 Typical use (in a notebook; the last expression displays the panel)::
@@ -24,18 +26,12 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import ipywidgets as widgets
-import matplotlib.pyplot as plt
 import numpy as np
-from IPython import get_ipython
-from IPython.display import display
 
 from .._validate import as_array
-from ..kinematics.dh import mdh
-from ..kinematics.robot import Robot
-from .arms import _view_points, draw_robot
-from .frames import draw_frame, draw_frames, draw_points, new_axes
+from .viewer import Viewer, _with_picture
 
-__all__ = ["SliderList", "joint_sliders", "Panel", "robot_panel", "dh_link_panel", "pose_readout"]
+__all__ = ["SliderList", "joint_sliders", "Panel", "pose_readout", "frame_name"]
 
 
 class SliderList(list[Any]):
@@ -92,6 +88,7 @@ def joint_sliders(
     degrees: bool | Sequence[bool] = True,
     step: float | Sequence[float] | None = None,
     units: str | None = None,
+    continuous_update: bool = True,
 ) -> SliderList:
     """One ``FloatSlider`` per joint; ``lows``, ``highs``, ``values`` in code units (radians).
 
@@ -100,7 +97,8 @@ def joint_sliders(
     and read ``"<name> [<units>]"`` (``"q2 []"`` for ``units=""``, a unitless length) or just
     the name (``units=None``). ``values`` default to 0 where the limits allow, else the middle.
     ``step`` is in display units (default 1 degree, or 1/200 of the range for lengths). The
-    returned :class:`SliderList` converts back with ``.radians()``.
+    returned :class:`SliderList` converts back with ``.radians()``. ``continuous_update``
+    (default) reports values while a slider is dragged, so the view follows the hand.
 
     >>> s = joint_sliders(["θ1", "d2"], [-np.pi, 0.0], [np.pi, 2.0], [np.pi / 2, 0.5], degrees=[True, False])
     >>> [x.description for x in s], [x.value for x in s], s.radians().round(6).tolist()
@@ -135,29 +133,42 @@ def joint_sliders(
                 max=b,
                 step=st,
                 description=label,
-                continuous_update=False,
+                continuous_update=continuous_update,
                 readout_format=".1f" if deg[i] else ".3g",
-                style={"description_width": "initial"},
-                layout=widgets.Layout(width="320px"),
+                style={"description_width": "95px"},
+                layout=widgets.Layout(width="340px"),
             )
         )
     return SliderList(sliders, deg)
 
 
-def pose_readout(q: np.ndarray, frames: np.ndarray, precision: int = 4, units: str = "") -> str:
-    """Text of the last frame's pose: position p (in ``units``) and rotation matrix R, for a panel's readout.
+_SUP = str.maketrans("0123456789-i()", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻ⁱ⁽⁾")
+_SUB = str.maketrans("0123456789-i()", "₀₁₂₃₄₅₆₇₈₉₋ᵢ₍₎")
 
-    >>> print(pose_readout(np.zeros(1), np.eye(4)[None], units="m"))
-    p = [0. 0. 0.] m
-    R =
-    [[1. 0. 0.]
-     [0. 1. 0.]
-     [0. 0. 1.]]
+
+def frame_name(parent: str, child: str) -> str:
+    """The name of a transform from frame {child} to {parent}, written as the lectures do: ⁰T₆.
+
+    >>> frame_name("0", "6"), frame_name("i-1", "i")
+    ('⁰T₆', 'ⁱ⁻¹Tᵢ')
     """
-    T = np.asarray(frames)[-1]
-    unit = f" {units}" if units else ""
+    return f"{parent.translate(_SUP)}T{child.translate(_SUB)}"
+
+
+def pose_readout(T: Any, name: str = "T", units: str = "", precision: int = 4) -> str:
+    """Text of a pose as its 4x4 matrix, named (``⁰T₆ =``), the lengths' units said once.
+
+    >>> print(pose_readout(np.eye(4), frame_name("0", "1"), units="m"))
+    ⁰T₁ =   (lengths in m)
+    [[1. 0. 0. 0.]
+     [0. 1. 0. 0.]
+     [0. 0. 1. 0.]
+     [0. 0. 0. 1.]]
+    """
+    M = as_array(T, "T", (4, 4))
+    unit = f"   (lengths in {units})" if units else ""
     with np.printoptions(precision=precision, suppress=True):
-        return f"p = {np.round(T[:3, 3], precision) + 0.0}{unit}\nR =\n{np.round(T[:3, :3], precision) + 0.0}"
+        return f"{name} ={unit}\n{np.round(M, precision) + 0.0}"
 
 
 def _call_readout(fn: Callable[..., str], q: np.ndarray, frames: np.ndarray | None) -> str:
@@ -168,237 +179,109 @@ def _call_readout(fn: Callable[..., str], q: np.ndarray, frames: np.ndarray | No
     return str(fn(q, frames) if nparams >= 2 else fn(q))
 
 
-def _limits(limits: Any) -> np.ndarray:
-    L = np.asarray(limits, dtype=float)
-    if L.shape == (2,):
-        L = np.tile(L, (3, 1))
-    if L.shape != (3, 2) or not np.all(np.isfinite(L)) or np.any(L[:, 1] <= L[:, 0]):
-        raise ValueError(f"limits: expected (low, high) or a (3, 2) array of [low, high] rows, got {limits!r}")
-    return L
+def _escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
-class Panel(widgets.VBox):
-    """A slider panel: sliders on the left, the drawing (and an optional readout) on the right.
+class Panel(widgets.HBox):
+    """A joint panel: sliders (and a readout) on the left, a live :class:`~.viewer.Viewer` on the right.
 
-    ``draw(ax, q)`` draws configuration ``q`` (radians) on a fresh 3-D axes and returns the
-    frames it drew (or None). After each redraw ``last_q``, ``last_frames``, ``last_readout``
-    and ``last_axes`` (the drawn axes; its figure is closed) hold what was drawn, so a test (or
-    a curious student) can inspect it.
+    ``pose(q)`` returns the frames (m, 4, 4) and the link points (p, 3) to show for the joint
+    vector ``q`` (radians); each slider move calls it and sends them to ``viewer`` (only what
+    moved). ``readout(q)`` or ``readout(q, frames)`` returns the text shown under the sliders.
+    ``q`` is the joint vector shown: :meth:`set_radians` keeps it exact (an IK solution stays
+    on its pose) while the sliders show it rounded to their steps.
+    ``controls`` are more widgets put under the sliders. After each update ``last_q``,
+    ``last_frames``, ``last_points`` and ``last_readout`` hold what was sent, so a test (or a
+    curious student) can inspect it.
 
-    >>> def draw(ax, q):  # a unit pointer turned by θ about z
-    ...     ax.plot([0.0, np.cos(q[0])], [0.0, np.sin(q[0])], [0.0, 0.0])
-    >>> panel = Panel(joint_sliders(["θ"], -np.pi, np.pi), draw)
-    >>> panel.sliders[0].value = 90.0  # degrees on the slider, radians in draw
-    >>> [round(float(v), 6) + 0.0 for v in panel.last_axes.lines[0].get_data_3d()[1]]  # y: 0 to sin 90°
-    [0.0, 1.0]
+    >>> def pose(q):  # a unit pointer turned by θ about z: frames {0} and {1}
+    ...     T = np.eye(4); T[:2, :2] = [[np.cos(q[0]), -np.sin(q[0])], [np.sin(q[0]), np.cos(q[0])]]
+    ...     T[:3, 3] = T[:3, 0]
+    ...     F = np.stack([np.eye(4), T])
+    ...     return F, F[:, :3, 3]
+    >>> panel = Panel(joint_sliders(["θ"], -np.pi, np.pi), Viewer(pose(np.zeros(1))[0]), pose)
+    >>> panel.sliders[0].value = 90.0  # degrees on the slider, radians in pose
+    >>> np.round(panel.last_frames[1][:3, 3], 6).tolist(), panel.viewer.pose["points"][3:5]
+    ([0.0, 1.0, 0.0], [0.0, 1.0])
     """
 
     def __init__(
         self,
         sliders: SliderList,
-        draw: Callable[[Any, np.ndarray], np.ndarray | None],
+        viewer: Viewer,
+        pose: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
         *,
         readout: Callable[..., str] | None = None,
-        title: str | None = None,
-        limits: Any = None,
-        figsize: tuple[float, float] = (5.5, 4.8),
-        elev: float = 25,
-        azim: float = -60,
-        dpi: float = 100,
+        controls: Sequence[widgets.Widget] = (),
     ) -> None:
         self.sliders = sliders
-        self._draw = draw
+        self.viewer = viewer
+        self._pose = pose
         self._readout_fn = readout
-        self._title = title
-        self._limits = None if limits is None else _limits(limits)
-        self._figsize, self._elev, self._azim, self._dpi = figsize, elev, azim, dpi
+        self._holding = False
+        self.q = sliders.radians()  # the joint vector shown, exact (a slider shows it rounded to its step)
         self.last_q: np.ndarray | None = None
         self.last_frames: np.ndarray | None = None
+        self.last_points: np.ndarray | None = None
         self.last_readout: str | None = None
-        self.last_axes: Any = None
         self.readout_widget = widgets.HTML(value="")
-        controls = widgets.VBox(list(sliders) + ([self.readout_widget] if readout is not None else []))
-        if get_ipython() is not None:
-            # in a kernel: the standard ipywidgets route (clears and refills the Output on every change)
-            self.output = widgets.interactive_output(self._redraw, {f"s{i}": s for i, s in enumerate(sliders)})
-        else:
-            # plain Python (tests, doctests): same callback, wired directly, without terminal clear-codes
-            self.output = widgets.Output()
-            for s in sliders:
-                s.observe(lambda change: self._redraw(), names="value")
-            self._redraw()
-        super().__init__([widgets.HBox([controls, self.output])])
+        for s in sliders:
+            s.observe(self._on_slider, names="value")
+        left = list(sliders) + list(controls) + ([self.readout_widget] if readout is not None else [])
+        viewer.layout = widgets.Layout(flex="1 1 auto", min_width="320px")
+        super().__init__(
+            [widgets.VBox(left, layout=widgets.Layout(flex="0 0 auto", width="350px")), viewer],
+            layout=widgets.Layout(width="100%", align_items="flex-start"),
+        )
+        self._update()
 
-    def _redraw(self, **kw: float) -> None:
-        q = self.sliders.radians()
-        fig, ax = new_axes(figsize=self._figsize, title=self._title, elev=self._elev, azim=self._azim, dpi=self._dpi)
-        frames = self._draw(ax, q)
-        if self._limits is not None:
-            ax.set_xlim3d(*self._limits[0])
-            ax.set_ylim3d(*self._limits[1])
-            ax.set_zlim3d(*self._limits[2])
-            ax.set_box_aspect(tuple(self._limits[:, 1] - self._limits[:, 0]))
-        ax.locator_params(nbins=5)  # fewer tick numbers: the default ones overlap on a small 3-D axes
-        self.last_q = q
-        self.last_axes = ax
-        self.last_frames = None if frames is None else np.asarray(frames)
+    def _on_slider(self, change: Any) -> None:
+        if self._holding:
+            return
+        k = next(i for i, s in enumerate(self.sliders) if s is change["owner"])
+        deg = self.sliders.degrees[k]
+        shown = float(np.degrees(self.q[k])) if deg else float(self.q[k])
+        if abs(change["new"] - shown) <= 0.5 * float(change["owner"].step) + 1e-9:
+            return  # the browser snapped an exact value (set_radians) to the slider's step: keep the exact one
+        self.q = self.q.copy()
+        self.q[k] = np.radians(change["new"]) if deg else float(change["new"])
+        self._update()
+
+    def _update(self) -> None:
+        q = self.q
+        frames, points = self._pose(q)
+        self.viewer.show(frames, points)
+        self.last_q, self.last_frames, self.last_points = q, np.asarray(frames), np.asarray(points)
         if self._readout_fn is not None:
             text = _call_readout(self._readout_fn, q, self.last_frames)
             self.last_readout = text
-            self.readout_widget.value = "<pre style='font-size:85%; line-height:1.2'>" + _escape(text) + "</pre>"
-        if get_ipython() is not None:  # in a kernel: show it in the panel's Output; elsewhere (tests) just close
-            display(fig)
-        plt.close(fig)
+            self.readout_widget.value = (
+                "<pre class='puma-readout' style='font-size:12px; line-height:1.25; margin:6px 0 0 0'>"
+                + _escape(text) + "</pre>"
+            )  # fmt: skip
+        self.on_update(q)
+
+    def on_update(self, q: np.ndarray) -> None:
+        """Called after every update with the joint vector shown (a hook for subclasses)."""
 
     def set_radians(self, q: Any) -> None:
-        """Move all sliders to ``q`` (radians / lengths); the drawing follows.
+        """Move all sliders to ``q`` (radians / lengths); the view follows once, at ``q`` exactly.
 
         >>> from puma_course import MK3
+        >>> from puma_course.viz import robot_panel
         >>> panel = robot_panel(MK3(), readout=None)
         >>> panel.set_radians(MK3().q("qr")); np.degrees(panel.last_q).round(6).tolist()
         [0.0, 90.0, -90.0, 0.0, 0.0]
         """
-        self.sliders.set_radians(q)
+        q = as_array(q, "q", (len(self.sliders),), what=f"a joint vector of shape ({len(self.sliders)},)")
+        self._holding = True
+        try:
+            self.sliders.set_radians(q)
+        finally:
+            self._holding = False
+        self.q = q.copy()
+        self._update()
 
-
-def _escape(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-
-
-def _auto_limits(robot: Robot, sliders: SliderList, samples: int = 256) -> np.ndarray:
-    """A cube holding the drawn arm (links and frame origins) over the start and seeded random configurations."""
-    rng = np.random.default_rng(0)
-    lo, hi = robot.qlim[:, 0], robot.qlim[:, 1]
-    Q = np.vstack([sliders.radians()[None], lo + (hi - lo) * rng.random((samples, robot.n))])
-    P = _view_points(robot, Q)
-    centre = (P.min(axis=0) + P.max(axis=0)) / 2.0
-    half = max(float(np.max(P.max(axis=0) - P.min(axis=0))) / 2.0, 1e-9) * 1.1
-    return np.stack([centre - half, centre + half], axis=1)
-
-
-def _start(robot: Robot, q: Any) -> np.ndarray | None:
-    if q is None:
-        return None
-    if isinstance(q, str):
-        return robot.q(q)
-    Q = robot.check_q(q)
-    if Q.ndim != 1:
-        raise ValueError(f"q: expected one joint vector of shape ({robot.n},) or a configuration name, got {Q.shape}")
-    return Q
-
-
-def robot_panel(
-    robot: Robot,
-    readout: str | Callable[..., str] | None = "pose",
-    *,
-    q: Any = None,
-    step: float | Sequence[float] | None = None,
-    title: str | None = None,
-    limits: Any = None,
-    figsize: tuple[float, float] = (5.5, 4.8),
-    elev: float = 25,
-    azim: float = -60,
-    **draw_kw: Any,
-) -> Panel:
-    """Sliders for any robot's joints and a 3-D drawing of it (:func:`~puma_course.viz.arms.draw_robot`).
-
-    Everything comes from the robot API: one slider per joint labelled by ``robot.joint_symbols``,
-    limited by ``robot.qlim``, in degrees for revolute joints (``θ1 [deg]``) and in the robot's
-    ``units`` for the others (``d3 [m]``, or ``q2 []`` for a unitless length). ``q`` is the
-    start: a configuration name (``"qn"``) or a joint vector (radians / lengths); by default 0
-    where the limits allow it. ``readout`` is ``"pose"`` (position and rotation of
-    ``robot.fk(q)``), ``None`` or a callable ``readout(q)`` / ``readout(q, frames)`` returning
-    text. ``limits`` is ``(low, high)`` for all axes or a (3, 2) array; by default a cube
-    framing the arm over many configurations, fixed once for the panel. Other keywords go to
-    ``draw_robot`` (here ``triads="all"``, ``axes=True``, ``labels`` {0} on the base and {m-1}
-    on the last frame, a triad length of 8 % of the view, unless given; ``color``, ...). ``title``
-    defaults to the name and units.
-
-    >>> from puma_course import MK3
-    >>> panel = robot_panel(MK3())
-    >>> panel.sliders[1].description, panel.sliders[1].max
-    ('θ2 [deg]', 180.0)
-    >>> panel.sliders[1].value = 90.0  # the student sets degrees ...
-    >>> np.round(panel.last_q, 4).tolist()  # ... the kinematics receives radians
-    [0.0, 1.5708, 0.0, 0.0, 0.0]
-    """
-    if not isinstance(robot, Robot):
-        raise ValueError(f"robot: expected a Robot (Puma560(), MK3(), Porter(...), ...), got {type(robot).__name__}")
-    sliders = joint_sliders(robot.joint_symbols, robot.qlim[:, 0], robot.qlim[:, 1], _start(robot, q),
-                            degrees=robot.revolute.tolist(), step=step, units=robot.units)  # fmt: skip
-    lim = _limits(limits) if limits is not None else _auto_limits(robot, sliders)
-    m = robot.frames(sliders.radians()).shape[0]
-    opts: dict[str, Any] = {
-        "triads": "all",
-        "axes": True,
-        "labels": [f"{{{i}}}" if i in (0, m - 1) else "" for i in range(m)],
-        "length": 0.08 * float(np.max(lim[:, 1] - lim[:, 0])),
-    }
-    opts.update(draw_kw)
-
-    def pose(q: np.ndarray) -> str:
-        return pose_readout(q, robot.fk(q)[None], units=robot.units)
-
-    if readout == "pose":
-        readout_fn: Callable[..., str] | None = pose
-    elif readout is None or callable(readout):
-        readout_fn = readout
-    else:
-        raise ValueError(f"readout: expected None, 'pose' or a callable, got {readout!r}")
-
-    def draw(ax: Any, q: np.ndarray) -> np.ndarray:
-        draw_robot(ax, robot, q, **opts)
-        return robot.frames(q)
-
-    if title is None:
-        title = f"{robot.name} ({robot.units})" if robot.units else robot.name
-    return Panel(sliders, draw, readout=readout_fn, title=title, limits=lim, figsize=figsize, elev=elev, azim=azim)
-
-
-def dh_link_panel(
-    values: Sequence[float] = (np.pi / 4, 1.0, np.pi / 6, 0.5),
-    length_range: tuple[float, float] = (-1.5, 1.5),
-    title: str = "Craig's link matrix",
-) -> Panel:
-    """Sliders for (α_{i-1}, a_{i-1}, θ_i, d_i): frames {i-1} and {i} and the link matrix ^{i-1}T_i.
-
-    The four elementary steps Rot(X, α) Trans(X, a) Rot(Z, θ) Trans(Z, d) are
-    drawn as faint intermediate frames, so the path from {i-1} to {i} (a along
-    X_{i-1}, then d along Z_i) is visible. ``values`` are radians / lengths.
-
-    >>> panel = dh_link_panel()
-    >>> panel.sliders[0].value, panel.sliders[1].value = 90.0, 1.0  # α_{i-1} = 90°, a_{i-1} = 1
-    >>> np.round(panel.last_frames[-1][:3, 3], 4) + 0.0  # origin of {i}: (a, -sin(α) d, cos(α) d)
-    array([ 1. , -0.5,  0. ])
-    """
-    lo, hi = length_range
-    sliders = joint_sliders(
-        ["α_{i-1}", "a_{i-1}", "θ_i", "d_i"],
-        [-np.pi, lo, -np.pi, lo],
-        [np.pi, hi, np.pi, hi],
-        values,
-        degrees=[True, False, True, False],
-        step=[5.0, 0.05, 5.0, 0.05],
-    )
-
-    def steps(q: np.ndarray) -> np.ndarray:
-        """{i-1} (identity), then Rot(X, α), Trans(X, a), Rot(Z, θ), Trans(Z, d) applied one more at a time."""
-        return mdh(*(np.tri(5, 4, -1) * q).T)  # row k keeps the first k parameters: (5, 4, 4)
-
-    span = max(abs(lo), abs(hi))
-    L = 0.35 * span
-
-    def draw(ax: Any, q: np.ndarray) -> np.ndarray:
-        S = steps(q)
-        draw_points(ax, S[:, :3, 3], color="0.5", lw=2, alpha=0.6)
-        draw_frames(ax, S[1:4], labels=["", "", ""], length=0.6 * L, alpha=0.25, lw=1.5)
-        draw_frame(ax, S[0], "{i-1}", length=L)
-        draw_frame(ax, S[-1], "{i}", length=L)
-        return S[[0, -1]]
-
-    def readout(q: np.ndarray, frames: np.ndarray) -> str:
-        with np.printoptions(precision=3, suppress=True):
-            return f"^(i-1)T_i =\n{np.round(frames[-1], 3) + 0.0}"
-
-    lim = np.array([[-span - L, span + L]] * 3)
-    return Panel(sliders, draw, readout=readout, title=title, limits=lim)
+    def _repr_mimebundle_(self, **kwargs: Any) -> Any:
+        return _with_picture(super()._repr_mimebundle_(**kwargs), self.viewer)

@@ -1,22 +1,27 @@
-"""Slider panels (puma_course.viz.widgets): built without a display (Agg); the kinematics must receive radians.
+"""Joint panels (puma_course.viz.widgets): built without a browser; the kinematics must receive radians.
 
 Truths used here: degrees converted to radians by hand-worked numbers, poses worked by hand
-(the PUMA-560 at θ = 0, the MK3 at θ1 = 90°, an RP arm), the robots' own points for what is
-drawn, and Craig's link matrix worked by hand for the one-link panel.
+(the PUMA-560 at θ = 0 and θ2 = 90°, the MK3 at θ1 = 90°, an RP arm), the robots' own points
+for what is sent to the viewer, and Craig's link matrix worked by hand for the one-link panel.
+What the browser draws from it is checked in tests/browser.
 """
 
 from __future__ import annotations
 
-import matplotlib.pyplot as plt
+import base64
+import warnings
+
 import numpy as np
 import pytest
 
 from puma_course import MK3, DHChain, Link, Porter, Puma560
-from puma_course.viz import Panel, dh_link_panel, joint_sliders, robot_panel
+from puma_course.viz import Panel, RobotViewer, dh_link_panel, joint_sliders, robot_panel
 
 
-def _xyz(line):
-    return np.transpose(line.get_data_3d())
+def _sent(panel):
+    """What the last update sent to the browser: frames (m, 4, 4) and link points (p, 3)."""
+    pose = panel.viewer.pose
+    return np.reshape(pose["frames"], (-1, 4, 4)), np.reshape(pose["points"], (-1, 3))
 
 
 class SpyPuma(Puma560):
@@ -66,46 +71,63 @@ def test_joint_sliders_bad_input():
 # ---- robot_panel ---------------------------------------------------------------------------------
 
 
-def test_robot_panel_passes_radians_to_the_robot():
+def test_robot_panel_passes_radians_to_the_robot_and_sends_its_frames():
     arm = SpyPuma()
     panel = robot_panel(arm, readout="pose")
-    assert isinstance(panel, Panel)
+    assert isinstance(panel, Panel) and isinstance(panel.viewer, RobotViewer)
     assert [s.description for s in panel.sliders] == [f"θ{i} [deg]" for i in range(1, 7)]
     assert panel.sliders[0].min == pytest.approx(-180.0) and panel.sliders[0].max == pytest.approx(180.0)
-    # initial draw at q = 0: hand-worked p = (a2 + a3, d3, -d4)
+    assert all(s.continuous_update for s in panel.sliders)  # the arm follows a dragged slider
+    # initial pose at q = 0: hand-worked p = (a2 + a3, d3, -d4)
     np.testing.assert_allclose(panel.last_frames[-1][:3, 3], [0.4318 + 0.0203, 0.15005, -0.4318], atol=1e-12)
     panel.sliders[1].value = 90.0  # the student sees degrees ...
     q = np.array([0.0, np.pi / 2, 0.0, 0.0, 0.0, 0.0])  # ... the kinematics sees radians
     np.testing.assert_allclose(arm.seen[-1], q, atol=1e-12)
-    np.testing.assert_allclose(panel.last_frames[-1], arm.fk(q), atol=1e-12)
-    # θ2 = 90° turns the arm down: p = (a3 c23 - d4 s23 + a2 c2, d3, -a3 s23 - a2 s2 - d4 c23) = (-d4, d3, -a2 - a3)
-    np.testing.assert_allclose(arm.fk(q)[:3, 3], [-0.4318, 0.15005, -0.4521], atol=1e-12)
-    assert "p = " in panel.last_readout and "R =" in panel.last_readout
-    assert panel.last_readout.splitlines()[0] == "p = [-0.4318  0.15   -0.4521] m"
-    # what is drawn is the robot's polyline (the offset d3 visible), not the frame origins
-    np.testing.assert_allclose(_xyz(panel.last_axes.lines[0]), Puma560().points(q), atol=1e-12)
-    assert panel.last_axes.get_title() == "PUMA-560 (m)"
-    assert [t.get_text() for t in panel.last_axes.texts] == ["{0}", "{6}"]  # the base and the hand are named
-    assert plt.get_fignums() == []  # every redraw closes its figure
+    # θ2 = 90° turns the arm about +y0: p = (-d4, d3, -(a2 + a3)), R = Ry(90°) diag(1, -1, -1), by hand
+    T = np.array([[0, 0, -1, -0.4318], [0, -1, 0, 0.15005], [-1, 0, 0, -0.4521], [0, 0, 0, 1]])
+    np.testing.assert_allclose(panel.last_frames[-1], T, atol=1e-12)
+    assert panel.last_readout.splitlines() == [
+        "⁰T₆ =   (lengths in m)",
+        "[[ 0.      0.     -1.     -0.4318]",
+        " [ 0.     -1.      0.      0.15  ]",
+        " [-1.      0.      0.     -0.4521]",
+        " [ 0.      0.      0.      1.    ]]",
+    ]
+    assert "puma-readout" in panel.readout_widget.value and "⁰T₆" in panel.readout_widget.value
+    # what is sent to the browser: the robot's polyline (the offset d3 visible) and its 7 frames, rounded to 1e-7
+    F, P = _sent(panel)
+    np.testing.assert_allclose(P, Puma560().points(q), atol=1e-7)
+    np.testing.assert_allclose(F, Puma560().frames(q), atol=1e-7)
+    assert panel.viewer.scene["title"] == "PUMA-560" and panel.viewer.scene["units"] == "m"
+    assert [f["label"] for f in panel.viewer.scene["frames"]] == [f"{{{i}}}" for i in range(7)]
 
 
-def test_robot_panel_custom_readout_and_limits():
+def test_a_slider_move_sends_only_the_pose():
+    panel = robot_panel(MK3())
+    scene = panel.viewer.scene
+    sent = []
+    panel.viewer.observe(lambda change: sent.append(change["name"]), names=["scene", "pose", "ghosts", "targets"])
+    panel.sliders[0].value = 30.0
+    assert sent == ["pose"] and panel.viewer.scene is scene
+    assert len(panel.viewer.pose["frames"]) == 6 * 16 and len(panel.viewer.pose["points"]) == 6 * 3
+
+
+def test_robot_panel_custom_readout():
     arm = MK3()
-    panel = robot_panel(arm, readout=lambda q: f"sum={np.degrees(q).sum():.1f}", limits=(-800, 800))
+    panel = robot_panel(arm, readout=lambda q: f"sum={np.degrees(q).sum():.1f}")
     panel.set_radians([np.pi / 2, 0, 0, 0, -np.pi / 4])
     assert panel.last_readout == "sum=45.0"
     np.testing.assert_allclose(panel.last_frames[-1], arm.fk([np.pi / 2, 0, 0, 0, -np.pi / 4]), atol=1e-9)
     # at θ1 = 90° the MK3 reaches along +y: p = (0, a1 + a2 + a3, d1 - d5) worked by hand
     np.testing.assert_allclose(panel.last_frames[-1][:3, 3], [0.0, 600.0, 260.0], atol=1e-9)
-    assert panel.last_axes.get_xlim3d() == pytest.approx((-800, 800))
-    with pytest.raises(ValueError, match="limits"):
-        robot_panel(arm, limits=(1, 0))
     with pytest.raises(ValueError, match="readout"):
         robot_panel(arm, readout="nonsense")
     with pytest.raises(ValueError, match="robot"):
         robot_panel(arm.frames)
     with pytest.raises(ValueError, match="q"):
         robot_panel(arm, q=np.zeros((2, 5)))
+    with pytest.raises(ValueError, match="labels"):
+        robot_panel(arm, labels=["{0}"])
 
 
 def test_robot_panel_starts_at_a_named_configuration():
@@ -113,6 +135,19 @@ def test_robot_panel_starts_at_a_named_configuration():
     assert [s.value for s in panel.sliders] == [0.0, 90.0, -90.0, 0.0, 0.0]  # qr = (0, 90°, -90°, 0, 0)
     assert panel.last_readout is None
     np.testing.assert_allclose(panel.last_q, [0.0, np.pi / 2, -np.pi / 2, 0.0, 0.0], atol=1e-12)
+
+
+def test_set_radians_keeps_the_exact_joint_vector_when_the_browser_snaps_the_sliders():
+    arm = Puma560()
+    panel = robot_panel(arm)
+    q = np.array([0.1234, -0.5, 0.25, 1.0, 0.7, -0.2])
+    panel.set_radians(q)
+    np.testing.assert_allclose(panel.last_frames[-1], arm.fk(q), atol=1e-12)
+    # the browser rounds 7.07° to the 1° step and sends 7.0 back: an echo, not a move
+    panel.sliders[0].value = 7.0
+    np.testing.assert_allclose(panel.last_q, q, atol=0)
+    panel.sliders[0].value = 20.0  # a real move
+    np.testing.assert_allclose(panel.last_q, [np.radians(20.0), *q[1:]], atol=1e-12)
 
 
 def test_robot_panel_with_a_prismatic_joint():
@@ -126,74 +161,93 @@ def test_robot_panel_with_a_prismatic_joint():
     panel.sliders[1].value = 1.5
     np.testing.assert_allclose(panel.last_q, [np.pi / 2, 1.5], atol=1e-12)
     np.testing.assert_allclose(panel.last_frames[-1][:3, 3], [-1.5, 0.0, 0.0], atol=1e-12)
-    np.testing.assert_allclose(_xyz(panel.last_axes.lines[0]), arm.points([np.pi / 2, 1.5]), atol=1e-12)
+    np.testing.assert_allclose(_sent(panel)[1], arm.points([np.pi / 2, 1.5]), atol=1e-7)
 
 
 def test_robot_panel_porter_labels_units_and_stroke():
     arm = Porter(1.0, 0.5, 0.3)
-    panel = robot_panel(arm, q=[0.5, -0.4, 1.2, 0.9, 0.6, -0.3])
+    labels = ["{0}", "", "{2}", "{3}", "{4}", "{5}"]
+    panel = robot_panel(arm, q=[0.5, -0.4, 1.2, 0.9, 0.6, -0.3], labels=labels)
     assert [s.description for s in panel.sliders] == [
         "α1 [deg]", "α2 [deg]", "q2 []", "α3 [deg]", "α4 [deg]", "α5 [deg]",
     ]  # fmt: skip
     assert panel.sliders[2].max == pytest.approx(2 * (1.0 + 0.5 + 0.3))  # the default stroke 2 (l1 + l3 + l4)
     assert panel.sliders[2].value == 1.2 and panel.sliders[0].value == pytest.approx(np.degrees(0.5))
     np.testing.assert_allclose(panel.last_frames[-1], arm.fk([0.5, -0.4, 1.2, 0.9, 0.6, -0.3]), atol=1e-12)
-    assert panel.last_readout.splitlines()[0].startswith("p = [") and panel.last_readout.splitlines()[0][-1] == "]"
-    # the automatic view is a cube holding the base origin and the arm as drawn
-    ax = panel.last_axes
-    lims = np.array([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()])
-    np.testing.assert_allclose(np.ptp(lims, axis=1), np.ptp(lims[0]))
-    P = np.vstack([arm.points(panel.last_q), np.zeros((1, 3))])
-    assert np.all(lims[:, 0] <= P.min(axis=0)) and np.all(lims[:, 1] >= P.max(axis=0))
+    assert [f["label"] for f in panel.viewer.scene["frames"]] == labels
+    assert panel.last_readout.splitlines()[0] == "⁰T₅ ="  # unitless: no unit said
+    # at q = 0 (the lecture's check by hand): identity rotation, p5 = (l4, 0, l1 - l3)
+    panel.set_radians(np.zeros(6))
+    np.testing.assert_allclose(panel.last_frames[-1], [[1, 0, 0, 0.3], [0, 1, 0, 0], [0, 0, 1, 0.5], [0, 0, 0, 1]],
+                               atol=1e-12)  # fmt: skip
 
 
-# ---- dh_link_panel, the kernel route -------------------------------------------------------------
+def test_robot_panel_ik_ghosts_selector_and_go():
+    arm = Puma560()
+    q = np.radians([10.0, -30.0, 20.0, 10.0, 40.0, 10.0])
+    panel = robot_panel(arm, q=q, ik=True)
+    sol = arm.ik(arm.fk(q))
+    assert len(panel.ik_selector.options) == 8
+    assert sorted(label.split(": ", 1)[1] for label, _ in panel.ik_selector.options) == sorted(sol.labels)
+    ghosts = panel.viewer.ghosts
+    assert len(ghosts["arms"]) == 8 and ghosts["selected"] == 0
+    # every ghost reaches the same hand pose (its last frame), the first one is q itself (nearest first)
+    for g in ghosts["arms"]:
+        np.testing.assert_allclose(np.reshape(g["frames"], (-1, 4, 4))[-1], arm.fk(q), atol=1e-6)
+    np.testing.assert_allclose(panel.solutions.q[0], q, atol=1e-9)
+    panel.ik_selector.value = 5
+    assert panel.viewer.ghosts["selected"] == 5
+    target, branch = panel.solutions.q[5], panel.solutions.labels[5]
+    panel.ik_go.click()
+    np.testing.assert_allclose(panel.last_q, target, atol=1e-12)
+    np.testing.assert_allclose(panel.last_frames[-1], arm.fk(q), atol=1e-12)  # the hand stays where it was
+    # the branch moved to stays selected; nearest first, it is now the first solution: the arm itself
+    assert panel.ik_selector.label == f"1: {branch}" and panel.viewer.ghosts["selected"] == 0
+    assert "8 configurations" in panel.ik_status.value
+
+
+def test_robot_panel_ik_at_a_singular_pose_says_so_without_a_warning():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        panel = robot_panel(Puma560(), ik=True)  # q = 0: θ5 = 0, the wrist is singular
+    assert "singular" in panel.ik_status.value and "θ5" in panel.ik_status.value
+
+
+# ---- dh_link_panel -------------------------------------------------------------------------------
 
 
 def test_dh_link_panel_matrix_matches_hand_worked_cases():
     panel = dh_link_panel()
     s = panel.sliders
     assert [x.description for x in s] == ["α_{i-1} [deg]", "a_{i-1}", "θ_i [deg]", "d_i"]
-    # α = 90°, a = 1, θ = 0, d = 0.5: Z_i = -Y_{i-1}... origin at (a, -d, 0) by hand
+    # α = 90°, a = 1, θ = 0, d = 0.5: Z_i = -Y_{i-1}, origin at (a, -d, 0) by hand
     s[0].value, s[1].value, s[2].value, s[3].value = 90.0, 1.0, 0.0, 0.5
     T = panel.last_frames[-1]
     np.testing.assert_allclose(T[:3, 3], [1.0, -0.5, 0.0], atol=1e-12)
     np.testing.assert_allclose(T[:3, 2], [0.0, -1.0, 0.0], atol=1e-12)
-    assert "^(i-1)T_i" in panel.last_readout
+    assert panel.last_readout.startswith("ⁱ⁻¹Tᵢ =")
     np.testing.assert_allclose(panel.last_frames[0], np.eye(4))
-    # the path drawn through the four elementary steps: Rot(X, α) stays at the origin, Trans(X, a) moves
+    # the path sent through the four elementary steps: Rot(X, α) stays at the origin, Trans(X, a) moves
     # to (a, 0, 0), Rot(Z, θ) stays, Trans(Z, d) moves d along Z_i = -Y_{i-1}
-    path = _xyz(panel.last_axes.lines[0])
-    np.testing.assert_allclose(path, [[0, 0, 0], [0, 0, 0], [1, 0, 0], [1, 0, 0], [1, -0.5, 0]], atol=1e-12)
-    # after Rot(X, 90°) the intermediate frame's z axis is -y0 (first faint triad, its blue line)
-    z1 = _xyz(panel.last_axes.lines[3])
-    np.testing.assert_allclose((z1[1] - z1[0]) / np.linalg.norm(z1[1] - z1[0]), [0.0, -1.0, 0.0], atol=1e-12)
+    F, P = _sent(panel)
+    np.testing.assert_allclose(P, [[0, 0, 0], [0, 0, 0], [1, 0, 0], [1, 0, 0], [1, -0.5, 0]], atol=1e-12)
+    # after Rot(X, 90°) the intermediate frame's z axis is -y0
+    np.testing.assert_allclose(F[1][:3, 2], [0.0, -1.0, 0.0], atol=1e-12)
+    styles = panel.viewer.scene["frames"]
+    assert [f["label"] for f in styles] == ["{i-1}", "", "", "", "{i}"]
+    assert [f["faint"] for f in styles] == [False, True, True, True, False]
 
 
-def test_kernel_route_uses_interactive_output(monkeypatch):
-    # pretend to be inside a kernel: the panel then goes through ipywidgets.interactive_output
-    import ipywidgets
+# ---- the picture left in the notebook ------------------------------------------------------------
 
-    import puma_course.viz.widgets as W
 
-    calls = []
-    real = ipywidgets.interactive_output
-
-    def spy(f, controls):
-        calls.append(sorted(controls))
-        return real(f, controls)
-
-    shown = []
-    monkeypatch.setattr(W, "get_ipython", lambda: object())
-    monkeypatch.setattr(W.widgets, "interactive_output", spy)
-    monkeypatch.setattr(W, "display", lambda fig: shown.append(fig))
-    arm = MK3()
-    panel = W.robot_panel(arm, readout="pose")
-    assert calls == [["s0", "s1", "s2", "s3", "s4"]]
-    panel.sliders[2].value = -90.0
-    q = np.array([0.0, 0.0, -np.pi / 2, 0.0, 0.0])
-    np.testing.assert_allclose(panel.last_q, q, atol=1e-12)
-    np.testing.assert_allclose(panel.last_frames[-1], arm.fk(q), atol=1e-9)
-    assert shown and shown[-1] is panel.last_axes.figure  # each redraw shows a fresh figure ...
-    assert len({id(f) for f in shown}) == len(shown)
-    assert plt.get_fignums() == []  # ... and closes it
+def test_display_bundle_has_a_png_of_the_first_pose():
+    panel = robot_panel(MK3())
+    data = panel._repr_mimebundle_()
+    data = data[0] if isinstance(data, tuple) else data
+    assert set(data) >= {"application/vnd.jupyter.widget-view+json", "image/png", "text/plain"}
+    png = base64.b64decode(data["image/png"])
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
+    assert 400 <= width <= 800 and 300 <= height <= 800  # about 500 x 400 at 90 dpi: small in the notebook
+    assert len(png) < 150_000

@@ -1,0 +1,298 @@
+"""Drive JupyterLab in Debian's Chromium with Playwright: the harness of the browser tests and the benchmark.
+
+:class:`Lab` starts ``jupyter lab`` on 127.0.0.1 (a free port, a random token) serving a
+temporary copy of the lectures (so nothing the browser does can change the committed
+notebooks), with its own settings and workspace folders (no autosave, no news, no update
+check: nothing leaves the machine). It stops the server by its PID. :func:`browser` launches
+the system Chromium (Playwright's own browser download does not work offline).
+
+Used by ``tests/browser/test_lectures.py`` and ``benchmarks/bench_viewer.py``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import secrets
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[2]
+NOTEBOOKS = ROOT / "notebooks"
+CHROMIUM_CANDIDATES = ("/usr/bin/chromium", "/usr/bin/chromium-browser")
+CHROMIUM_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+]
+
+
+def chromium_path() -> str | None:
+    """Debian's Chromium, or ``$PUMA_CHROMIUM``, or None."""
+    env = os.environ.get("PUMA_CHROMIUM")
+    if env:
+        return env if Path(env).exists() else None
+    return next((p for p in CHROMIUM_CANDIDATES if Path(p).exists()), None)
+
+
+def missing() -> str | None:
+    """Why the browser tests cannot run here (None when they can)."""
+    try:
+        import playwright.sync_api  # noqa: F401
+    except ImportError:
+        return "Playwright is not installed (pip install -e '.[dev]')"
+    if chromium_path() is None:
+        return "Chromium is not installed (as root: apt-get install -y chromium; or set PUMA_CHROMIUM)"
+    return None
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+class Lab:
+    """A JupyterLab server on 127.0.0.1 over a temporary copy of ``notebooks/``; stop() ends it by PID."""
+
+    def __init__(self, notebooks: Path = NOTEBOOKS) -> None:
+        self.tmp = Path(tempfile.mkdtemp(prefix="puma-lab-"))
+        self.root = self.tmp / "notebooks"
+        shutil.copytree(notebooks, self.root, ignore=shutil.ignore_patterns(".ipynb_checkpoints"))
+        self.port = _free_port()
+        self.token = secrets.token_hex(16)
+        settings = self.tmp / "settings"
+        (settings / "@jupyterlab" / "docmanager-extension").mkdir(parents=True)
+        (settings / "@jupyterlab" / "docmanager-extension" / "plugin.jupyterlab-settings").write_text(
+            json.dumps({"autosave": False})
+        )
+        (settings / "@jupyterlab" / "apputils-extension").mkdir(parents=True)
+        (settings / "@jupyterlab" / "apputils-extension" / "notification.jupyterlab-settings").write_text(
+            json.dumps({"fetchNews": "false", "checkForUpdates": False})
+        )
+        (settings / "@jupyterlab" / "notebook-extension").mkdir(parents=True)
+        (settings / "@jupyterlab" / "notebook-extension" / "tracker.jupyterlab-settings").write_text(
+            json.dumps({"windowingMode": "none"})  # every cell in the page, as a reader scrolling would see it
+        )
+        env = dict(os.environ)
+        env.update(
+            JUPYTERLAB_SETTINGS_DIR=str(settings),
+            JUPYTERLAB_WORKSPACES_DIR=str(self.tmp / "workspaces"),
+            JUPYTER_RUNTIME_DIR=str(self.tmp / "runtime"),
+            JUPYTER_DATA_DIR=str(self.tmp / "data"),
+            PYDEVD_DISABLE_FILE_VALIDATION="1",
+        )
+        env.pop("MPLBACKEND", None)
+        self.log = open(self.tmp / "server.log", "wb")  # noqa: SIM115 - closed in stop()
+        self.proc = subprocess.Popen(
+            [
+                sys.executable,
+                "-m",
+                "jupyter",
+                "lab",
+                "--no-browser",
+                "--ServerApp.ip=127.0.0.1",
+                f"--ServerApp.port={self.port}",
+                "--ServerApp.port_retries=0",
+                f"--IdentityProvider.token={self.token}",
+                f"--ServerApp.root_dir={self.root}",
+                "--LabApp.news_url=",
+                "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+                "--LabApp.extension_manager=readonly",
+            ]
+            + (["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else []),  # fmt: skip
+            stdout=self.log,
+            stderr=subprocess.STDOUT,
+            env=env,
+            cwd=self.root,
+        )
+        self._wait_ready()
+
+    @property
+    def base(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    def url(self, notebook: str) -> str:
+        return f"{self.base}/lab/tree/{notebook}?reset&token={self.token}"
+
+    def _wait_ready(self, timeout: float = 60.0) -> None:
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            if self.proc.poll() is not None:
+                raise RuntimeError(f"jupyter lab exited with {self.proc.returncode}: {self.server_log()[-2000:]}")
+            try:
+                with urllib.request.urlopen(f"{self.base}/api/status?token={self.token}", timeout=2) as r:
+                    if r.status == 200:
+                        return
+            except OSError:
+                time.sleep(0.3)
+        self.stop()
+        raise TimeoutError(f"jupyter lab did not answer on {self.base} in {timeout} s")
+
+    def server_log(self) -> str:
+        self.log.flush()
+        return (self.tmp / "server.log").read_text(errors="replace")
+
+    def stop(self) -> None:
+        """Stop the server by its PID (SIGINT twice is Jupyter's own shutdown; then SIGKILL), remove the copy."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+            time.sleep(0.3)
+            if self.proc.poll() is None:
+                self.proc.send_signal(signal.SIGINT)
+            try:
+                self.proc.wait(timeout=15)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait(timeout=5)
+        self.log.close()
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def __enter__(self) -> Lab:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.stop()
+
+
+@contextmanager
+def browser() -> Iterator[Any]:
+    """Playwright's Chromium, the system one (``executable_path``), headless, sandbox and network extras off."""
+    from playwright.sync_api import sync_playwright
+
+    path = chromium_path()
+    if path is None:
+        raise RuntimeError(missing())
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=path, headless=True, args=CHROMIUM_ARGS)
+        try:
+            yield b
+        finally:
+            b.close()
+
+
+# ---- pages -------------------------------------------------------------------------------------
+
+
+def open_notebook(page: Any, lab: Lab, name: str, timeout: float = 60_000) -> None:
+    """Open a notebook in JupyterLab and wait until all its cells are on the page and its kernel is idle."""
+    count = len(json.loads((lab.root / name).read_text(encoding="utf-8"))["cells"])
+    page.goto(lab.url(name))
+    page.wait_for_function(
+        "n => document.querySelectorAll('.jp-Notebook .jp-Cell').length === n", arg=count, timeout=timeout
+    )
+    wait_idle(page, timeout)
+
+
+def wait_idle(page: Any, timeout: float = 60_000) -> None:
+    """Wait until the notebook's kernel status reads idle."""
+    page.wait_for_function(
+        """() => {
+            const s = document.querySelector('.jp-NotebookPanel:not(.lm-mod-hidden) .jp-Toolbar-kernelStatus, '
+                + '.jp-NotebookPanel .jp-KernelStatus, .jp-Notebook-ExecutionIndicator');
+            const t = s ? (s.getAttribute('data-status') || s.getAttribute('title') || s.textContent || '') : '';
+            return /idle/i.test(t);
+        }""",
+        timeout=timeout,
+    )
+
+
+def run_all(page: Any, timeout: float = 240_000) -> None:
+    """Clear the outputs, run every cell (menu Run > Run All Cells), wait until none is queued or running.
+
+    The menu is tried again when no cell has started after 30 s (a click that landed while the
+    page was still settling); on a time-out a screenshot is left in tests/artifacts/.
+    """
+    prompts = "[...document.querySelectorAll('.jp-Notebook .jp-CodeCell .jp-InputPrompt')]"
+    started = f"() => {prompts}.some((p) => /\\[(\\*|\\d+)\\]/.test(p.textContent))"
+    page.locator(".jp-NotebookPanel .jp-Cell").first.click()
+    # clear the saved outputs first, so the prompts' numbers below are this run's
+    page.get_by_role("menuitem", name="Edit", exact=True).click()
+    page.get_by_role("menuitem", name="Clear Outputs of All Cells", exact=True).click()
+    page.wait_for_function(f"() => !{prompts}.some((p) => /\\d/.test(p.textContent))", timeout=30_000)
+    for attempt in range(2):
+        page.get_by_role("menuitem", name="Run", exact=True).click()
+        page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
+        try:
+            page.wait_for_function(started, timeout=30_000)
+            break
+        except Exception:
+            if attempt:
+                _snapshot(page, "run_all_not_started")
+                raise
+    try:
+        page.wait_for_function(
+            """() => {
+                const prompts = [...document.querySelectorAll('.jp-Notebook .jp-CodeCell .jp-InputPrompt')];
+                return prompts.length > 0 && prompts.every((p) => /\\[\\d+\\]/.test(p.textContent));
+            }""",
+            timeout=timeout,
+        )
+        wait_idle(page, timeout)
+    except Exception:
+        _snapshot(page, "run_all_timeout")
+        raise
+
+
+def _snapshot(page: Any, name: str) -> None:
+    """A screenshot of the whole page for a failure's diagnosis (tests/artifacts/, git-ignored)."""
+    out = ROOT / "tests" / "artifacts"
+    out.mkdir(exist_ok=True)
+    page.screenshot(path=str(out / f"{name}.png"), full_page=True)
+
+
+def output_texts(page: Any) -> list[str]:
+    """The text of every code cell's output area, in order."""
+    return page.eval_on_selector_all(
+        ".jp-Notebook .jp-CodeCell",
+        "cells => cells.map(c => (c.querySelector('.jp-OutputArea') || {}).innerText || '')",
+    )
+
+
+VIEWER_STATE = """(box) => ({
+    poseRenders: box.__puma.poseRenders,
+    lastPoseRender: box.__puma.lastPoseRender,
+    lastPoseMessage: box.__puma.lastPoseMessage,
+    labels: box.__puma.labels,
+    hasWebGL: !!box.querySelector('canvas') && !!(box.querySelector('canvas').getContext('webgl2')
+        || box.querySelector('canvas').getContext('webgl')),
+    width: box.clientWidth, height: box.clientHeight,
+})"""
+
+
+def viewers(page: Any) -> Any:
+    return page.locator(".jp-Notebook .puma-viewer")
+
+
+def install_key_clock(page: Any) -> None:
+    """Record the time of every key press (capture phase, before the slider sees it) in ``window.__pumaKeyT``."""
+    page.evaluate(
+        """() => { if (!window.__pumaKeyClock) { window.__pumaKeyClock = true;
+            document.addEventListener('keydown', () => { window.__pumaKeyT = performance.now(); }, true); } }"""
+    )
+
+
+def press_and_time(page: Any, handle: Any, box: Any, key: str = "ArrowRight", timeout: float = 10_000) -> float:
+    """Press ``key`` on a slider handle; milliseconds from the key press to the viewer's repaint of the new pose."""
+    before = box.evaluate("b => b.__puma.poseRenders")
+    handle.press(key)
+    box.page.wait_for_function(
+        "([b, n]) => b.__puma.poseRenders > n", arg=[box.element_handle(), before], timeout=timeout
+    )
+    t_key = page.evaluate("() => window.__pumaKeyT")
+    t_draw = box.evaluate("b => b.__puma.lastPoseRender")
+    return float(t_draw - t_key)

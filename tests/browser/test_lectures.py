@@ -1,0 +1,232 @@
+"""Lectures 02-05 in a real browser: the saved picture before the kernel runs, the live WebGL panel after Run All.
+
+For each lecture: opened from disk (no kernel output yet), every panel cell shows its static
+picture (an <img>), never a text repr; after Run All every panel is a WebGL canvas, no cell shows
+"Error displaying widget" or a repr, the frame labels do not overlap; typing a value into a
+slider's readout moves the drawn arm (the origins the viewer drew, and the pixels) and the
+readout matrix to the value worked out by hand here; the mouse turns the view and "reset
+view" frames the arm where it is. A last test checks the IK ghosts with
+their selector and the animation's play button on a scratch notebook.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+import nbformat
+import numpy as np
+import pytest
+
+from .lab import VIEWER_STATE, Lab, open_notebook, output_texts, run_all, viewers
+
+pytestmark = pytest.mark.browser
+
+REPR = re.compile(r"\b(Robot)?Panel\(children=|\bViewer\(|HBox\(children=")
+
+
+def _panel_cells(page: Any) -> Any:
+    return page.locator(".jp-Notebook .jp-CodeCell").filter(has_text="_panel(")
+
+
+def _readout(page: Any) -> np.ndarray:
+    """The numbers of the panel's readout matrix (4 x 4)."""
+    text = page.locator(".jp-Notebook pre.puma-readout").first.inner_text()
+    rows = re.findall(r"\[\s*([-\d.e\s]+?)\s*\]", text.split("=", 1)[1])
+    return np.array([[float(x) for x in r.split()] for r in rows])
+
+
+def _set_slider(page: Any, box: Any, index: int, value: float) -> None:
+    """Type ``value`` into slider ``index``'s readout (display units) and wait for the viewer to redraw."""
+    before = box.evaluate("b => b.__puma.poseRenders")
+    readout = page.locator(".jp-Notebook .widget-slider .widget-readout").nth(index)
+    readout.click()
+    page.keyboard.press("Control+A")
+    page.keyboard.type(f"{value:g}")
+    page.keyboard.press("Enter")
+    page.wait_for_function("([b, n]) => b.__puma.poseRenders > n", arg=[box.element_handle(), before], timeout=10_000)
+
+
+def _no_overlap(labels: list[dict[str, float]]) -> None:
+    for i, a in enumerate(labels):
+        for b in labels[i + 1 :]:
+            apart = a["x"] + a["w"] <= b["x"] or b["x"] + b["w"] <= a["x"] or a["y"] + a["h"] <= b["y"] or \
+                b["y"] + b["h"] <= a["y"]  # fmt: skip
+            assert apart, f"labels {a['text']} and {b['text']} overlap: {a} {b}"
+
+
+def _hand_dh() -> tuple[list[tuple[int, float]], np.ndarray, np.ndarray]:
+    # α = 90°, a = 1, θ = 30° (start), d = 0.5 (start); Craig's link matrix by hand
+    c, s = np.cos(np.pi / 6), np.sin(np.pi / 6)
+    T = np.array([[c, -s, 0, 1.0], [0, 0, -1, -0.5], [s, c, 0, 0], [0, 0, 0, 1]])
+    return [(0, 90.0)], T, T[:3, 3]
+
+
+def _hand_puma() -> tuple[list[tuple[int, float]], np.ndarray, np.ndarray]:
+    # θ2 = 90° turns the arm at q = 0 about +y0 (the shoulder axis):
+    # p = (-d4, d3, -(a2 + a3)), R = Ry(90°) diag(1, -1, -1)
+    T = np.array([[0, 0, -1, -0.4318], [0, -1, 0, 0.15005], [-1, 0, 0, -0.4521], [0, 0, 0, 1]])
+    return [(1, 90.0)], T, T[:3, 3]
+
+
+def _hand_mk3() -> tuple[list[tuple[int, float]], np.ndarray, np.ndarray]:
+    # θ1 = 90°: the outstretched arm (a1 + a2 + a3 = 600 mm along x at q = 0, hand d1 - d5 = 260 mm high) turns onto +y
+    p = np.array([0.0, 600.0, 260.0])
+    return [(0, 90.0)], np.array([]), p
+
+
+def _hand_porter() -> tuple[list[tuple[int, float]], np.ndarray, np.ndarray]:
+    # every joint at 0 (the lecture's check by hand): F05 = identity rotation, p5 = (l4, 0, l1 - l3) = (0.3, 0, 0.5)
+    T = np.eye(4)
+    T[:3, 3] = [0.3, 0.0, 0.5]
+    return [(k, 0.0) for k in range(6)], T, T[:3, 3]
+
+
+LECTURES = {
+    "02_dh_frame_attachment.ipynb": _hand_dh,
+    "03_puma560_forward_kinematics.ipynb": _hand_puma,
+    "04_mk3_forward_kinematics.ipynb": _hand_mk3,
+    "05_porter_direct_problem.ipynb": _hand_porter,
+}
+
+
+@pytest.mark.parametrize("name", sorted(LECTURES))
+def test_lecture_panels_in_chromium(name: str, lab: Lab, page: Any, artifacts: Path) -> None:
+    stem = name.split("_")[0]
+    open_notebook(page, lab, name)
+
+    # 1. before the kernel runs: each panel cell shows its saved picture, not a text repr
+    cells = _panel_cells(page)
+    assert cells.count() >= 1
+    for k in range(cells.count()):
+        out = cells.nth(k).locator(".jp-OutputArea")
+        img = out.locator("img")
+        assert img.count() == 1, f"{name}: panel {k} shows no picture before the kernel runs"
+        img.scroll_into_view_if_needed()
+        assert img.evaluate("i => i.complete && i.naturalWidth > 200 && i.naturalHeight > 200")
+        assert not REPR.search(out.text_content() or ""), f"{name}: a text repr is shown: {out.text_content()!r}"
+        out.screenshot(path=str(artifacts / f"{stem}_before_run_{k}.png"))
+
+    # 2. Run All: every panel is a live WebGL view; no cell shows an error or a repr
+    run_all(page)
+    boxes = viewers(page)
+    boxes.first.wait_for(timeout=30_000)
+    assert boxes.count() == cells.count()
+    for text in output_texts(page):
+        assert "Error displaying widget" not in text
+        assert not REPR.search(text), f"{name}: a text repr is shown: {text[:200]!r}"
+    box = boxes.first
+    box.scroll_into_view_if_needed()
+    page.wait_for_function("b => b.__puma.poseRenders >= 1 && b.__puma.labels.length > 0", arg=box.element_handle())
+    state = box.evaluate(VIEWER_STATE)
+    assert state["hasWebGL"], f"{name}: the panel has no WebGL canvas"
+    assert state["width"] > 300 and state["height"] > 300
+    _no_overlap(state["labels"])
+    panel = cells.first.locator(".jp-OutputArea")
+    panel.screenshot(path=str(artifacts / f"{stem}_panel.png"))
+    pixels = box.locator("canvas").screenshot()
+
+    # 3. a slider move: the drawn arm and the readout reach the values worked out by hand
+    moves, T_hand, p_hand = LECTURES[name]()
+    R_before = _readout(page)[:3, :3]
+    for index, value in moves:
+        _set_slider(page, box, index, value)
+    state = box.evaluate(VIEWER_STATE)
+    origins = np.array(box.evaluate("b => b.__puma.origins"))
+    np.testing.assert_allclose(origins[-1], p_hand, atol=1e-4 * max(1.0, np.abs(p_hand).max()))
+    T_read = _readout(page)
+    np.testing.assert_allclose(T_read[:3, 3], p_hand, atol=1e-3 * max(1.0, np.abs(p_hand).max()))
+    if T_hand.size:
+        np.testing.assert_allclose(T_read, T_hand, atol=1e-3 * max(1.0, np.abs(p_hand).max()))
+    else:  # MK3: θ1 = 90° turns the hand's rotation by Rz(90°) too
+        np.testing.assert_allclose(T_read[:3, :3], np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1]]) @ R_before, atol=2e-3)
+    assert box.locator("canvas").screenshot() != pixels, f"{name}: the picture did not change"
+    _no_overlap(state["labels"])
+    panel.screenshot(path=str(artifacts / f"{stem}_panel_moved.png"))
+
+    # 4. the mouse turns the view (the labels move on the screen), "reset view" frames the arm again
+    canvas = box.locator("canvas")
+    bb = canvas.bounding_box()
+    start = [(lab_["x"], lab_["y"]) for lab_ in state["labels"]]
+    page.mouse.move(bb["x"] + bb["width"] / 2, bb["y"] + bb["height"] / 2)
+    page.mouse.down()
+    page.mouse.move(bb["x"] + bb["width"] / 2 + 120, bb["y"] + bb["height"] / 2 + 30, steps=8)
+    page.mouse.up()
+    page.wait_for_timeout(200)
+    turned = [(lab_["x"], lab_["y"]) for lab_ in box.evaluate("b => b.__puma.labels")]
+    assert turned != start, f"{name}: dragging did not turn the view"
+    panel.screenshot(path=str(artifacts / f"{stem}_panel_turned.png"))
+    # "reset view" frames the arm where it is now: every labelled frame's origin inside the picture
+    box.get_by_role("button", name="reset view").click()
+    page.wait_for_timeout(200)
+    back = box.evaluate("b => b.__puma.labels")
+    assert [(lab_["x"], lab_["y"]) for lab_ in back] != turned
+    assert all(0 <= lab_["ax"] <= bb["width"] and 0 <= lab_["ay"] <= bb["height"] for lab_ in back), back
+    _no_overlap(back)
+    panel.screenshot(path=str(artifacts / f"{stem}_panel_reset.png"))
+    assert not page.errors, f"{name}: errors on the page: {page.errors}"
+
+
+SCRATCH = """\
+import numpy as np
+from puma_course import Puma560
+from puma_course.viz import robot_panel, RobotViewer
+arm = Puma560()
+q = np.radians([10.0, -30.0, 20.0, 10.0, 40.0, 10.0])
+panel = robot_panel(arm, q=q, ik=True)
+panel"""
+
+SCRATCH_ANIM = """\
+v = RobotViewer(arm, "qz", labels="ends")
+v.set_targets(arm.fk(arm.q("qr")))
+v.animate(np.linspace(arm.q("qz"), arm.q("qr"), 12), fps=30)
+v"""
+
+
+def test_ik_ghosts_and_animation_in_chromium(lab: Lab, page: Any, artifacts: Path) -> None:
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_code_cell(SCRATCH), nbformat.v4.new_code_cell(SCRATCH_ANIM)]
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3 (ipykernel)", "language": "python"}
+    nbformat.write(nb, lab.root / "scratch_viewer.ipynb")
+    open_notebook(page, lab, "scratch_viewer.ipynb")
+    run_all(page)
+    boxes = viewers(page)
+    boxes.nth(1).wait_for(timeout=30_000)
+    panel_box, anim_box = boxes.nth(0), boxes.nth(1)
+    page.wait_for_function("b => b.__puma.ghosts === 8 && b.__puma.selected === 0", arg=panel_box.element_handle())
+    arm_q = np.radians([10.0, -30.0, 20.0, 10.0, 40.0, 10.0])
+    T0 = _readout(page)
+
+    # the selector highlights another ghost; the button moves the arm there, the hand pose stays
+    select = page.locator(".jp-Notebook .widget-dropdown select").first
+    options = select.locator("option").all_inner_texts()
+    assert len(options) == 8 and all(re.match(r"\d:\s(left|right)/(up|down)/(no)?flip", o) for o in options)
+    select.select_option(index=3)
+    page.wait_for_function("b => b.__puma.selected === 3", arg=panel_box.element_handle())
+    before = panel_box.evaluate("b => b.__puma.poseRenders")
+    page.get_by_role("button", name="move the arm there").click()
+    page.wait_for_function("([b, n]) => b.__puma.poseRenders > n", arg=[panel_box.element_handle(), before])
+    page.wait_for_timeout(300)
+    np.testing.assert_allclose(_readout(page), T0, atol=2e-4)
+    moved = np.radians(
+        [
+            float(x.replace("\u2212", "-"))
+            for x in page.locator(".jp-Notebook .widget-slider .widget-readout").all_inner_texts()[:6]
+        ]
+    )
+    assert np.abs(moved - arm_q).max() > 0.1  # another configuration ...
+    panel_box.scroll_into_view_if_needed()
+    _panel_cells(page).first.locator(".jp-OutputArea").screenshot(path=str(artifacts / "ik_ghosts.png"))
+
+    # the animation plays in the browser: the step counter runs to the end
+    anim_box.scroll_into_view_if_needed()
+    assert anim_box.evaluate("b => b.__puma.animSteps") == 12
+    anim_box.get_by_role("button", name=re.compile("play")).click()
+    page.wait_for_function("b => b.__puma.animStep === 11", arg=anim_box.element_handle(), timeout=10_000)
+    origins = np.array(anim_box.evaluate("b => b.__puma.origins"))
+    from puma_course import Puma560
+
+    np.testing.assert_allclose(origins[-1], Puma560().fk(Puma560().q("qr"))[:3, 3], atol=1e-4)
+    anim_box.screenshot(path=str(artifacts / "animation_end.png"))
+    assert not page.errors, f"errors on the page: {page.errors}"

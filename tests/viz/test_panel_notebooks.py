@@ -1,0 +1,57 @@
+"""The lectures with joint panels (02-05) as saved: a picture for every panel, no widget state, small files.
+
+A reader who opens a lecture without running it (JupyterLab before Run All, or a static page
+built from the committed notebooks) must see each panel's picture, not a text repr. The
+browser side of this is checked in tests/browser; here the saved files themselves.
+"""
+
+from __future__ import annotations
+
+import base64
+from pathlib import Path
+
+import nbformat
+import pytest
+
+NOTEBOOKS = Path(__file__).resolve().parents[2] / "notebooks"
+LECTURES = ["02_dh_frame_attachment", "03_puma560_forward_kinematics", "04_mk3_forward_kinematics",
+            "05_porter_direct_problem"]  # fmt: skip
+WIDGET = "application/vnd.jupyter.widget-view+json"
+
+
+def _panel_cells(nb):
+    return [c for c in nb.cells if c.cell_type == "code" and "_panel(" in c.source]
+
+
+@pytest.mark.parametrize("name", LECTURES)
+def test_every_panel_leaves_a_picture(name):
+    nb = nbformat.read(NOTEBOOKS / f"{name}.ipynb", as_version=4)
+    cells = _panel_cells(nb)
+    assert cells, f"{name} has no panel"
+    for cell in cells:
+        assert cell.source.startswith("# NBVAL_IGNORE_OUTPUT")  # widget output differs run to run
+        bundles = [o["data"] for o in cell.outputs if o.get("output_type") in ("execute_result", "display_data")]
+        assert len(bundles) == 1 and WIDGET in bundles[0], "the panel is not the cell's result"
+        png = base64.b64decode(bundles[0]["image/png"])
+        assert png[:8] == b"\x89PNG\r\n\x1a\n" and 10_000 < len(png) < 150_000
+
+
+@pytest.mark.parametrize("name", LECTURES)
+def test_no_widget_state_and_under_1_5_mb(name):
+    path = NOTEBOOKS / f"{name}.ipynb"
+    nb = nbformat.read(path, as_version=4)
+    # a saved widget state would carry the viewer's whole module and make static pages try (and fail)
+    # to run the widget instead of showing the picture: execute with --ExecutePreprocessor.store_widget_state=False
+    assert "widgets" not in nb.metadata
+    assert path.stat().st_size < 1_500_000
+
+
+def test_static_html_shows_the_panel_picture():
+    from nbconvert import HTMLExporter
+
+    nb = nbformat.read(NOTEBOOKS / "03_puma560_forward_kinematics.ipynb", as_version=4)
+    (cell,) = _panel_cells(nb)
+    png = next(o["data"]["image/png"] for o in cell.outputs if "data" in o)
+    html, _ = HTMLExporter().from_notebook_node(nb)
+    assert f"data:image/png;base64,{png[:200]}" in html.replace("\n", "")
+    assert "Panel(children" not in html
