@@ -136,9 +136,9 @@ class Question:
 class Exercise:
     """An exercise notebook: its file stem (``solutions/NAME.ipynb``) and its questions.
 
-    >>> ex = EXERCISES["ex05_porter_ik"]
-    >>> ex.max_score, ex.question("q3").bonus  # 2 + 6, and a 3-point bonus on top
-    (8.0, True)
+    >>> ex = EXERCISES["ex06_porter_explicit"]
+    >>> ex.max_score, ex.question("q4").bonus  # 2 + 5 + 3, and a 3-point bonus on top
+    (10.0, True)
     """
 
     name: str

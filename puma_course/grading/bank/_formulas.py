@@ -25,6 +25,14 @@ def link_parameters(T: Any) -> np.ndarray:
     return np.array([alpha, T[0, 3], theta, d])
 
 
+def standard_reading(T: Any) -> np.ndarray:
+    """The four numbers read off a link matrix where a *standard*-DH matrix shows them (the mistake):
+    θ from the first column, α from the third row, a along the turned x, d = p_z."""
+    T = np.asarray(T, dtype=float)
+    theta, alpha = math.atan2(T[1, 0], T[0, 0]), math.atan2(T[2, 1], T[2, 2])
+    return np.array([alpha, math.cos(theta) * T[0, 3] + math.sin(theta) * T[1, 3], theta, T[2, 3]])
+
+
 def porter_wrist_point(T: Any, l4: float) -> np.ndarray:
     """The wrist point p4 = p5 - l4 x5 of an end-effector pose (the formula itself)."""
     T = np.asarray(T, dtype=float)
@@ -77,4 +85,11 @@ def nearest_row(solutions: Any, q_prev: Any, wrap: bool = True) -> np.ndarray:
     """The row of ``solutions`` nearest ``q_prev``, angle differences wrapped (or not, the mistake)."""
     S, q = np.atleast_2d(np.asarray(solutions, dtype=float)), np.asarray(q_prev, dtype=float)
     d = wrap_angle(S - q) if wrap else S - q
+    return S[int(np.argmin(np.sum(d * d, axis=1)))].copy()
+
+
+def wrapped_nearest(solutions: Any, q_prev: Any, revolute: Any = (True, True, False, True, True, True)) -> np.ndarray:
+    """The row of ``solutions`` nearest ``q_prev``, wrapping only the revolute columns (Porter's stroke is a length)."""
+    S, q = np.atleast_2d(np.asarray(solutions, dtype=float)), np.asarray(q_prev, dtype=float)
+    d = np.where(np.asarray(revolute, dtype=bool), wrap_angle(S - q), S - q)
     return S[int(np.argmin(np.sum(d * d, axis=1)))].copy()

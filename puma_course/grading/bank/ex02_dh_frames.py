@@ -12,11 +12,11 @@ from typing import Any
 import numpy as np
 
 from ..compare import compare_angles_at
-from ..diagnose import INVERSE, SIGN_FLIP, TRANSPOSED, Mistake, close, degrees_in, degrees_out, matches, sign_flip
+from ..diagnose import INVERSE, SIGN_FLIP, TRANSPOSED, degrees_in, degrees_out, matches, sign_flip
 from ..judges import table_judge
 from ..model import Exercise, Question
 from . import _keys as keys
-from ._formulas import link_parameters
+from ._formulas import link_parameters, standard_reading
 from ._reference import chains as ref
 
 STANDARD = (
@@ -31,16 +31,6 @@ H = np.pi / 2
 def rrp_table(h: float, d2: float) -> np.ndarray:
     """One valid modified-DH table of the RRP arm (the solution's)."""
     return np.array([[0.0, 0.0, 0.0, h, 0], [H, 0.0, H, -d2, 0], [H, 0.0, 0.0, 0.0, 1]])
-
-
-def _standard_parameters(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
-    alpha, a, theta, d = (float(v) for v in got.reshape(-1)[:4])
-    if got.size == 4 and close(ref.standard_link(theta, d, a, alpha), args[0]):
-        return (
-            "these are the parameters of the standard-DH link matrix Rot(Z, θ) Trans(Z, d) Trans(X, a) Rot(X, α); "
-            "the matrix given is Craig's Rot(X, α) Trans(X, a) Rot(Z, θ) Trans(Z, d) (lecture 02 §2)"
-        )
-    return None
 
 
 def _parameter_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
@@ -67,7 +57,13 @@ EXERCISE = Exercise(
             forbidden=keys.KEY_LINK_PARAMETERS,
             mistakes=(
                 degrees_out([0, 2]),
-                Mistake("standard_dh", _standard_parameters),
+                matches(
+                    "standard_dh",
+                    "these are the numbers a standard-DH link matrix shows in those places "
+                    "(θ in its first column, α in its third row); Craig's matrix places them differently "
+                    "(lecture 02 §2 and §5)",
+                    standard_reading,
+                ),
                 sign_flip(("α_(i-1)", "a_(i-1)", "θ_i", "d_i")),
             ),
             hint="Read each parameter where the matrix shows it (lecture 02 §2, the origin and the z axis of {i} "
@@ -92,8 +88,8 @@ EXERCISE = Exercise(
             forbidden=keys.KEY_MDH,
             mistakes=(
                 matches("standard_dh", STANDARD, lambda al, a, th, d: ref.standard_link(th, d, a, al)),
-                TRANSPOSED,
                 INVERSE,
+                TRANSPOSED,
                 degrees_in(0, 2),
                 SIGN_FLIP,
             ),

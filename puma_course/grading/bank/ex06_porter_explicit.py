@@ -12,10 +12,11 @@ from typing import Any
 import numpy as np
 
 from ..diagnose import matches
-from ..judges import solution_set_judge
+from ..judges import nearest_judge, solution_set_judge
 from ..model import Exercise, Question
 from . import _keys as keys
 from ._formulas import porter_wrist_point
+from ._formulas import wrapped_nearest as nearest_row
 from ._reference import chains
 from ._reference import porter_chain as ref
 from .ex05_porter_fk import PUBLIC_L, PUBLIC_Q
@@ -81,6 +82,20 @@ EXERCISE = Exercise(
             forbidden=keys.KEY_PORTER_IK,
             hint="Write the tool's pose as a product of F05 and E (lecture 01 §5: which frame is described in which) "
             "and solve it for F05 before you call your q2.",
+        ),
+        Question(
+            "q4",
+            "porter_ik_nearest",
+            3,
+            "bonus: the configuration nearest the previous one",
+            public=((ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L, PUBLIC_Q + 0.05),),
+            hidden=lambda rng: ref.porter_nearest_cases(rng, 4),
+            reference=ref.porter_nearest_expected,
+            judge_with=nearest_judge(),
+            answer=lambda T, l1, l3, l4, q: nearest_row(ref.porter_nearest_expected(T, l1, l3, l4, q)["solutions"], q),
+            forbidden=(*keys.KEY_PORTER_IK, *keys.KEY_NEAREST),
+            hint="The distance of lecture 10 §2 wraps angle differences; the stroke q2 is a length, not an angle.",
+            bonus=True,
         ),
     ),
     allowed=("puma_course.kinematics.porter:Porter", "puma_course.transforms:inverse_transform"),

@@ -9,19 +9,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compare import compare_angles
 from ..diagnose import matches
-from ..judges import path_judge
+from ..judges import path_judge, solution_set_judge
 from ..model import Exercise, Question
 from . import _keys as keys
-from ._formulas import nearest_row, plain_distance
+from ._formulas import plain_distance
 from ._reference import motion as ref
 
 Q_A = np.array([3.0, 0.5, -1.0, 0.2, 0.4, -3.0])
 Q_B = np.array([-3.0, 0.4, -0.9, 0.3, 0.4, 3.1])
-SOLUTIONS = np.array(
-    [[0.5, -0.8, 0.3, 0.7, 1.0, -0.5], [0.5, -0.8, 0.3, -2.4, -1.0, 2.6], [-2.0, -2.3, 2.9, -2.1, 0.9, 3.1]]
-)
+#: The eight solutions of lecture 09's example pose.
+SOLUTIONS = ref.puma_ik_expected(ref.puma_fk(np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0])))["solutions"]
 UNWRAPPED = "you did not wrap the angle differences: 179° and -179° are 2° apart, not 358° (lecture 10 §2)"
 
 
@@ -35,8 +33,8 @@ def _pairs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, np.ndarra
 
 def _solution_cases(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, np.ndarray]]:
     out = []
-    for T, *L in ref.puma_cases(rng, n, near_singular=False):
-        sols = ref.puma_ik_expected(T, *L)["solutions"]
+    for q in rng.uniform(-np.pi, np.pi, (n, 6)):
+        sols = ref.puma_ik_expected(ref.puma_fk(q))["solutions"]
         out.append((sols, ref.wrap_near_pi(sols[int(rng.integers(len(sols)))] + rng.normal(0.0, 0.2, 6))))
     return out
 
@@ -59,26 +57,19 @@ EXERCISE = Exercise(
         ),
         Question(
             "q2",
-            "nearest_solution",
+            "sort_solutions",
             2,
-            "the solution nearest the previous configuration",
+            "the solutions sorted by their distance to the previous configuration",
             public=(
-                (SOLUTIONS, np.array([-2.9, -2.2, 2.8, -2.2, 0.8, -3.1])),
-                (SOLUTIONS, np.array([0.6, -0.7, 0.3, 0.6, 1.1, -0.4])),
-            ),
+                (SOLUTIONS, np.array([-2.1, -2.3, 2.9, 3.1, 0.9, -0.1])),
+                (SOLUTIONS, np.array([0.6, -0.8, 0.3, 0.6, 1.1, -0.4])),
+            ),  # fmt: skip
             hidden=lambda rng: _solution_cases(rng, 4),
-            reference=nearest_row,
-            compare=compare_angles,
+            reference=ref.sorted_expected,
+            judge_with=solution_set_judge(),
+            answer=lambda S, q: ref.sorted_expected(S, q)["solutions"],
             forbidden=keys.KEY_NEAREST,
-            mistakes=(
-                matches("unwrapped_distance", UNWRAPPED, lambda S, q: nearest_row(S, q, wrap=False)),
-                matches(
-                    "not_nearest",
-                    "you returned the first solution listed, not the nearest one",
-                    lambda S, q: np.asarray(S, dtype=float)[0],
-                ),
-            ),
-            hint="Use your q1 on every row; return the row itself (shape (6,)).",
+            hint="Use your q1 on every row; the first row of your answer is the solution a controller keeps.",
         ),
         Question(
             "q3",

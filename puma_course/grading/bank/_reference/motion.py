@@ -91,7 +91,9 @@ def _shoulder_theta2(t3: float, a2: float, a3: float, d3: float, d4: float) -> f
     return math.atan2(vx, vy)
 
 
-def puma_ik_expected(T: Any, a2: float, a3: float, d3: float, d4: float) -> dict[str, Any]:
+def puma_ik_expected(
+    T: Any, a2: float = 0.4318, a3: float = 0.0203, d3: float = 0.15005, d4: float = 0.4318
+) -> dict[str, Any]:
     """Every configuration reaching T, for the set judge."""
     return _set_expected(Puma560(a2, a3, d3, d4), T)
 
@@ -289,3 +291,18 @@ def moved_wrong_way(field: str) -> Callable[..., np.ndarray]:
 def wrap_near_pi(q: Any) -> np.ndarray:
     """Joint values wrapped into (-π, π] (where a distance that forgets to wrap goes wrong)."""
     return np.asarray(transforms.wrap_angle(np.asarray(q, dtype=float)))
+
+
+def sorted_expected(solutions: Any, q_prev: Any) -> dict[str, Any]:
+    """The PUMA-560 solutions of one pose, nearest ``q_prev`` first, for the set judge (ordered); the orders of
+    the usual mistakes: not wrapping the angle differences, or not sorting at all."""
+    S, q = np.asarray(solutions, dtype=float), np.asarray(q_prev, dtype=float)
+    arm = Puma560()
+    d = np.asarray(transforms.wrap_angle(S - q))
+    plain = S[np.argsort(np.sum((S - q) ** 2, axis=1), kind="stable")]
+    wrong = [("unwrapped_distance", "sorted without wrapping the angle differences: 179° and -179° are 2° apart, "
+              "not 358° (lecture 10 §2)", plain), ("solution_order", "these are the solutions as given, not sorted "
+              "by their distance to q_prev", S)]  # fmt: skip
+    return {"T": arm.fk(S[0]), "solutions": S[np.argsort(np.sum(d * d, axis=1), kind="stable")],
+            "labels": tuple(f"solution {i + 1}" for i in range(len(S))), "fk": arm.fk, "revolute": arm.revolute,
+            "scale": 1.0, "ordered": True, "wrong_orders": wrong}  # fmt: skip

@@ -1,26 +1,4 @@
-"""Judging modelling questions for what is right, not against one answer.
-
-Each factory returns a ``judge(got, expected, args) -> Verdict`` for :attr:`Question.judge_with
-<puma_course.grading.model.Question.judge_with>`. ``expected`` is what the question's reference computed
-in the grader's process: a dict holding the hidden joint values, the reference poses and the
-reference robot's forward kinematics as a callable (``"fk"``), so a judge can test a student's answer
-by what it *does*:
-
-* :func:`table_judge`: a DH table is right when its chain reaches the reference poses over hidden
-  random joint values (any valid frame assignment passes); otherwise it says whether the table is
-  standard DH, right only at q = 0, has a joint turning the wrong way, the wrong joint type, degrees,
-  or is off by a constant base or tool transform;
-* :func:`solution_set_judge`: every row reaches the pose, no row twice, no solution missing (named by
-  its branch), in any order unless the question asks for one;
-* :func:`nearest_judge`: a solution, and the nearest one in wrapped joint distance;
-* :func:`path_judge`: a joint path reaches every pose of a Cartesian path, starts at the given
-  configuration and never jumps (largest step against the smoothest path's);
-* :func:`rotation_judge`: angles judged by the rotation they produce (any equivalent triple passes);
-* :func:`stroke_judge`: Porter's parallel-planes representative (front plane, minimal stroke).
-
-The judges need no kinematics of their own: the bank passes in what they evaluate (the chain of a
-student's table, the robot's forward kinematics) from :mod:`puma_course.grading.bank._reference`.
-"""
+"""Judging configurations: sets of solutions, the nearest one, a joint path, angles by their rotation."""
 
 from __future__ import annotations
 
@@ -29,188 +7,10 @@ from typing import Any
 
 import numpy as np
 
-from ..transforms import wrap_angle
-from .diagnose import close
-from .model import Judge, Verdict
-
-__all__ = [
-    "pose_ok",
-    "table_judge",
-    "solution_set_judge",
-    "nearest_judge",
-    "path_judge",
-    "rotation_judge",
-    "stroke_judge",
-]
-
-#: Tolerances of the pose tests: rotation entries, and positions relative to the mechanism's size.
-ROT_TOL, POS_TOL = 1e-6, 1e-6
-
-
-def _floats(value: Any) -> np.ndarray | None:
-    try:
-        return np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        return None
-
-
-def pose_errors(Ts: np.ndarray, T: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(position error, rotation error) of poses ``Ts`` (m, 4, 4) against ``T`` (4, 4) or (m, 4, 4)."""
-    d = np.asarray(Ts, dtype=float) - np.asarray(T, dtype=float)
-    return np.max(np.abs(d[..., :3, 3]), axis=-1), np.max(np.abs(d[..., :3, :3]), axis=(-2, -1))
-
-
-def pose_ok(Ts: Any, T: Any, scale: float = 1.0) -> np.ndarray:
-    """Which of the poses ``Ts`` (m, 4, 4) equal ``T`` (position to 1e-6 of ``scale``, rotation to 1e-6).
-
-    >>> pose_ok(np.stack([np.eye(4), 2 * np.eye(4)]), np.eye(4)).tolist()
-    [True, False]
-    """
-    pos, rot = pose_errors(Ts, T)
-    return (pos <= POS_TOL * max(1.0, scale)) & (rot <= ROT_TOL)
-
-
-def _off(Ts: np.ndarray, T: np.ndarray) -> str:
-    pos, rot = pose_errors(Ts, T)
-    return f"{float(np.max(pos)):.3g} in position and {float(np.max(rot)):.3g} in orientation"
-
-
-def _wrapped(d: np.ndarray, revolute: np.ndarray) -> np.ndarray:
-    return np.where(revolute, wrap_angle(d), d)
-
-
-def _dist(a: np.ndarray, b: np.ndarray, revolute: np.ndarray) -> np.ndarray:
-    """Wrapped joint distance (Euclidean; angle differences in (-π, π]), broadcasting over leading axes."""
-    d = _wrapped(a - b, revolute)
-    return np.sqrt(np.sum(d * d, axis=-1))
-
-
-def _radians(rows: np.ndarray, revolute: np.ndarray) -> np.ndarray:
-    out = rows.copy()
-    out[..., revolute] = np.radians(out[..., revolute])
-    return out
-
-
-def _constant(M: np.ndarray, scale: float) -> bool:
-    """True when the transforms M (N, 4, 4) are all the same and not the identity."""
-    return bool(np.all(pose_ok(M, M[0], scale)) and not pose_ok(M[:1], np.eye(4), scale)[0])
-
-
-# ------------------------------------------------------------------------------------------ DH tables
-TableFk = Callable[[np.ndarray, np.ndarray], np.ndarray]
-
-
-def table_judge(chain_fk: TableFk, standard_fk: TableFk) -> Judge:
-    """Judge a DH table (rows α_{i-1}, a_{i-1}, θ_i, d_i, σ_i) by the poses its chain reaches.
-
-    ``chain_fk(table, Q)`` evaluates a table with Craig's modified link matrices and
-    ``standard_fk(table, Q)`` with the standard (distal) ones, for joint values Q (N, n). The
-    reference gives ``{"fk": poses of Q, "Q": hidden joint values (N, n), "revolute": (n,) mask,
-    "scale": the mechanism's size}``; the table passes when its chain reaches every reference pose.
-    """
-
-    def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
-        fk, Q = expected["fk"], np.asarray(expected["Q"], dtype=float)
-        rev, scale = np.asarray(expected["revolute"], dtype=bool), float(expected["scale"])
-        n = len(rev)
-        table = _floats(got)
-        if table is None or not np.all(np.isfinite(table)):
-            return Verdict(f"expected a table of numbers, {n} rows of (α_(i-1), a_(i-1), θ_i, d_i, σ_i)")
-        if table.shape != (n, 5):
-            extra = " (each row needs σ_i too: 0 revolute, 1 prismatic)" if table.shape == (n, 4) else ""
-            return Verdict(f"expected a table of shape ({n}, 5), one row per joint, got shape {table.shape}{extra}")
-        sigma = table[:, 4]
-        bad = np.flatnonzero((np.abs(sigma) > 1e-9) & (np.abs(sigma - 1) > 1e-9))
-        if bad.size:
-            return Verdict(f"row {bad[0] + 1}: σ must be 0 (revolute) or 1 (prismatic), got {sigma[bad[0]]:g}")
-        wrong = np.flatnonzero((sigma < 0.5) != rev)
-        if wrong.size:
-            j = int(wrong[0])
-            kind, yours = ("revolute", "prismatic") if rev[j] else ("prismatic", "revolute")
-            return Verdict(
-                f"row {j + 1}: joint {j + 1} is {kind} in the mechanism, your table makes it {yours}", "joint_type"
-            )
-        T_ref = fk(Q)
-        try:
-            T_got = chain_fk(table, Q)
-        except ValueError as exc:
-            return Verdict(f"your table cannot be evaluated: {str(exc)[:200]}")
-        if np.all(pose_ok(T_got, T_ref, scale)):
-            return Verdict(None)
-        return _table_mistake(table, T_got, T_ref, fk, Q, rev, scale, chain_fk, standard_fk)
-
-    return judge
-
-
-def _table_mistake(
-    table: np.ndarray,
-    T_got: np.ndarray,
-    T_ref: np.ndarray,
-    fk: Callable[..., Any],
-    Q: np.ndarray,
-    rev: np.ndarray,
-    scale: float,
-    chain_fk: TableFk,
-    standard_fk: TableFk,
-) -> Verdict:
-    angles = table[:, [0, 2]]
-    if np.max(np.abs(angles)) > 2 * np.pi + 1e-6:
-        fixed = table.copy()
-        fixed[:, [0, 2]] = np.radians(angles)
-        worst = float(np.max(np.abs(angles)))
-        note = " (converted to radians it is right)" if np.all(pose_ok(chain_fk(fixed, Q), T_ref, scale)) else ""
-        return Verdict(f"your angles look like degrees (up to {worst:g}): the table takes radians{note}", "degrees")
-    try:
-        standard = bool(np.all(pose_ok(standard_fk(table, Q), T_ref, scale)))
-    except ValueError:
-        standard = False
-    if standard:
-        return Verdict(
-            "this is a standard-DH table (Paul, Robotics Toolbox): with the link matrix Rot(Z, θ) Trans(Z, d) "
-            "Trans(X, a) Rot(X, α) it reaches the right poses, but the course uses Craig's modified DH, where row i "
-            "holds α_(i-1) and a_(i-1) of the previous frame (lecture 02 §5)",
-            "standard_dh",
-        )
-    n = len(rev)
-    for j in range(n):
-        flipped = Q.copy()
-        flipped[:, j] = -flipped[:, j]
-        if np.all(pose_ok(T_got, fk(flipped), scale)):
-            what = "turns" if rev[j] else "slides"
-            return Verdict(
-                f"joint {j + 1} {what} the wrong way: your z_{j + 1} points against the positive sense the picture "
-                "shows (everything else is right)",
-                "joint_sign",
-            )
-    if _constant(T_got @ np.linalg.inv(T_ref), scale):
-        return Verdict(
-            "your chain moves like the mechanism, but your frame {0} is not the base frame the question fixes "
-            "(every pose is off by the same transform on the base side)",
-            "base_frame",
-        )
-    if _constant(np.linalg.inv(T_ref) @ T_got, scale):
-        return Verdict(
-            "your chain moves like the mechanism, but your last frame is not the tool frame the question fixes "
-            "(every pose is off by the same transform on the tool side)",
-            "tool_frame",
-        )
-    zero = np.zeros((1, n))
-    if np.all(pose_ok(chain_fk(table, zero), fk(zero), scale)):
-        for j in range(n):
-            single = zero.copy()
-            single[0, j] = 0.7 if rev[j] else 0.3 * max(scale, 1e-9)
-            if not np.all(pose_ok(chain_fk(table, single), fk(single), scale)):
-                return Verdict(
-                    f"your table gives the right pose at q = 0 but not when the joints move: moving joint {j + 1} "
-                    f"alone already gives another pose. Check where joint {j + 1}'s axis z_{j + 1} is and how it "
-                    f"points (α_{j}, a_{j} and the rows before it)",
-                    "only_at_zero",
-                )
-        return Verdict("your table gives the right pose at q = 0 but not when several joints move", "only_at_zero")
-    return Verdict(
-        f"your chain reaches other poses: at the hidden joint values the tool is off by up to "
-        f"{_off(T_got, T_ref)}, already at q = 0"
-    )
+from ...transforms import wrap_angle
+from ..diagnose import close
+from ..model import Judge, Verdict
+from ._poses import POS_TOL, _dist, _floats, _off, _radians, _wrapped, pose_ok
 
 
 # ------------------------------------------------------------------------------------------ solution sets
@@ -252,7 +52,8 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
     The reference gives ``{"T", "solutions" (k, n), "labels", "fk", "revolute", "scale"}`` and may
     add ``"alternatives"`` (``(key, message, pose)``: rows that all reach that pose made that
     mistake), ``"stroke"`` (a column that must not be negative) and ``"ordered"`` (True: the rows
-    must come in the reference's order).
+    must come in the reference's order; ``"wrong_orders"``, ``(key, message, rows)``, name the
+    mistakes that produce another order).
     """
 
     def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
@@ -293,7 +94,10 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
                 f"row {extra[0] + 1} reaches the pose but matches none of the {k} solutions to 1e-6 "
                 "(is it accurate enough?)"
             )
-        if expected.get("ordered") and not (len(arr) == k and np.all(np.diag(M))):
+        if expected.get("ordered") and not np.all(np.diag(M)):
+            for key, message, rows in expected.get("wrong_orders", ()):
+                if np.all(_dist(np.asarray(rows, dtype=float), arr, rev) < match_tol):
+                    return Verdict(message, key)
             return Verdict("the right solutions, in another order: sort them as the question asks", "solution_order")
         return Verdict(None)
 
@@ -324,7 +128,9 @@ def nearest_judge() -> Judge:
         mine = _dist(sols, arr[0], rev)
         label = labels[int(np.argmin(mine))] if np.min(mine) < 1e-6 else "yours"
         plain = np.sqrt(np.sum((sols - q_ref) ** 2, axis=-1))
-        if np.min(mine) < 1e-6 and int(np.argmin(plain)) == int(np.argmin(mine)):
+        # nearest if angle differences are not wrapped: in the reference's angles, or in the student's own
+        unwrapped = int(np.argmin(plain)) == int(np.argmin(mine)) or np.linalg.norm(arr[0] - q_ref) <= plain[best]
+        if np.min(mine) < 1e-6 and unwrapped:
             return Verdict(
                 f"you chose {label}, nearest if angle differences are not wrapped; wrapped to (-π, π] (179° and -179° "
                 f"are 2° apart) the nearest is {labels[best]}, {ds[best]:.3g} away against your {d:.3g}",
