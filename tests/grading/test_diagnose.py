@@ -339,9 +339,8 @@ def test_the_nearest_solution_and_unwrapped_distances():
     assert not np.allclose(nearest, unwrapped)  # the public case is built so that wrapping decides
     assert judge(name, "q3", nearest, T, q_ref, *L).passed
     assert_named(judge(name, "q3", unwrapped, T, q_ref, *L), "unwrapped_distance", "wrapped")
-    third = S[np.argsort(np.sum(d * d, 1))[2]]
-    if not np.allclose(third, unwrapped):
-        assert_named(judge(name, "q3", third, T, q_ref, *L), "not_nearest", "not the nearest")
+    farther = next(S[i] for i in np.argsort(np.sum(d * d, 1))[1:] if not np.allclose(S[i], unwrapped))
+    assert_named(judge(name, "q3", farther, T, q_ref, *L), "not_nearest", "not the nearest")
     q, r = EXERCISES["ex10_trajectories"].question("q1").public[0]
     assert_named(judge("ex10_trajectories", "q1", np.linalg.norm(q - r), q, r), "unwrapped_distance")
 
@@ -434,3 +433,11 @@ def test_a_mistake_that_gives_the_right_answer_is_not_reported():
     R = rot("z", np.pi)
     assert judge("ex01_rotations", "q1", R, "z", np.pi).passed
     assert judge("ex01_rotations", "q1", R + 0.5, "z", np.pi).mistake is None
+
+
+def test_every_mistake_the_graders_name_has_a_crafted_case_in_this_file():
+    from pathlib import Path
+
+    source = Path(__file__).read_text(encoding="utf-8")
+    untested = [key for key in TITLES if f'"{key}"' not in source]
+    assert not untested, untested

@@ -121,7 +121,8 @@ EXERCISE = Exercise(
             answer=rail_table,
             forbidden=keys.KEY_TABLES,
             hint="The rail's joint comes first: which way must z_1 point, and which twist about x_0 turns z_0 into it "
-            "(lecture 02 §1)? The MK3's own rows can stay as they are once frame {2} is its frame {1}.",
+            "(lecture 02 §1)? Then find where joint 2's axis meets the rail's. Your q2, shifted by the carriage, is "
+            "the pose to compare with.",
         ),
     ),
     allowed=("puma_course.kinematics.dh:mdh",),

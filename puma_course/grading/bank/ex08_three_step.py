@@ -115,8 +115,8 @@ EXERCISE = Exercise(
                 ),
                 TRANSPOSED,
             ),
-            hint="Shoulder and elbow turn about the same horizontal axis a; the frame turns by the change of "
-            "θ1 + θ2 from the start (lecture 08 §3.4).",
+            hint="Shoulder and elbow turn about the same horizontal axis a (lecture 08 §3.4): by how much does the "
+            "forearm turn from this start? Check with the straight start, where lecture 08 §4 gives the numbers.",
         ),
         Question(
             "q4",

@@ -82,9 +82,8 @@ EXERCISE = Exercise(
             judge_with=path_judge(),
             answer=lambda path, q0, d: ref.puma_path_expected(path, q0, d)["ref"],
             forbidden=keys.KEY_NEAREST,
-            hint="The arm stands at q0 before the path starts; at each pose take, among all solutions of "
-            "Puma560().ik, the one nearest the previous configuration (lecture 10 §2-3). The path is the pen's: "
-            "where is frame {6}?",
+            hint="The arm stands at q0 before the path starts, and between neighbouring poses its joints should "
+            "hardly move (lecture 10 §2-3): print your largest step. The path is the pen's: where is frame {6}?",
         ),
     ),
     allowed=("puma_course.kinematics.puma560:Puma560", "puma_course.transforms:inverse_transform"),
