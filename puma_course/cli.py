@@ -226,6 +226,7 @@ def _grade(args: argparse.Namespace) -> int:
     import warnings
 
     from .grading import EXERCISES, GradingIntegrityWarning, grade
+    from .grading.summary import write_summary
 
     names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
 
@@ -251,6 +252,7 @@ def _grade(args: argparse.Namespace) -> int:
         )
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s); wrote {args.output}")
+    print(write_summary(results, args.output)[1])
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
         print(f"WARNING: {w.message}", file=sys.stderr)

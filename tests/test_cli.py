@@ -329,13 +329,13 @@ def test_missing_notebook_feedback_names_misnamed_files(tmp_path):
 def test_check_keeps_bonus_and_answer_key_rules_of_the_grader(tmp_path, capsys):
     """`puma-course check` must judge the public cases exactly as grading does.
 
-    The ex05 solution answers the bonus too: 8 points plus a 3-point bonus, not 11 / 11.
+    The ex06 solution answers the bonus too: 10 points plus a 3-point bonus, not 13 / 13.
     """
-    nb = tmp_path / "ex05_porter_ik.ipynb"
-    shutil.copy(ROOT / "solutions" / "ex05_porter_ik.ipynb", nb)
+    nb = tmp_path / "ex06_porter_explicit.ipynb"
+    shutil.copy(ROOT / "solutions" / "ex06_porter_explicit.ipynb", nb)
     assert main(["check", str(nb)]) == 0
     out = capsys.readouterr().out
-    assert "11 / 8" in out and "(bonus)" in out
+    assert "13 / 10" in out and "(bonus)" in out
 
 
 # --------------------------------------------------------------------------- real installs and servers

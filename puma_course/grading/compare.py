@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["Comparison", "compare_close", "compare_angles", "compare_solution_set"]
+__all__ = ["Comparison", "compare_close", "compare_angles", "compare_angles_at", "compare_solution_set"]
 
 #: ``compare(got, expected)``: None if ``got`` is right, else a short reason for the student.
 Comparison = Callable[[Any, np.ndarray], str | None]
@@ -91,12 +91,46 @@ def compare_angles(got: Any, ref: np.ndarray, tol: float = 1e-6) -> str | None:
     return None
 
 
+def compare_angles_at(indices: Sequence[int], tol: float = 1e-6) -> Comparison:
+    """Like :func:`compare_close` on a flat vector whose entries ``indices`` are angles (equal modulo 2π).
+
+    >>> cmp = compare_angles_at([0])
+    >>> cmp([0.5 + 2 * np.pi, 3.0], np.array([0.5, 3.0])) is None, cmp([0.5, 3.0 + 2 * np.pi], np.array([0.5, 3.0]))
+    (True, 'values differ from the reference by up to 6.28 (largest at index [1])')
+    """
+    idx = np.asarray(indices, dtype=int)
+
+    def compare(got: Any, ref: np.ndarray) -> str | None:
+        arr = _as_float_array(got)
+        if arr is None:
+            return "did not return numbers"
+        ref = np.asarray(ref, dtype=float)
+        shaped = _match_shape(arr, ref)
+        if shaped is None:
+            return f"returned shape {arr.shape}, expected shape {ref.shape}"
+        if not np.all(np.isfinite(shaped)):
+            return "returned NaN or infinity"
+        diff = (shaped - ref).reshape(-1)
+        diff[idx] = np.angle(np.exp(1j * diff[idx]))
+        scale = max(1.0, float(np.max(np.abs(ref)))) if ref.size else 1.0
+        err = float(np.max(np.abs(diff))) if ref.size else 0.0
+        if err > tol * scale:
+            return f"values differ from the reference by up to {err:.3g}{_where(np.abs(diff))}"
+        return None
+
+    return compare
+
+
 def compare_solution_set(angle_columns: Sequence[int], tol: float = 1e-6) -> Comparison:
-    """A comparison of two sets of joint vectors (rows, any order); listed columns are angles (mod 2π).
+    """A comparison of two sets of rows (joint vectors, points), any order; listed columns are angles (mod 2π).
+
+    Every expected row must be returned, once: a row listed twice fails (the count differs).
 
     >>> cmp = compare_solution_set([0])
     >>> cmp([[0.1, 2.0], [7.0, 1.0]], np.array([[7.0 - 2 * np.pi, 1.0], [0.1, 2.0]])) is None
     True
+    >>> cmp([[0.1, 2.0], [0.1, 2.0], [7.0, 1.0]], np.array([[7.0 - 2 * np.pi, 1.0], [0.1, 2.0]]))
+    'returned 3 rows for the 2 expected'
     """
     cols = np.asarray(angle_columns, dtype=int)
 
@@ -125,6 +159,8 @@ def compare_solution_set(angle_columns: Sequence[int], tol: float = 1e-6) -> Com
                 f"{extra} of the {n_got} rows returned are not a solution asked for here "
                 f"(the expected set has {n_ref} rows)"
             )
+        if n_got != n_ref:
+            return f"returned {n_got} rows for the {n_ref} expected"
         return None
 
     return compare

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from .compare import Comparison, compare_close
+from .diagnose import Mistake, diagnose
 
 __all__ = [
     "Question",
@@ -52,6 +53,10 @@ class Verdict:
         return self.reason is None
 
 
+#: ``judge_with(got, expected, args)``: how a modelling question judges a value (see :attr:`Question.judge_with`).
+Judge = Callable[[Any, Any, tuple[Any, ...]], Verdict]
+
+
 @dataclass(frozen=True)
 class Question:
     """One graded question: the student writes ``function``; cases are argument tuples.
@@ -62,6 +67,12 @@ class Question:
     A ``bonus`` question's points count in the score but not in the maximum.
     ``forbidden`` names package functions (``"module:attr"``) that are this
     question's answer key; calling them while being graded fails the case.
+
+    ``mistakes`` are the common wrong answers (:mod:`puma_course.grading.diagnose`) recognised
+    before the generic reason of ``compare``. A modelling question, graded for what is right rather
+    than against one answer, sets ``judge_with`` instead (:mod:`puma_course.grading.judges`); its
+    ``reference`` may then return whatever that judge needs (a dict, with callables), and ``answer``
+    gives one right answer (the tests use it; default: ``reference`` itself).
 
     >>> q = Question("q1", "double", 2, "twice x", public=((1.0,),), hidden=lambda rng: [(2.0,)],
     ...              reference=lambda x: 2 * x)
@@ -80,6 +91,9 @@ class Question:
     hint: str = ""
     bonus: bool = False
     forbidden: tuple[str, ...] = ()
+    mistakes: tuple[Mistake, ...] = ()
+    judge_with: Judge | None = None
+    answer: Callable[..., Any] | None = None
 
     def __post_init__(self) -> None:
         if not (isinstance(self.points, (int, float)) and self.points > 0 and np.isfinite(self.points)):
@@ -94,22 +108,37 @@ class Question:
 
         ``expected`` is ``reference(*args)``, computed in the grader's process. The one place where
         a returned value is judged: the grader, the self-check and ``puma-course check`` all call it.
+        A modelling question asks its ``judge_with``; otherwise ``compare`` decides, and a failing
+        value that matches one of the question's ``mistakes`` is named as that mistake.
 
+        >>> from puma_course.grading.diagnose import DEGREES_OUT
         >>> q = Question("q1", "double", 2, "twice x", public=((1.0,),), hidden=lambda rng: [],
-        ...              reference=lambda x: 2 * x)
+        ...              reference=lambda x: 2 * x, mistakes=(DEGREES_OUT,))
         >>> q.judge(2.0, 2.0, (1.0,)).passed, q.judge(3.0, 2.0, (1.0,)).reason[:25]
         (True, 'values differ from the re')
+        >>> q.judge(np.degrees(2.0), 2.0, (1.0,)).mistake
+        'degrees'
         """
-        return Verdict(self.compare(got, expected))
+        if self.judge_with is not None:
+            return self.judge_with(got, expected, tuple(args))
+        reason = self.compare(got, expected)
+        if reason is None:
+            return Verdict(None)
+        found = diagnose(self.mistakes, got, expected, tuple(args), self.reference)
+        return Verdict(reason) if found is None else Verdict(found[1], found[0])
+
+    def right_answer(self, *args: Any) -> Any:
+        """One right answer for ``args`` (``answer``, else ``reference``): what the tests feed the judge."""
+        return (self.answer or self.reference)(*args)
 
 
 @dataclass(frozen=True)
 class Exercise:
     """An exercise notebook: its file stem (``solutions/NAME.ipynb``) and its questions.
 
-    >>> ex = EXERCISES["ex05_porter_ik"]
-    >>> ex.max_score, ex.question("q3").bonus  # 2 + 6, and a 3-point bonus on top
-    (8.0, True)
+    >>> ex = EXERCISES["ex06_porter_explicit"]
+    >>> ex.max_score, ex.question("q4").bonus  # 2 + 5 + 3, and a 3-point bonus on top
+    (10.0, True)
     """
 
     name: str

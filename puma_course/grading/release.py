@@ -131,8 +131,8 @@ def points_summary(exercise: Exercise) -> str:
     """The Markdown summary of an exercise's points that the generator puts after its first cell.
 
     >>> from puma_course.grading import EXERCISES
-    >>> points_summary(EXERCISES["ex05_porter_ik"])
-    '**Points:** q1 2 · q2 6, 8 in all; bonus q3 3 (in your score, not in the maximum).'
+    >>> points_summary(EXERCISES["ex06_porter_explicit"])
+    '**Points:** q1 2 · q2 5 · q3 3, 10 in all; bonus q4 3 (in your score, not in the maximum).'
     """
     graded = " · ".join(f"{q.qid} {q.points:g}" for q in exercise.questions if not q.bonus)
     text = f"**Points:** {graded}, {exercise.max_score:g} in all"

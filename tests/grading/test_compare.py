@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from puma_course.grading.compare import compare_angles, compare_close, compare_solution_set
+from puma_course.grading.compare import compare_angles, compare_angles_at, compare_close, compare_solution_set
 
 
 def test_compare_close_accepts_equal_and_reports_differences():
@@ -43,3 +43,17 @@ def test_compare_solution_set_ignores_order_and_wraps_only_angle_columns():
     assert "misses" in cmp(ref[:1], ref)
     assert "not a solution" in cmp(np.vstack([ref, [[1.0, 1.0, 1.0]]]), ref)
     assert "shape" in cmp(ref.ravel(), ref)
+
+
+def test_compare_solution_set_refuses_a_row_listed_twice():
+    cmp = compare_solution_set([0])
+    ref = np.array([[0.1, 1.0], [3.0, 2.0]])
+    assert cmp(np.vstack([ref, ref[:1]]), ref) == "returned 3 rows for the 2 expected"
+
+
+def test_compare_angles_at_wraps_only_the_angle_entries():
+    cmp = compare_angles_at([0, 2])
+    ref = np.array([0.5, 0.2, -3.0, 0.1])
+    assert cmp(ref + [2 * np.pi, 0, -2 * np.pi, 0], ref) is None
+    assert "differ" in cmp(ref + [0, 2 * np.pi, 0, 0], ref)  # a length is not an angle
+    assert "shape" in cmp(ref[:3], ref)

@@ -179,3 +179,74 @@ def test_exercises_run_in_a_jupyter_kernel_as_handed_out(name):
     texts = "".join(o.get("text", "") for o in outputs)
     assert texts.count("not attempted yet") >= len(EXERCISES[name].questions)
     assert "passed" not in texts and "FAILED" not in texts
+
+
+# ---------------------------------------------------------------------------- what the student's process may use
+def _imports_of(source: str) -> list[tuple[str, str | None]]:
+    """(module, name) of every import in a code cell (name None for ``import module``); magics skipped."""
+    import ast
+
+    lines = [line for line in source.splitlines() if not line.lstrip().startswith(("%", "!"))]
+    out: list[tuple[str, str | None]] = []
+    for node in ast.walk(ast.parse("\n".join(lines))):
+        if isinstance(node, ast.Import):
+            out += [(alias.name, None) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            out += [(node.module or "", alias.name) for alias in node.names]
+    return out
+
+
+SELF_CHECK = {("puma_course.grading", "check"), ("puma_course.grading", "use_exercise")}
+
+
+@pytest.mark.parametrize("folder", ["solutions", "exercises"])
+@pytest.mark.parametrize("name", NAMES)
+def test_notebooks_import_only_numpy_the_self_check_and_the_exercises_allowed_names(folder, name):
+    """In the grading sandbox only the allowed names exist: every cell, hidden tests included, must live with that."""
+    allowed = {tuple(spec.split(":", 1)) for spec in EXERCISES[name].allowed}
+    nb = nbformat.read(ROOT / folder / f"{name}.ipynb", as_version=4)
+    for cell in nb.cells:
+        if cell.cell_type != "code":
+            continue
+        for module, imported in _imports_of(cell.source):
+            if module == "numpy" or module.startswith("numpy."):
+                continue
+            assert (module, imported) in SELF_CHECK | allowed, (name, cell.id, module, imported)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_every_exercise_says_what_the_student_will_be_able_to_do_and_names_its_allowed_tools(name):
+    solution = nbformat.read(ROOT / "solutions" / f"{name}.ipynb", as_version=4)
+    opening = solution.cells[0].source
+    assert opening.startswith("# Exercise ") and "After this exercise you can" in opening
+    for spec in EXERCISES[name].allowed:
+        module, attr = spec.split(":")
+        assert attr in opening and f"`{module}`" in opening, spec
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_the_pictures_the_exercises_show_exist(name):
+    """Pictures of mechanisms are drawn by figures/make_figures.py and committed next to the course's folders."""
+    text = "\n".join(c.source for c in nbformat.read(ROOT / "exercises" / f"{name}.ipynb", as_version=4).cells)
+    for target in re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text):
+        path = (ROOT / "exercises" / target).resolve()
+        assert path.is_file() and path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", target
+        assert (ROOT / "solutions" / target).resolve() == path  # the same picture from the solution
+
+
+@pytest.mark.slow
+def test_the_figure_script_draws_every_picture(tmp_path):
+    import subprocess
+    import sys
+
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "figures" / "make_figures.py"), str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr
+    drawn = sorted(p.name for p in tmp_path.glob("*.png"))
+    assert drawn == sorted(p.name for p in (ROOT / "figures").glob("*.png"))
+    for path in tmp_path.glob("*.png"):
+        assert path.stat().st_size > 20_000  # a drawing, not an empty canvas

@@ -218,7 +218,7 @@ def test_release_check_passes_after_every_exercise_is_opened_and_saved_in_jupyte
 
 def test_release_check_passes_when_jupyterlab_saves_a_solution(course, jupyterlab_save):
     sol, ex = course
-    jupyterlab_save(sol / "ex02_dh_puma.ipynb", python_version="3.10.12", run=False)
+    jupyterlab_save(sol / "ex02_dh_frames.ipynb", python_version="3.10.12", run=False)
     assert release(sol, ex, check_only=True) == []
 
 
@@ -259,20 +259,20 @@ def test_release_check_detects_points_changed_in_the_bank(course, monkeypatch):
     import dataclasses
 
     sol, ex = course
-    old = EXERCISES["ex03_mk3"]
+    old = EXERCISES["ex03_puma_fk"]
     q1 = dataclasses.replace(old.question("q1"), points=4)
-    monkeypatch.setitem(EXERCISES, "ex03_mk3", dataclasses.replace(old, questions=(q1, *old.questions[1:])))
-    assert release(sol, ex, check_only=True) == ["ex03_mk3 (cell 2: source differs)"]  # the points summary
+    monkeypatch.setitem(EXERCISES, "ex03_puma_fk", dataclasses.replace(old, questions=(q1, *old.questions[1:])))
+    assert release(sol, ex, check_only=True) == ["ex03_puma_fk (cell 2: source differs)"]  # the points summary
 
 
 def test_release_check_reports_unreadable_missing_and_orphan_exercises(course):
     sol, ex = course
     (ex / "ex01_rotations.ipynb").write_text("{not json", encoding="utf-8")
-    (ex / "ex02_dh_puma.ipynb").unlink()
-    shutil.copy(ex / "ex03_mk3.ipynb", ex / "ex07_orphan.ipynb")
+    (ex / "ex02_dh_frames.ipynb").unlink()
+    shutil.copy(ex / "ex03_puma_fk.ipynb", ex / "ex99_orphan.ipynb")
     stale = release(sol, ex, check_only=True)
     assert stale[0].startswith("ex01_rotations (not a readable notebook")
-    assert stale[1:] == ["ex02_dh_puma (not generated yet)", "ex07_orphan (no solution)"]
+    assert stale[1:] == ["ex02_dh_frames (not generated yet)", "ex99_orphan (no solution)"]
 
 
 def test_essentials_ignore_volatile_metadata_but_keep_order_types_sources_and_tags():

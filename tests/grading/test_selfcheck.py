@@ -78,3 +78,22 @@ def test_check_without_an_exercise_finds_a_unique_question_or_asks_for_one(capsy
         check("q1", lambda *a: np.eye(3))
     with pytest.raises(ValueError, match="question: expected a question id"):
         check(1, lambda *a: np.eye(3))
+
+
+def test_check_names_a_recognised_mistake(capsys, right_rotation):
+    check("ex01_rotations:q1", lambda axis, angle: right_rotation(axis, angle).T)
+    out = capsys.readouterr().out
+    assert "FAILED" in out and "you returned the transpose" in out and "values differ" not in out
+
+
+def test_check_judges_a_modelling_question_by_what_the_answer_does(capsys):
+    half = np.pi / 2
+
+    def rrp_table(h, d2):  # the frames with x1 along -x0: not the solution's table, just as valid
+        return np.array([[0, 0, np.pi, h, 0], [-half, 0, -half, -d2, 0], [half, 0, 0, 0, 1]])
+
+    check("ex02_dh_frames:q3", rrp_table)
+    assert "passed" in capsys.readouterr().out
+    check("ex02_dh_frames:q3", lambda h, d2: np.array([[half, 0, 0, h, 0], [half, 0, half, -d2, 0], [0, 0, 0, 0, 1]]))
+    out = capsys.readouterr().out
+    assert "FAILED" in out and "standard-DH table" in out

@@ -1,11 +1,34 @@
-"""Exercise 1 (``solutions/ex01_rotations.ipynb``): rotations and Rodrigues' formula."""
+"""Exercise 1 (``solutions/ex01_rotations.ipynb``): rotations and Rodrigues' formula.
+
+Its four questions (names, points, cases) are pinned by the hostile-submission fixtures of the
+grader's tests; what changed with the mistake diagnosis is how a wrong answer is worded.
+"""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
+from ..diagnose import SIGN_FLIP, TRANSPOSED, Mistake, angle_2pi, close, degrees_in, degrees_out, matches, unit_axis_out
 from ..model import Exercise, Question
-from . import _reference as ref
+from . import _keys as keys
+from ._formulas import rodrigues_unnormalised
+from ._reference import chains as ref
+
+
+def _negated(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+    if close(got, -np.asarray(expected, dtype=float)):
+        return "(-k, -θ) is the same rotation as (k, θ), but the question asks for 0 < θ < π: flip both signs"
+    return None
+
+
+def _translation(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+    ref_ = np.asarray(expected, dtype=float)
+    if got.shape != (4, 4) or not close(got[:3, :3], ref_[:3, :3]) or close(got[:3, 3], ref_[:3, 3]):
+        return None
+    return "the rotation part is right, the translation is not: the inverse moves by -Rᵀp (not -p or p)"
+
 
 EXERCISE = Exercise(
     "ex01_rotations",
@@ -19,8 +42,10 @@ EXERCISE = Exercise(
             public=(("x", 0.3), ("y", -1.2), ("z", np.pi / 2)),
             hidden=lambda rng: [(ax, float(t)) for ax, t in zip("xyzxyz", rng.uniform(-np.pi, np.pi, 6), strict=True)],
             reference=ref.elementary_rotation,
-            forbidden=ref.KEY_ROT,
-            hint="Each column of R is where the rotation sends e_x, e_y, e_z; check the sign of the sines.",
+            forbidden=keys.KEY_ROT,
+            mistakes=(TRANSPOSED, degrees_in(1), SIGN_FLIP),
+            hint="Each column of R is where the rotation sends e_x, e_y, e_z (lecture 01 §2): check your columns "
+            "with a quarter turn, whose images you can draw.",
         ),
         Question(
             "q2",
@@ -32,8 +57,19 @@ EXERCISE = Exercise(
                 (list(rng.normal(size=3) * rng.uniform(0.5, 3)), float(t)) for t in rng.uniform(-3, 3, 5)
             ],
             reference=ref.rodrigues,
-            forbidden=ref.KEY_RODRIGUES,
-            hint="Normalise the axis first; K = I + sin θ [k]x + (1 - cos θ) [k]x².",
+            forbidden=keys.KEY_RODRIGUES,
+            mistakes=(
+                matches(
+                    "unnormalised",
+                    "the axis was not normalised: K(a, θ) needs the unit vector k = a/|a|",
+                    rodrigues_unnormalised,
+                ),
+                TRANSPOSED,
+                degrees_in(1),
+                SIGN_FLIP,
+            ),
+            hint="Two checks by hand (lecture 01 §3): the axis does not move, K k = k, and a turn about e_z must "
+            "be your rotation about z of question 1.",
         ),
         Question(
             "q3",
@@ -46,9 +82,10 @@ EXERCISE = Exercise(
             ),
             hidden=lambda rng: [(R,) for R in ref.random_rotations(rng, 5)],
             reference=ref.axis_angle,
-            forbidden=ref.KEY_AXIS_ANGLE,
-            hint="cos θ = (trace R - 1) / 2 and the axis comes from the antisymmetric part R - R^T; "
-            "return [kx, ky, kz, θ] with θ in (0, π).",
+            forbidden=keys.KEY_AXIS_ANGLE,
+            mistakes=(degrees_out([3]), angle_2pi([3], "(0, π)"), unit_axis_out(3), Mistake("range", _negated)),
+            hint="The trace gives cos θ and the antisymmetric part R - Rᵀ gives sin θ times the axis (lecture 01 §4); "
+            "return a unit axis and 0 < θ < π.",
         ),
         Question(
             "q4",
@@ -58,8 +95,10 @@ EXERCISE = Exercise(
             public=((np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]),),),
             hidden=lambda rng: ref.random_transforms(rng, 4),
             reference=ref.inverse_transform,
-            forbidden=ref.KEY_INVERSE,
-            hint="The inverse rotation is R^T and the inverse translation is -R^T p.",
+            forbidden=keys.KEY_INVERSE,
+            mistakes=(Mistake("translation", _translation), TRANSPOSED),
+            hint="Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §5).",
         ),
     ),
+    allowed=(),
 )

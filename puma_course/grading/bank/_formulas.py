@@ -1,0 +1,95 @@
+"""Numbers of the question bank worked out with numpy alone: formulas, hidden joint values.
+
+The references that *are* a short formula (the wrist point p5 - l4 x5, the plane normal of
+Porter's Ver.2, the parameters of a link matrix), the mistaken formulas the diagnoses rebuild, and
+the seeded hidden joint values of the modelling questions. Nothing here calls the kinematics layer
+(that is :mod:`._reference`); angles are wrapped by the base layer's one rule, ``wrap_angle``.
+"""
+
+from __future__ import annotations
+
+import math
+import zlib
+from typing import Any
+
+import numpy as np
+
+from ...transforms import wrap_angle
+
+
+def link_parameters(T: Any) -> np.ndarray:
+    """[α_{i-1}, a_{i-1}, θ_i, d_i] of a modified-DH link matrix, angles in (-π, π] (it inverts ``mdh``)."""
+    T = np.asarray(T, dtype=float)
+    alpha, theta = math.atan2(-T[1, 2], T[2, 2]), math.atan2(-T[0, 1], T[0, 0])
+    d = -math.sin(alpha) * T[1, 3] + math.cos(alpha) * T[2, 3]
+    return np.array([alpha, T[0, 3], theta, d])
+
+
+def standard_reading(T: Any) -> np.ndarray:
+    """The four numbers read off a link matrix where a *standard*-DH matrix shows them (the mistake):
+    θ from the first column, α from the third row, a along the turned x, d = p_z."""
+    T = np.asarray(T, dtype=float)
+    theta, alpha = math.atan2(T[1, 0], T[0, 0]), math.atan2(T[2, 1], T[2, 2])
+    return np.array([alpha, math.cos(theta) * T[0, 3] + math.sin(theta) * T[1, 3], theta, T[2, 3]])
+
+
+def porter_wrist_point(T: Any, l4: float) -> np.ndarray:
+    """The wrist point p4 = p5 - l4 x5 of an end-effector pose (the formula itself)."""
+    T = np.asarray(T, dtype=float)
+    return T[:3, 3] - l4 * T[:3, 0]
+
+
+def porter_normal(T: Any, l1: float, l4: float) -> np.ndarray:
+    """The unit normal n = (p2 - p0) x (p4 - p0) / |...| of the arm plane (Ver.2, corrected order)."""
+    p4 = porter_wrist_point(T, l4)
+    n = np.cross([0.0, 0.0, l1], p4)
+    return n / np.linalg.norm(n)
+
+
+def porter_elbows(T: Any, l1: float, l3: float, l4: float, rod: float | None = None) -> np.ndarray:
+    """The two candidates p3 = p4 ± l3 z4, z4 ∝ n × x5 (``rod`` replaces l3: the printed l4)."""
+    p4, x5 = porter_wrist_point(T, l4), np.asarray(T, dtype=float)[:3, 0]
+    m = np.cross(porter_normal(T, l1, l4), x5)
+    z4 = m / np.linalg.norm(m)
+    r = l3 if rod is None else rod
+    return np.array([p4 + r * z4, p4 - r * z4])
+
+
+def case_rng(*args: Any) -> np.random.Generator:
+    """A generator seeded by a case's arguments: the hidden joint values of a modelling case are fixed by it."""
+    flat = np.concatenate([np.asarray(a, dtype=float).ravel() for a in args if not isinstance(a, str)])
+    return np.random.default_rng(zlib.crc32(np.round(flat, 12).tobytes()))
+
+
+def hidden_q(rng: np.random.Generator, revolute: Any, n: int = 24, stroke: tuple[float, float] = (0.2, 1.5)) -> Any:
+    """``n`` random joint vectors: angles in (-π, π], strokes in ``stroke``."""
+    rev = np.asarray(revolute, dtype=bool)
+    Q = rng.uniform(-np.pi, np.pi, (n, len(rev)))
+    Q[:, ~rev] = rng.uniform(*stroke, (n, int(np.sum(~rev))))
+    return Q
+
+
+def rodrigues_unnormalised(axis: Any, angle: float) -> np.ndarray:
+    """I + sin θ [a]x + (1 - cos θ) [a]x² with the axis a as given (the mistake of not normalising it)."""
+    a = np.asarray(axis, dtype=float)
+    S = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+    return np.eye(3) + math.sin(angle) * S + (1.0 - math.cos(angle)) * (S @ S)
+
+
+def plain_distance(q: Any, q_ref: Any) -> float:
+    """|q - q_ref| without wrapping the angle differences (the mistake)."""
+    return float(np.linalg.norm(np.asarray(q, dtype=float) - np.asarray(q_ref, dtype=float)))
+
+
+def nearest_row(solutions: Any, q_prev: Any, wrap: bool = True) -> np.ndarray:
+    """The row of ``solutions`` nearest ``q_prev``, angle differences wrapped (or not, the mistake)."""
+    S, q = np.atleast_2d(np.asarray(solutions, dtype=float)), np.asarray(q_prev, dtype=float)
+    d = wrap_angle(S - q) if wrap else S - q
+    return S[int(np.argmin(np.sum(d * d, axis=1)))].copy()
+
+
+def wrapped_nearest(solutions: Any, q_prev: Any, revolute: Any = (True, True, False, True, True, True)) -> np.ndarray:
+    """The row of ``solutions`` nearest ``q_prev``, wrapping only the revolute columns (Porter's stroke is a length)."""
+    S, q = np.atleast_2d(np.asarray(solutions, dtype=float)), np.asarray(q_prev, dtype=float)
+    d = np.where(np.asarray(revolute, dtype=bool), wrap_angle(S - q), S - q)
+    return S[int(np.argmin(np.sum(d * d, axis=1)))].copy()

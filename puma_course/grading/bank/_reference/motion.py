@@ -1,0 +1,308 @@
+"""References of exercises 8 to 10: the three-step procedure, PUMA-560 inverse kinematics, paths."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from .... import euler, transforms
+from ....kinematics import Puma560, ThreeStepArm
+from ....kinematics import joint_distance as _joint_distance
+from ....kinematics import trajectories as tr
+from ._common import _quiet, _set_expected, pose, tz
+from .chains import random_rotations
+
+
+# ---------------------------------------------------------------- exercise 8: the three-step procedure
+def three_step(w: Any, F: Any, l1: float, l2: float, elbow: str, theta_bar: Any, F_bar: Any) -> Any:
+    """The procedure from the start {θ̄0, θ̄1, θ̄2, F̄}."""
+    start = (*(float(t) for t in np.asarray(theta_bar, dtype=float)), np.asarray(F_bar, dtype=float))
+    return _quiet(ThreeStepArm(l1, l2).three_step, np.asarray(w, dtype=float), np.asarray(F, dtype=float), elbow, start)
+
+
+def three_step_cases(rng: np.random.Generator, n: int, reach: Callable[..., Any]) -> list[tuple[Any, ...]]:
+    """Cases (w, F, l1, l2, elbow, θ̄, F̄): reachable w, random target and bent start, either elbow."""
+    out = []
+    for (w, l1, l2), F, F_bar in zip(reach(rng, n), random_rotations(rng, n), random_rotations(rng, n), strict=True):
+        out.append((w, F, l1, l2, "up" if rng.uniform() < 0.5 else "down", rng.uniform(-2.5, 2.5, 3), F_bar))
+    return out
+
+
+def zyz_expected(w: Any, F: Any, l1: float, l2: float, elbow: str, theta_bar: Any, F_bar: Any) -> dict[str, Any]:
+    """The wrist's rotation F2^T F (about its own moving axes) for the rotation judge, with the usual mix-ups."""
+    sol = three_step(w, F, l1, l2, elbow, theta_bar, F_bar)
+    F2, F = sol.frame_step2, np.asarray(F, dtype=float)
+    msg = (
+        "your angles give F F2ᵀ, the rotation seen from the base (fixed axes); the wrist turns about its own "
+        "moving axes: F = F2 Rz(φ) Ry(ϑ) Rz(ψ)"
+    )
+    return {
+        "R": F2.T @ F,
+        "alternatives": [
+            ("order", msg, F @ F2.T),
+            (
+                "transposed",
+                "your angles give the transpose of the rotation asked for (Fᵀ F2 instead of F2ᵀ F)",
+                F.T @ F2,
+            ),
+        ],
+    }
+
+
+def rotation_from_zyz(phi: float, theta: float, psi: float) -> np.ndarray:
+    """Rz(φ) Ry(ϑ) Rz(ψ)."""
+    return euler.rotation_from_zyz(phi, theta, psi)
+
+
+# ---------------------------------------------------------------- exercise 9: PUMA-560 inverse kinematics
+def puma_fk(q: Any, a2: float = 0.4318, a3: float = 0.0203, d3: float = 0.15005, d4: float = 0.4318) -> np.ndarray:
+    """^0T_6 of the PUMA-560 with the given lengths (metres)."""
+    return Puma560(a2, a3, d3, d4).fk(np.asarray(q, dtype=float))
+
+
+def joint_distance(q: Any, q_ref: Any) -> float:
+    """The course's distance between two configurations of revolute joints (angle differences wrapped)."""
+    return float(_joint_distance(q, q_ref))
+
+
+def puma_cases(rng: np.random.Generator, n: int, near_singular: bool = True) -> list[tuple[Any, ...]]:
+    """Cases (T, a2, a3, d3, d4): lengths around the lecture's; with ``near_singular`` the first three poses sit
+    1e-5 from the wrist singularity, 1e-4 rad from the stretched elbow and 1e-5 from the shoulder cylinder."""
+    out = []
+    for k in range(n):
+        L = np.array(list(Puma560().lengths.values())) * rng.uniform(0.7, 1.3, 4)
+        arm, q = Puma560(*L), rng.uniform(-np.pi, np.pi, 6)
+        if near_singular and k == 0:
+            q[4] = 1e-5 * rng.choice([-1.0, 1.0])
+        elif near_singular and k == 1:
+            q[2] = math.atan2(-L[3], L[1]) + 1e-4
+        elif near_singular and k == 2:
+            q[1] = _shoulder_theta2(q[2], *L) + 1e-5
+        out.append((arm.fk(q), *(float(v) for v in L)))
+    return out
+
+
+def _shoulder_theta2(t3: float, a2: float, a3: float, d3: float, d4: float) -> float:
+    """θ2 that puts the wrist centre straight beside the shoulder (reach X = 0: the shoulder singularity)."""
+    vx, vy = a2 + a3 * math.cos(t3) - d4 * math.sin(t3), a3 * math.sin(t3) + d4 * math.cos(t3)
+    return math.atan2(vx, vy)
+
+
+def puma_ik_expected(
+    T: Any, a2: float = 0.4318, a3: float = 0.0203, d3: float = 0.15005, d4: float = 0.4318
+) -> dict[str, Any]:
+    """Every configuration reaching T, for the set judge."""
+    return _set_expected(Puma560(a2, a3, d3, d4), T)
+
+
+def puma_arm_expected(p: Any, a2: float, a3: float, d3: float, d4: float) -> dict[str, Any]:
+    """The four (θ1, θ2, θ3) putting the wrist centre at p, for the set judge (poses: the wrist centre's)."""
+    arm = Puma560(a2, a3, d3, d4)
+    T = pose(np.eye(3), p)
+    sol = _quiet(arm.ik, T)
+    keep = [i for i, lab in enumerate(sol.labels) if lab.endswith("noflip")]
+
+    def fk(Q: Any) -> np.ndarray:
+        Q = np.atleast_2d(np.asarray(Q, dtype=float))
+        full = np.zeros((len(Q), 6))
+        full[:, :3] = Q
+        out = np.tile(np.eye(4), (len(Q), 1, 1))
+        out[:, :3, 3] = arm.fk(full)[:, :3, 3]
+        return out
+
+    return {
+        "T": T,
+        "solutions": np.asarray(sol.q)[keep, :3],
+        "labels": tuple(sol.labels[i].rsplit("/", 1)[0] for i in keep),
+        "fk": fk,
+        "revolute": np.ones(3, bool),
+        "scale": 1.0,
+    }
+
+
+def puma_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (T, q_ref, a2, a3, d3, d4): q_ref near one solution, across ±π where wrapping decides."""
+    out = []
+    for k, (T, *L) in enumerate(puma_cases(rng, n, near_singular=True)):
+        sol = _quiet(Puma560(*L).ik, T).q
+        q_ref = sol[int(rng.integers(len(sol)))] + rng.normal(0.0, 0.05, 6)
+        if k % 2 == 0:  # one joint just across ±π from the solution: only a wrapped distance sees it is near
+            j = int(rng.integers(6))
+            q_ref[j] = math.copysign(math.pi, -q_ref[j]) + math.copysign(0.05, q_ref[j]) * -1.0
+            q_ref[j] = transforms.wrap_angle(q_ref[j])
+        out.append((T, transforms.wrap_angle(q_ref), *L))
+    return out
+
+
+def puma_nearest_expected(T: Any, q_ref: Any, a2: float, a3: float, d3: float, d4: float) -> dict[str, Any]:
+    """What the nearest judge needs."""
+    return {**_set_expected(Puma560(a2, a3, d3, d4), T), "q_ref": np.asarray(q_ref, dtype=float)}
+
+
+def puma_world_expected(T_world: Any, B: Any, d6: float) -> dict[str, Any]:
+    """The lecture's PUMA-560 standing at B (world) with a tool d6 along z6: every configuration putting the tool
+    at T_world, and the poses a row reaches after the usual mistakes."""
+    arm, T_world, B = Puma560(), np.asarray(T_world, dtype=float), np.asarray(B, dtype=float)
+    Bi = transforms.inverse_transform(B)
+    alts = [
+        ("base_frame", "you solved as if the robot stood at the world origin: its base frame is B", B @ T_world),
+        (
+            "order",
+            "you composed B on the wrong side: T_world = B ⁰T₆ Tz(d6), so ⁰T₆ = B⁻¹ T_world Tz(-d6)",
+            B @ T_world @ Bi @ tz(-d6) @ tz(d6),
+        ),
+        ("tool_frame", "your configurations put frame {6}, not the tool tip, at the pose asked for", T_world @ tz(d6)),
+        (
+            "offset_sign",
+            "the tool is d6 beyond frame {6} along z6: ⁰T₆ = B⁻¹ T_world Tz(-d6), not Tz(+d6)",
+            T_world @ tz(2 * d6),
+        ),
+    ]
+    out = _set_expected(arm, Bi @ T_world @ tz(-d6), fk=lambda Q: B @ arm.fk(Q) @ tz(d6), alternatives=alts)
+    out["T"] = T_world
+    return out
+
+
+def puma_world_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (T_world, B, d6): the robot on a random base (a pedestal turned and shifted, or hung upside down)."""
+    out = []
+    for k in range(n):
+        R = transforms.rotz(rng.uniform(-np.pi, np.pi)) @ (transforms.rotx(np.pi) if k % 2 else np.eye(3))
+        B, d6 = pose(R, rng.uniform(-1.0, 1.0, 3)), float(rng.uniform(0.05, 0.2))
+        q = rng.uniform(-np.pi, np.pi, 6)
+        out.append((B @ Puma560().fk(q) @ tz(d6), B, d6))
+    return out
+
+
+# ---------------------------------------------------------------- exercise 10: trajectories
+def puma_path_expected(path: Any, q0: Any, d_tool: float) -> dict[str, Any]:
+    """What the path judge needs: the pen path, the smoothest joint path (``follow``) and the mistaken fks."""
+    arm, path = Puma560(), np.asarray(path, dtype=float)
+    ref = tr.follow(arm, path @ tz(-d_tool), np.asarray(q0, dtype=float)).q
+    alts = [
+        ("tool_frame", "your path puts frame {6} (the wrist), not the pen tip, on the path", arm.fk),
+        (
+            "offset_sign",
+            "the pen tip is d beyond frame {6} along z6: ⁰T₆ = T_pen Tz(-d), not Tz(+d)",
+            lambda Q: arm.fk(Q) @ tz(-d_tool),
+        ),
+    ]
+    return {
+        "path": path,
+        "fk": lambda Q: arm.fk(Q) @ tz(d_tool),
+        "q0": np.asarray(q0, dtype=float),
+        "ref": ref,
+        "revolute": arm.revolute,
+        "scale": 1.0,
+        "alternatives": alts,
+    }
+
+
+def puma_paths(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (path, q0, d_tool): lines through a wrist flip (θ5 crossing 0 between samples) and circles, each
+    starting from a configuration that is not the solver's first branch."""
+    arm, out = Puma560(), []
+    for k in range(n):
+        d = float(rng.uniform(0.05, 0.15))
+        q_mid = np.array(
+            [
+                rng.uniform(-1, 1),
+                rng.uniform(-0.9, -0.3),
+                rng.uniform(0.1, 0.5),
+                rng.uniform(-1, 1),
+                0.0,
+                rng.uniform(-1, 1),
+            ]
+        )
+        T_mid = arm.fk(q_mid)
+        if k % 2 == 0:
+            step = 0.15 * T_mid[:3, 2] if k % 4 == 0 else 0.15 * np.array([0.0, 0.0, 1.0])
+            T0 = T_mid.copy()
+            T0[:3, 3] -= step
+            path06 = tr.line_path(T0, T_mid[:3, 3] + step, int(rng.integers(30, 45)) * 2)
+        else:
+            path06 = tr.circle_path(
+                T_mid[:3, 3] + [0.0, 0.08, 0.0], 0.08, rng.normal(size=3), T_mid[:3, :3], int(rng.integers(30, 45))
+            )
+        sols = _quiet(arm.ik, path06[0])
+        q0 = sols.q[int(rng.integers(1, len(sols)))]
+        out.append((path06 @ tz(d), q0, d))
+    return out
+
+
+def three_step_variant(
+    field: str, *, zero_theta: bool = False, identity_frame: bool = False, other_elbow: bool = False
+) -> Callable[..., np.ndarray]:
+    """``field`` of the procedure under a mistake: the start's angles taken as 0, its frame as I, the other elbow.
+
+    Takes the same arguments as the question asking for ``field`` (q1: w, θ̄, F̄; q3: w, l1, l2, elbow, θ̄, F̄;
+    q4, q5: w, F, l1, l2, elbow, θ̄, F̄).
+    """
+
+    def wrong(*args: Any) -> np.ndarray:
+        w, F, l1, l2, elbow, tb, Fb = _three_step_args(args)
+        tb = np.zeros(3) if zero_theta else tb
+        Fb = np.eye(3) if identity_frame else Fb
+        elbow = {"up": "down", "down": "up"}[elbow] if other_elbow else elbow
+        return np.asarray(getattr(three_step(w, F, l1, l2, elbow, tb, Fb), field), dtype=float)
+
+    return wrong
+
+
+def _three_step_args(args: tuple[Any, ...]) -> tuple[Any, ...]:
+    """(w, F, l1, l2, elbow, θ̄, F̄) from the arguments of any three-step question (missing ones filled in)."""
+    if len(args) == 3:  # step 1 (w, θ̄, F̄): the lengths do not matter, pick ones that reach w
+        r = math.hypot(*np.asarray(args[0], dtype=float).tolist())
+        return args[0], np.eye(3), r, r, "up", args[1], args[2]
+    if len(args) == 4:  # the arm's angles (w, l1, l2, elbow): neither the start nor the target matters
+        return args[0], np.eye(3), *args[1:], np.zeros(3), np.eye(3)
+    if len(args) == 6:  # step 2 (w, l1, l2, elbow, θ̄, F̄): the target does not matter
+        return args[0], np.eye(3), *args[1:]
+    return tuple(args)
+
+
+def step_field(field: str) -> Callable[..., np.ndarray]:
+    """The reference of a three-step question asking for ``field`` (arm: [θ1, θ2])."""
+
+    def ref(*args: Any) -> np.ndarray:
+        sol = three_step(*_three_step_args(args))
+        return np.asarray([sol.theta1, sol.theta2] if field == "arm" else getattr(sol, field), dtype=float)
+
+    return ref
+
+
+def moved_wrong_way(field: str) -> Callable[..., np.ndarray]:
+    """The step's rotation applied on the wrong side (about the moving axes): F̄ K(e_z, δ0), F1 K(a, δ) or F2ᵀ F."""
+
+    def wrong(*args: Any) -> np.ndarray:
+        sol = three_step(*_three_step_args(args))
+        if field == "frame_step1":
+            return np.asarray(sol.start.frame) @ sol.K_base
+        if field == "frame_step2":
+            return sol.frame_step1 @ sol.K_arm
+        return sol.frame_step2.T @ np.asarray(args[1], dtype=float)
+
+    return wrong
+
+
+def wrap_near_pi(q: Any) -> np.ndarray:
+    """Joint values wrapped into (-π, π] (where a distance that forgets to wrap goes wrong)."""
+    return np.asarray(transforms.wrap_angle(np.asarray(q, dtype=float)))
+
+
+def sorted_expected(solutions: Any, q_prev: Any) -> dict[str, Any]:
+    """The PUMA-560 solutions of one pose, nearest ``q_prev`` first, for the set judge (ordered); the orders of
+    the usual mistakes: not wrapping the angle differences, or not sorting at all."""
+    S, q = np.asarray(solutions, dtype=float), np.asarray(q_prev, dtype=float)
+    arm = Puma560()
+    d = np.asarray(transforms.wrap_angle(S - q))
+    plain = S[np.argsort(np.sum((S - q) ** 2, axis=1), kind="stable")]
+    wrong = [("unwrapped_distance", "sorted without wrapping the angle differences: 179° and -179° are 2° apart, "
+              "not 358° (lecture 10 §2)", plain), ("solution_order", "these are the solutions as given, not sorted "
+              "by their distance to q_prev", S)]  # fmt: skip
+    return {"T": arm.fk(S[0]), "solutions": S[np.argsort(np.sum(d * d, axis=1), kind="stable")],
+            "labels": tuple(f"solution {i + 1}" for i in range(len(S))), "fk": arm.fk, "revolute": arm.revolute,
+            "scale": 1.0, "ordered": True, "wrong_orders": wrong}  # fmt: skip

@@ -1,0 +1,151 @@
+"""References of exercises 5 to 7: Porter's chain, its tool frame, Ver.1 and Ver.2."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .... import transforms
+from ....kinematics import Porter
+from ....kinematics.porter import angle as porter_angle
+from .._formulas import porter_wrist_point
+from ._common import _quiet, _set_expected, _table_expected, pose, tz
+
+
+# ---------------------------------------------------------------- exercises 5 to 7: Porter's chain
+def porter_fk(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """F05 of Porter's chain."""
+    return Porter(l1, l3, l4).fk(q)
+
+
+def porter_points(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """The joint points p0 ... p5 of Porter's chain: shape (6, 3)."""
+    return Porter(l1, l3, l4).points(q)
+
+
+def _porter_factors(q: Any, l1: float, l3: float, l4: float, printed: bool = False) -> list[np.ndarray]:
+    a1, a2, q2, a3, a4, a5 = (float(v) for v in np.asarray(q, dtype=float))
+    T = transforms
+    slide = [] if printed else [T.transx(q2)]
+    return [T.trotz(a1), tz(l1), T.troty(a2), *slide, T.troty(a3), tz(-l3), T.trotz(a4), T.transx(l4), T.trotx(a5)]
+
+
+def porter_printed_fk(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """Porter's local product as printed, without Tx(q2) (lecture 05, erratum 1)."""
+    return transforms.compose_moving(*_porter_factors(q, l1, l3, l4, printed=True))
+
+
+def porter_reversed_fk(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """The nine local factors multiplied in reverse order (the fixed-axes reading of the local list)."""
+    return transforms.compose_fixed(*_porter_factors(q, l1, l3, l4))
+
+
+#: Porter's tool frame {T} of ex05: z_T along x5 (the axis of α5), x_T = y5, y_T = z5.
+PORTER_TOOL = pose(np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]), np.zeros(3))
+
+
+def porter_tool_fk(Q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """F05 followed by the tool frame's axes: F05 P."""
+    return Porter(l1, l3, l4).fk(np.asarray(Q, dtype=float)) @ PORTER_TOOL
+
+
+def porter_tool_expected(l1: float, l3: float, l4: float) -> dict[str, Any]:
+    """What the table judge needs for Porter's chain (ex05)."""
+    return _table_expected(
+        lambda Q: porter_tool_fk(Q, l1, l3, l4), Porter().revolute, l1 + l3 + l4 + 2.0, l1, l3, l4, stroke=(0.2, 2.0)
+    )
+
+
+def porter_configs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, float, float, float]]:
+    """Configurations in general position (|cos α4| >= 0.3, q2 >= 0.3, wrist point off the z0 axis)."""
+    out: list[tuple[np.ndarray, float, float, float]] = []
+    while len(out) < n:
+        q = rng.uniform(-np.pi, np.pi, 6)
+        q[2] = rng.uniform(0.3, 2.0)
+        l1, l3, l4 = (float(x) for x in rng.uniform(0.3, 1.5, 3))
+        p4 = Porter(l1, l3, l4).points(q)[4]
+        if abs(np.cos(q[4])) >= 0.3 and np.hypot(p4[0], p4[1]) > 0.2:
+            out.append((q, l1, l3, l4))
+    return out
+
+
+def porter_poses(rng: np.random.Generator, n: int, near_singular: bool = False) -> list[tuple[Any, ...]]:
+    """Cases (T, l1, l3, l4); with ``near_singular`` the first ones sit 1e-4 from c4 = 0, at c1 = 0, q2 = 1e-3."""
+    cases = porter_configs(rng, n)
+    if near_singular:
+        for k, (col, value) in enumerate([(4, np.pi / 2 - 1e-4), (0, np.pi / 2), (2, 1e-3)][:n]):
+            cases[k][0][col] = value
+    return [(Porter(l1, l3, l4).fk(q), l1, l3, l4) for q, l1, l3, l4 in cases]
+
+
+def porter_ik_expected(T: Any, l1: float, l3: float, l4: float) -> dict[str, Any]:
+    """Every configuration reaching T (Ver.1) for the set judge; the stroke (column 2) must be >= 0."""
+    return _set_expected(Porter(l1, l3, l4), T, stroke=2)
+
+
+def porter_tool_ik_expected(T_tool: Any, l1: float, l3: float, l4: float, E: Any) -> dict[str, Any]:
+    """Every configuration putting the tool (F05 E) at T_tool; rows reaching T_tool E or E^-1 T_tool composed E
+    the wrong way, rows reaching T_tool E^-1 forgot the tool (F5 itself is at T_tool)."""
+    T_tool, E = np.asarray(T_tool, dtype=float), np.asarray(E, dtype=float)
+    robot, Ei = Porter(l1, l3, l4), transforms.inverse_transform(E)
+    wrong = "you composed the tool on the wrong side: the tool frame is F05 E, so F05 = T_tool E⁻¹"
+    alts = [
+        ("order", wrong, T_tool @ E @ E),
+        ("order", wrong, Ei @ T_tool @ E),
+        ("tool_frame", "your configurations put F5, not the tool frame, at the pose asked for", T_tool @ E),
+    ]
+    out = _set_expected(robot, T_tool @ Ei, fk=lambda Q: robot.fk(Q) @ E, stroke=2, alternatives=alts)
+    out["T"] = T_tool
+    return out
+
+
+def signed_angle(v: Any, w: Any, axis: Any) -> float:
+    """Porter's angle(v, w, axis), signed about the unit axis, in (-π, π]."""
+    return float(porter_angle(v, w, axis))
+
+
+def porter_parallel_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (T, l1, l3, l4) with x5 normal to the arm plane (α4 = ±π/2) and p4 off the z0 axis."""
+    out = []
+    for q, l1, l3, l4 in porter_configs(rng, n):
+        q[4] = np.pi / 2 * (1 if rng.uniform() < 0.5 else -1)
+        out.append((Porter(l1, l3, l4).fk(q), l1, l3, l4))
+    return out
+
+
+def porter_parallel_expected(T: Any, l1: float, l3: float, l4: float) -> dict[str, Any]:
+    """What the stroke judge needs: the front plane's α1 and Porter's minimal stroke | |p4 - p2| - l3 |."""
+    p4 = porter_wrist_point(T, l4)
+    robot = Porter(l1, l3, l4)
+    return {
+        "T": np.asarray(T, dtype=float),
+        "fk": robot.fk,
+        "revolute": robot.revolute,
+        "scale": 1.0 + float(np.max(np.abs(p4))),
+        "alpha1": math.atan2(p4[1], p4[0]),
+        "q2_min": abs(math.dist(p4, (0.0, 0.0, l1)) - l3),
+    }
+
+
+def porter_geometric(T: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """Porter's Ver.2 configuration(s) of T: at parallel planes the minimal-stroke one."""
+    return np.asarray(_quiet(Porter(l1, l3, l4).ik, T, method="geometric"))
+
+
+def porter_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (T, l1, l3, l4, q_prev): q_prev near one of the four configurations, an angle across ±π from it."""
+    out = []
+    for T, l1, l3, l4 in porter_poses(rng, n):
+        sol = np.asarray(_quiet(Porter(l1, l3, l4).ik, T).q)
+        q_prev = sol[int(rng.integers(len(sol)))] + rng.normal(0.0, 0.05, 6)
+        j = int(rng.choice([0, 1, 3, 4, 5]))
+        q_prev[j] = transforms.wrap_angle(q_prev[j] + np.pi) - np.pi  # the same angle, written a turn away
+        out.append((T, l1, l3, l4, q_prev))
+    return out
+
+
+def porter_nearest_expected(T: Any, l1: float, l3: float, l4: float, q_prev: Any) -> dict[str, Any]:
+    """What the nearest judge needs (the stroke, column 2, is a length: never wrapped)."""
+    return {**_set_expected(Porter(l1, l3, l4), T), "q_ref": np.asarray(q_prev, dtype=float)}

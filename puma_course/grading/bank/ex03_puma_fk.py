@@ -1,0 +1,121 @@
+"""Exercise 3 (``solutions/ex03_puma_fk.ipynb``): forward kinematics of any DH chain, and the PUMA-560's table.
+
+The modelling question: derive the PUMA-560's table from its picture, with the base on the floor,
+the tool beyond the wrist and the joint zero of the controller (arm straight up) fixed by the
+question, so the lecture's table does not answer it; graded by the poses the chain reaches.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..diagnose import matches
+from ..judges import table_judge
+from ..model import Exercise, Question
+from . import _keys as keys
+from ._reference import chains as ref
+
+H = np.pi / 2
+
+
+def puma_table(a2: float, a3: float, d3: float, d4: float, h: float, d6: float) -> np.ndarray:
+    """One valid table of the PUMA-560 on its pedestal (the solution's): the lecture's, re-zeroed and extended."""
+    return np.array(
+        [
+            [0.0, 0.0, 0.0, h, 0],
+            [-H, 0.0, -H, 0.0, 0],
+            [0.0, a2, -H, d3, 0],
+            [-H, a3, 0.0, d4, 0],
+            [H, 0.0, 0.0, 0.0, 0],
+            [-H, 0.0, 0.0, d6, 0],
+        ]
+    )
+
+
+def _in_degrees(table: Any, q: Any) -> np.ndarray:
+    t, q = np.array(table, dtype=float), np.asarray(q, dtype=float)
+    t[:, [0, 2]] = np.radians(t[:, [0, 2]])
+    return ref.table_fk(t, np.where(t[:, 4] > 0.5, q, np.radians(q)))
+
+
+def _all_revolute(table: Any, q: Any) -> np.ndarray:
+    t = np.array(table, dtype=float)
+    t[:, 4] = 0.0
+    return ref.table_fk(t, q)
+
+
+PLANAR = np.array([[0.0, 0.0, 0.0, 0.0, 0], [0.0, 1.0, 0.0, 0.0, 0], [0.0, 0.7, 0.0, 0.0, 0]])
+SLIDER = np.array([[0.0, 0.0, 0.3, 0.5, 0], [-H, 0.2, 0.0, 0.1, 1], [H, 0.0, -0.4, 0.0, 0]])
+
+EXERCISE = Exercise(
+    "ex03_puma_fk",
+    "Forward kinematics of a DH chain, and the PUMA-560's table from its picture",
+    (
+        Question(
+            "q1",
+            "chain_fk",
+            3,
+            "^0T_n of any modified-DH table",
+            public=((PLANAR, np.radians([30.0, 45.0, -60.0])), (SLIDER, np.array([0.4, 0.25, -1.0]))),
+            hidden=lambda rng: ref.random_tables(rng, 5),
+            reference=ref.table_fk,
+            forbidden=keys.KEY_CHAIN,
+            mistakes=(
+                matches(
+                    "standard_dh",
+                    "your product is the standard (distal) DH chain: each link matrix must be "
+                    "Craig's Rot(X, α_(i-1)) Trans(X, a_(i-1)) Rot(Z, θ_i) Trans(Z, d_i) (lecture 02 §5)",
+                    ref.standard_table_fk,
+                ),
+                matches(
+                    "order",
+                    "your link matrices are multiplied in the reverse order: ⁰Tₙ = ⁰T₁ ¹T₂ ... (each "
+                    "frame is described in the one before it, lecture 03 introduction)",
+                    ref.reversed_table_fk,
+                ),
+                matches(
+                    "degrees",
+                    "your result is what the table gives in degrees: its angles and q are radians",
+                    _in_degrees,
+                ),
+                matches(
+                    "joint_type",
+                    "a prismatic row (σ = 1) is treated as revolute: its joint value adds to d, not to θ",
+                    _all_revolute,
+                ),
+            ),
+            hint="Test your function on lecture 02's planar arm, whose pose you know by hand, and on a one-row "
+            "prismatic table that can only slide along z.",
+        ),
+        Question(
+            "q2",
+            "puma_table",
+            6,
+            "the PUMA-560's table from its picture (pedestal, tool, upright zero)",
+            public=((0.4318, 0.0203, 0.15005, 0.4318, 0.6604, 0.056),),
+            hidden=lambda rng: [
+                tuple(float(v) for v in row)
+                for row in np.column_stack(
+                    [
+                        rng.uniform(0.3, 0.6, 3),
+                        rng.uniform(-0.05, 0.05, 3),
+                        rng.uniform(0.05, 0.25, 3),
+                        rng.uniform(0.3, 0.6, 3),
+                        rng.uniform(0.4, 0.9, 3),
+                        rng.uniform(0.0, 0.15, 3),
+                    ]
+                )
+            ],
+            reference=ref.puma_pedestal_expected,
+            judge_with=table_judge(ref.table_fk, ref.standard_table_fk),
+            answer=puma_table,
+            forbidden=keys.KEY_TABLES,
+            hint="Start from frames you trust (lecture 03 §1) and ask what the picture changes: where {0} sits, "
+            "where the last frame sits, and which joint values the drawn pose has. Your q1 shows your table's pose "
+            "at q = 0.",
+        ),
+    ),
+    allowed=("puma_course.kinematics.dh:mdh",),
+)

@@ -1,0 +1,129 @@
+"""Exercise 4 (``solutions/ex04_mk3_fk.ipynb``): forward kinematics of the Motoman MK3, and the MK3 on a rail.
+
+The modelling question: the MK3 mounted on a carriage that slides along a rail (a seventh axis,
+common in welding cells) is a new 6-joint chain; its table, with the rail's frame as {0} and the
+MK3's flange as the last frame, is graded by the poses it reaches.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..diagnose import degrees_in, matches
+from ..judges import table_judge
+from ..model import Exercise, Question
+from . import _keys as keys
+from ._reference import chains as ref
+
+H = np.pi / 2
+
+
+def rail_table(c: float, d1: float, a1: float, a2: float, a3: float, d5: float) -> np.ndarray:
+    """One valid table of the MK3 on its rail (the solution's): a prismatic row, then the MK3's rows."""
+    return np.array(
+        [
+            [-H, 0.0, 0.0, 0.0, 1],
+            [H, 0.0, 0.0, c + d1, 0],
+            [H, a1, 0.0, 0.0, 0],
+            [0.0, a2, 0.0, 0.0, 0],
+            [0.0, a3, 0.0, 0.0, 0],
+            [H, 0.0, 0.0, d5, 0],
+        ]
+    )
+
+
+def _flange(axis: int, sign: float) -> Any:
+    return lambda T, d5: np.asarray(T, dtype=float)[:3, 3] + sign * d5 * np.asarray(T, dtype=float)[:3, axis]
+
+
+def _wrist_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    return [(ref.mk3_fk(q, *L), L[-1]) for q, *L in ref.mk3_cases(rng, n)]
+
+
+EXERCISE = Exercise(
+    "ex04_mk3_fk",
+    "Forward kinematics of the Motoman MK3, and the MK3 on a rail",
+    (
+        Question(
+            "q1",
+            "mk3_wrist_point",
+            2,
+            "the wrist point behind the flange",
+            public=((ref.mk3_fk(np.zeros(5)), 100.0), (ref.mk3_fk([0.3, 0.8, -0.5, 0.2, 1.0]), 100.0)),
+            hidden=lambda rng: _wrist_cases(rng, 4),
+            reference=_flange(2, -1.0),
+            mistakes=(
+                matches(
+                    "wrong_axis",
+                    "you moved along x5: the flange is d5 beyond the wrist along the tool axis z5",
+                    _flange(0, -1.0),
+                ),
+                matches(
+                    "wrong_axis",
+                    "you moved along y5: the flange is d5 beyond the wrist along the tool axis z5",
+                    _flange(1, -1.0),
+                ),
+                matches(
+                    "offset_sign",
+                    "the flange is d5 *beyond* the wrist along z5: going back means subtracting",
+                    _flange(2, 1.0),
+                ),
+            ),
+            hint="Which axis of frame {5} does the last row of the table slide along (lecture 04 §1)? At q = 0 "
+            "you know both points by hand (lecture 04 §5).",
+        ),
+        Question(
+            "q2",
+            "mk3_fk",
+            3,
+            "^0T_5 for any lengths",
+            public=(
+                (np.zeros(5), 360.0, 135.0, 250.0, 215.0, 100.0),
+                (np.array([0.0, np.pi / 2, -np.pi / 2, 0.0, 0.0]), 360.0, 135.0, 250.0, 215.0, 100.0),
+            ),
+            hidden=lambda rng: ref.mk3_cases(rng, 5),
+            reference=ref.mk3_fk,
+            forbidden=(*keys.KEY_CHAIN, "puma_course.grading.bank._reference.chains:mk3_fk"),
+            mistakes=(
+                matches(
+                    "printed_formula",
+                    "your ⁴T₅ is the misprinted one: its -d5 sits in the wrong row (lecture 04 "
+                    "§3 shows four ways to decide)",
+                    ref.mk3_printed_fk,
+                ),
+                matches(
+                    "standard_dh",
+                    "this is the MK3's table evaluated with the standard (distal) DH link matrix; "
+                    "the table is Craig's modified DH (lecture 02 §5)",
+                    lambda q, *L: ref.standard_table_fk(ref.mk3_table(*L), q),
+                ),
+                matches(
+                    "order",
+                    "your link matrices are multiplied in the reverse order",
+                    lambda q, *L: ref.reversed_table_fk(ref.mk3_table(*L), q),
+                ),
+                degrees_in(0),
+            ),
+            hint="Check q = 0 and the ready pose against the flange positions you work out by hand (lecture 04 §5); "
+            "the numbers are millimetres.",
+        ),
+        Question(
+            "q3",
+            "rail_table",
+            5,
+            "the DH table of the MK3 on a rail, from its picture",
+            public=((450.0, 360.0, 135.0, 250.0, 215.0, 100.0),),
+            hidden=lambda rng: [(float(c), *ref.mk3_cases(rng, 1)[0][1:]) for c in rng.uniform(200.0, 800.0, 3)],
+            reference=ref.mk3_rail_expected,
+            judge_with=table_judge(ref.table_fk, ref.standard_table_fk),
+            answer=rail_table,
+            forbidden=keys.KEY_TABLES,
+            hint="The rail's joint comes first: which way must z_1 point, and which twist about x_0 turns z_0 into it "
+            "(lecture 02 §1)? Then find where joint 2's axis meets the rail's. Your q2, shifted by the carriage, is "
+            "the pose to compare with.",
+        ),
+    ),
+    allowed=("puma_course.kinematics.dh:mdh",),
+)

@@ -1,0 +1,130 @@
+"""Exercise 5 (``solutions/ex05_porter_fk.ipynb``): Porter's chain, the direct problem.
+
+The modelling question: Porter writes his chain without Denavit-Hartenberg tables; the student
+gives it one (joint axes along y and x included, the slide third), ending in a tool frame whose z
+axis is the hand's turning axis. Graded by the poses the table's chain reaches.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..diagnose import INVERSE, TRANSPOSED, matches
+from ..judges import table_judge
+from ..model import Exercise, Question
+from . import _keys as keys
+from ._reference import chains
+from ._reference import porter_chain as ref
+
+H = np.pi / 2
+#: The configuration and lengths (l1, l3, l4) of the public cases (exercise 6 reaches the same pose).
+PUBLIC_Q = np.array([0.3, 0.7, 1.3, -0.4, 0.9, 0.6])
+PUBLIC_L = (1.0, 0.5, 0.3)
+
+
+def porter_table(l1: float, l3: float, l4: float) -> np.ndarray:
+    """One valid modified-DH table of Porter's chain ending in its tool frame (the solution's)."""
+    return np.array(
+        [
+            [0.0, 0.0, 0.0, l1, 0],
+            [-H, 0.0, H, 0.0, 0],
+            [H, 0.0, 0.0, 0.0, 1],
+            [-H, 0.0, -H, 0.0, 0],
+            [H, 0.0, H, -l3, 0],
+            [H, 0.0, 0.0, l4, 0],
+        ]
+    )
+
+
+def _degrees(fn: Any) -> Any:
+    def wrong(q: Any, *L: float) -> Any:
+        q = np.array(q, dtype=float)
+        q[[0, 1, 3, 4, 5]] = np.radians(q[[0, 1, 3, 4, 5]])
+        return fn(q, *L)
+
+    return wrong
+
+
+EXERCISE = Exercise(
+    "ex05_porter_fk",
+    "Porter's chain: the direct problem, and its DH table",
+    (
+        Question(
+            "q1",
+            "porter_fk",
+            3,
+            "F05 of Porter's chain",
+            public=((PUBLIC_Q, *PUBLIC_L), (np.array([0.0, 0.0, 2.0, 0.0, 0.0, 0.0]), 1.0, 0.5, 0.25)),
+            hidden=lambda rng: ref.porter_configs(rng, 5),
+            reference=ref.porter_fk,
+            forbidden=keys.KEY_PORTER_FK,
+            mistakes=(
+                matches(
+                    "printed_formula",
+                    "your product has no slide along x2: it is the product as printed, which "
+                    "does not depend on q2 at all (lecture 05 §2)",
+                    ref.porter_printed_fk,
+                ),
+                matches(
+                    "order",
+                    "your nine motions are multiplied in the reverse order: motions about the moving "
+                    "(local) axes multiply on the right (lecture 01 §6, lecture 05 §3)",
+                    ref.porter_reversed_fk,
+                ),
+                matches(
+                    "degrees",
+                    "your result is what the chain gives for angles in degrees: q holds radians",
+                    _degrees(ref.porter_fk),
+                ),
+                INVERSE,
+                TRANSPOSED,
+            ),
+            hint="Check q = 0 by hand (lecture 05 §4) and check that the stroke q2 moves the hand.",
+        ),
+        Question(
+            "q2",
+            "porter_points",
+            2,
+            "the joint points p0 ... p5",
+            public=((PUBLIC_Q, *PUBLIC_L),),
+            hidden=lambda rng: ref.porter_configs(rng, 4),
+            reference=ref.porter_points,
+            forbidden=keys.KEY_PORTER_FK,
+            mistakes=(
+                matches(
+                    "degrees",
+                    "your points are what the chain gives for angles in degrees: q holds radians",
+                    _degrees(ref.porter_points),
+                ),
+            ),
+            hint="Return a (6, 3) array, p0 first; the distances between neighbouring points are the rods' lengths "
+            "(and q2), whatever the angles.",
+        ),
+        Question(
+            "q3",
+            "porter_table",
+            5,
+            "a DH table for Porter's chain, from its picture",
+            public=(PUBLIC_L,),
+            hidden=lambda rng: [tuple(float(v) for v in rng.uniform(0.3, 1.5, 3)) for _ in range(3)],
+            reference=ref.porter_tool_expected,
+            judge_with=table_judge(chains.table_fk, chains.standard_table_fk),
+            answer=porter_table,
+            forbidden=keys.KEY_TABLES,
+            hint="List the six joint axes with their positive senses at q = 0 (lecture 05 §1): z_i goes along axis i "
+            "whatever letter Porter uses for it; which pairs of axes intersect (lecture 02 §1)? Your q1 is the truth "
+            "to compare your table's poses with.",
+        ),
+    ),
+    allowed=(
+        "puma_course.transforms:trotx",
+        "puma_course.transforms:troty",
+        "puma_course.transforms:trotz",
+        "puma_course.transforms:transx",
+        "puma_course.transforms:transz",
+        "puma_course.transforms:compose_moving",
+        "puma_course.kinematics.dh:mdh",
+    ),
+)

@@ -1,0 +1,259 @@
+"""Judging configurations: sets of solutions, the nearest one, a joint path, angles by their rotation."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from ...transforms import wrap_angle
+from ..diagnose import close
+from ..model import Judge, Verdict
+from ._poses import POS_TOL, _dist, _floats, _off, _radians, _wrapped, pose_ok
+
+
+# ------------------------------------------------------------------------------------------ solution sets
+def _rows(got: Any, n: int) -> np.ndarray | str:
+    arr = _floats(got)
+    if arr is None:
+        return "did not return numbers"
+    if arr.ndim == 1 and arr.size == n:
+        arr = arr[None]
+    if arr.ndim != 2 or arr.shape[1] != n:
+        return f"expected rows of {n} joint values (an array of shape (k, {n})), got shape {arr.shape}"
+    if not np.all(np.isfinite(arr)):
+        return "returned NaN or infinity (near a singular pose a square root of a tiny negative number is NaN: clip)"
+    return arr
+
+
+def _not_reaching(arr: np.ndarray, expected: dict[str, Any], target: Any) -> Verdict | None:
+    """None if every row reaches ``target``; else why not (degrees, a named alternative, or which row)."""
+    fk, rev, scale = expected["fk"], np.asarray(expected["revolute"], bool), float(expected["scale"])
+    reached = fk(arr)
+    ok = pose_ok(reached, target, scale)
+    if np.all(ok):
+        return None
+    if np.all(pose_ok(fk(_radians(arr, rev)), target, scale)):
+        return Verdict("your angles are in degrees: the course works in radians", "degrees")
+    for key, message, alt in expected.get("alternatives", ()):
+        if np.all(pose_ok(reached, alt, scale)):
+            return Verdict(message, key)
+    i = int(np.flatnonzero(~ok)[0])
+    label = f"row {i + 1}" if arr.shape[0] > 1 else "your configuration"
+    return Verdict(
+        f"{label} does not reach the pose: off by {_off(reached[i : i + 1], np.asarray(target))}", "not_a_solution"
+    )
+
+
+def solution_set_judge(match_tol: float = 1e-6) -> Judge:
+    """Judge a set of configurations: each reaches the pose, none twice, none of the reference's missing.
+
+    The reference gives ``{"T", "solutions" (k, n), "labels", "fk", "revolute", "scale"}`` and may
+    add ``"alternatives"`` (``(key, message, pose)``: rows that all reach that pose made that
+    mistake), ``"stroke"`` (a column that must not be negative) and ``"ordered"`` (True: the rows
+    must come in the reference's order; ``"wrong_orders"``, ``(key, message, rows)``, name the
+    mistakes that produce another order).
+    """
+
+    def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
+        sols, labels = np.asarray(expected["solutions"], dtype=float), tuple(expected["labels"])
+        rev = np.asarray(expected["revolute"], dtype=bool)
+        k, n = sols.shape
+        arr = _rows(got, n)
+        if isinstance(arr, str):
+            return Verdict(arr)
+        if len(arr) == 0:
+            return Verdict(f"returned no configuration; the pose has {k}", "missing_solutions")
+        why = _not_reaching(arr, expected, expected["T"])
+        if why is not None:
+            return why
+        stroke = expected.get("stroke")
+        if stroke is not None and np.any(arr[:, stroke] < -1e-9):
+            i = int(np.flatnonzero(arr[:, stroke] < -1e-9)[0])
+            return Verdict(
+                f"row {i + 1} has q2 = {arr[i, stroke]:.4g} < 0: a stroke cannot be negative; that value "
+                "belongs to the other arctan solution of eq. (14) (lecture 06 (d))",
+                "negative_stroke",
+            )
+        D = _dist(arr[:, None, :], arr[None, :, :], rev)
+        twice = np.argwhere(np.triu(D < 1e-7, k=1))
+        if twice.size:
+            i, j = (int(v) + 1 for v in twice[0])
+            return Verdict(
+                f"rows {i} and {j} are the same configuration: list each solution once (there are {k} here)",
+                "duplicates",
+            )
+        M = _dist(sols[:, None, :], arr[None, :, :], rev) < match_tol
+        missing = [labels[i] for i in np.flatnonzero(~M.any(axis=1))]
+        if missing:
+            return Verdict(f"misses {len(missing)} of the {k} solutions: {', '.join(missing)}", "missing_solutions")
+        extra = np.flatnonzero(~M.any(axis=0))
+        if extra.size:
+            return Verdict(
+                f"row {extra[0] + 1} reaches the pose but matches none of the {k} solutions to 1e-6 "
+                "(is it accurate enough?)"
+            )
+        if expected.get("ordered") and not np.all(np.diag(M)):
+            for key, message, rows in expected.get("wrong_orders", ()):
+                if np.all(_dist(np.asarray(rows, dtype=float), arr, rev) < match_tol):
+                    return Verdict(message, key)
+            return Verdict("the right solutions, in another order: sort them as the question asks", "solution_order")
+        return Verdict(None)
+
+    return judge
+
+
+def nearest_judge() -> Judge:
+    """Judge one configuration: it reaches the pose and no solution is nearer ``q_ref`` (wrapped distance).
+
+    The reference gives ``{"T", "q_ref", "solutions", "labels", "fk", "revolute", "scale"}``.
+    """
+
+    def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
+        sols, labels = np.asarray(expected["solutions"], dtype=float), tuple(expected["labels"])
+        rev, q_ref = np.asarray(expected["revolute"], dtype=bool), np.asarray(expected["q_ref"], dtype=float)
+        arr = _rows(got, sols.shape[1])
+        if isinstance(arr, str):
+            return Verdict(arr)
+        if len(arr) != 1:
+            return Verdict(f"expected one configuration (shape ({sols.shape[1]},)), got {len(arr)} rows")
+        why = _not_reaching(arr, expected, expected["T"])
+        if why is not None:
+            return why
+        d, ds = float(_dist(arr[0], q_ref, rev)), _dist(sols, q_ref, rev)
+        best = int(np.argmin(ds))
+        if d <= ds[best] + 1e-7:
+            return Verdict(None)
+        mine = _dist(sols, arr[0], rev)
+        label = labels[int(np.argmin(mine))] if np.min(mine) < 1e-6 else "yours"
+        plain = np.sqrt(np.sum((sols - q_ref) ** 2, axis=-1))
+        # nearest if angle differences are not wrapped: in the reference's angles, or in the student's own
+        unwrapped = int(np.argmin(plain)) == int(np.argmin(mine)) or np.linalg.norm(arr[0] - q_ref) <= plain[best]
+        if np.min(mine) < 1e-6 and unwrapped:
+            return Verdict(
+                f"you chose {label}, nearest if angle differences are not wrapped; wrapped to (-π, π] (179° and -179° "
+                f"are 2° apart) the nearest is {labels[best]}, {ds[best]:.3g} away against your {d:.3g}",
+                "unwrapped_distance",
+            )
+        return Verdict(
+            f"a solution ({label}), but not the nearest: it is {d:.3g} from q_ref, {labels[best]} is {ds[best]:.3g}",
+            "not_nearest",
+        )
+
+    return judge
+
+
+def path_judge(slack: float = 0.01) -> Judge:
+    """Judge a joint path (n, m): every row reaches its pose, the first is at ``q0``, no step jumps.
+
+    The reference gives ``{"path" (n, 4, 4), "fk", "q0", "ref" (the smoothest joint path), "revolute",
+    "scale"}`` and may add ``"alternatives"`` (``(key, message, fk)``: rows whose ``fk`` reaches the
+    path made that mistake). A step may be 1.5 times the smoothest path's largest plus ``slack``.
+    """
+
+    def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
+        path, fk, ref = np.asarray(expected["path"], float), expected["fk"], np.asarray(expected["ref"], float)
+        rev, scale, q0 = np.asarray(expected["revolute"], bool), float(expected["scale"]), np.asarray(expected["q0"])
+        n, m = ref.shape
+        arr = _rows(got, m)
+        if isinstance(arr, str):
+            return Verdict(arr)
+        if arr.shape != (n, m):
+            return Verdict(f"expected one configuration per pose, shape ({n}, {m}), got shape {arr.shape}")
+        ok = pose_ok(fk(arr), path, scale)
+        if not np.all(ok):
+            if np.all(pose_ok(fk(_radians(arr, rev)), path, scale)):
+                return Verdict("your angles are in degrees: the course works in radians", "degrees")
+            for key, message, other_fk in expected.get("alternatives", ()):
+                if np.all(pose_ok(other_fk(arr), path, scale)):
+                    return Verdict(message, key)
+            i = int(np.flatnonzero(~ok)[0])
+            return Verdict(
+                f"the configuration for pose {i + 1} does not reach it: off by "
+                f"{_off(fk(arr[i : i + 1]), path[i : i + 1])}",
+                "not_a_solution",
+            )
+        start, ref_start = float(_dist(arr[0], q0, rev)), float(_dist(ref[0], q0, rev))
+        if start > ref_start + slack:
+            return Verdict(
+                f"your path starts {start:.3g} (joint distance) away from q0, where the arm stands: its "
+                "first configuration must be the solution nearest q0",
+                "start_jump",
+            )
+        steps, ref_steps = _dist(arr[1:], arr[:-1], rev), _dist(ref[1:], ref[:-1], rev)
+        limit = 1.5 * float(np.max(ref_steps, initial=0.0)) + slack
+        if np.max(steps, initial=0.0) > limit:
+            k = int(np.argmax(steps))
+            moved = np.abs(_wrapped(arr[k + 1] - arr[k], rev))
+            joints = ", ".join(str(j + 1) for j in np.flatnonzero(moved > 0.1)) or "several"
+            return Verdict(
+                f"between poses {k + 1} and {k + 2} joint(s) {joints} jump by up to {np.max(moved):.3g} (a step of "
+                f"{steps[k]:.3g}; a smooth path never needs more than {limit:.3g}): pick, at every pose, the solution "
+                "nearest the previous configuration",
+                "jump",
+            )
+        return Verdict(None)
+
+    return judge
+
+
+def rotation_judge(from_angles: Callable[..., np.ndarray]) -> Judge:
+    """Judge angles by the rotation ``from_angles(*angles)`` they give (any equivalent triple passes).
+
+    The reference gives ``{"R": the rotation asked for}`` and may add ``"alternatives"``
+    (``(key, message, rotation)``).
+    """
+
+    def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
+        R = np.asarray(expected["R"], dtype=float)
+        arr = _floats(got)
+        if arr is None or arr.shape != (3,) or not np.all(np.isfinite(arr)):
+            return Verdict(f"expected three angles (shape (3,)), got {'no numbers' if arr is None else arr.shape}")
+        mine = from_angles(*arr)
+        if close(mine, R):
+            return Verdict(None)
+        if close(from_angles(*np.radians(arr)), R):
+            return Verdict("your angles are in degrees: the course works in radians", "degrees")
+        for key, message, other in expected.get("alternatives", ()):
+            if close(mine, other):
+                return Verdict(message, key)
+        return Verdict(
+            f"the rotation your angles give differs from the one asked for by up to "
+            f"{float(np.max(np.abs(mine - R))):.3g}"
+        )
+
+    return judge
+
+
+def stroke_judge() -> Judge:
+    """Judge Porter's representative of a parallel-planes pose: it reaches T, in the front plane, minimal q2.
+
+    The reference gives ``{"T", "fk", "revolute", "scale", "alpha1" (the front plane), "q2_min"}``.
+    """
+
+    def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
+        arr = _rows(got, 6)
+        if isinstance(arr, str):
+            return Verdict(arr)
+        if len(arr) != 1:
+            return Verdict(f"expected one configuration (shape (6,)), got {len(arr)} rows")
+        why = _not_reaching(arr, expected, expected["T"])
+        if why is not None:
+            return why
+        q = arr[0]
+        if abs(float(wrap_angle(q[0] - expected["alpha1"]))) > 1e-6:
+            return Verdict(
+                f"your arm plane is entered from the back (α1 = {q[0]:.4g}); Porter's construction uses "
+                "the plane facing the wrist point, α1 = atan2(p4_y, p4_x)",
+                "back_plane",
+            )
+        if abs(q[2] - expected["q2_min"]) > POS_TOL * max(1.0, float(expected["scale"])):
+            return Verdict(
+                f"this reaches T, but with q2 = {q[2]:.4g}; Porter's rule takes the smallest stroke "
+                f"(q2 = {expected['q2_min']:.4g})",
+                "not_minimal",
+            )
+        return Verdict(None)
+
+    return judge

@@ -1,0 +1,127 @@
+"""Judging a DH table by the poses its chain reaches over hidden joint values."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from ..model import Judge, Verdict
+from ._poses import _constant, _floats, _off, pose_ok
+
+# ------------------------------------------------------------------------------------------ DH tables
+TableFk = Callable[[np.ndarray, np.ndarray], np.ndarray]
+
+
+def table_judge(chain_fk: TableFk, standard_fk: TableFk) -> Judge:
+    """Judge a DH table (rows α_{i-1}, a_{i-1}, θ_i, d_i, σ_i) by the poses its chain reaches.
+
+    ``chain_fk(table, Q)`` evaluates a table with Craig's modified link matrices and
+    ``standard_fk(table, Q)`` with the standard (distal) ones, for joint values Q (N, n). The
+    reference gives ``{"fk": poses of Q, "Q": hidden joint values (N, n), "revolute": (n,) mask,
+    "scale": the mechanism's size}``; the table passes when its chain reaches every reference pose.
+    """
+
+    def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
+        fk, Q = expected["fk"], np.asarray(expected["Q"], dtype=float)
+        rev, scale = np.asarray(expected["revolute"], dtype=bool), float(expected["scale"])
+        n = len(rev)
+        table = _floats(got)
+        if table is None or not np.all(np.isfinite(table)):
+            return Verdict(f"expected a table of numbers, {n} rows of (α_(i-1), a_(i-1), θ_i, d_i, σ_i)")
+        if table.shape != (n, 5):
+            extra = " (each row needs σ_i too: 0 revolute, 1 prismatic)" if table.shape == (n, 4) else ""
+            return Verdict(f"expected a table of shape ({n}, 5), one row per joint, got shape {table.shape}{extra}")
+        sigma = table[:, 4]
+        bad = np.flatnonzero((np.abs(sigma) > 1e-9) & (np.abs(sigma - 1) > 1e-9))
+        if bad.size:
+            return Verdict(f"row {bad[0] + 1}: σ must be 0 (revolute) or 1 (prismatic), got {sigma[bad[0]]:g}")
+        wrong = np.flatnonzero((sigma < 0.5) != rev)
+        if wrong.size:
+            j = int(wrong[0])
+            kind, yours = ("revolute", "prismatic") if rev[j] else ("prismatic", "revolute")
+            return Verdict(
+                f"row {j + 1}: joint {j + 1} is {kind} in the mechanism, your table makes it {yours}", "joint_type"
+            )
+        T_ref = fk(Q)
+        try:
+            T_got = chain_fk(table, Q)
+        except ValueError as exc:
+            return Verdict(f"your table cannot be evaluated: {str(exc)[:200]}")
+        if np.all(pose_ok(T_got, T_ref, scale)):
+            return Verdict(None)
+        return _table_mistake(table, T_got, T_ref, fk, Q, rev, scale, chain_fk, standard_fk)
+
+    return judge
+
+
+def _table_mistake(
+    table: np.ndarray,
+    T_got: np.ndarray,
+    T_ref: np.ndarray,
+    fk: Callable[..., Any],
+    Q: np.ndarray,
+    rev: np.ndarray,
+    scale: float,
+    chain_fk: TableFk,
+    standard_fk: TableFk,
+) -> Verdict:
+    angles = table[:, [0, 2]]
+    if np.max(np.abs(angles)) > 2 * np.pi + 1e-6:
+        fixed = table.copy()
+        fixed[:, [0, 2]] = np.radians(angles)
+        worst = float(np.max(np.abs(angles)))
+        note = " (converted to radians it is right)" if np.all(pose_ok(chain_fk(fixed, Q), T_ref, scale)) else ""
+        return Verdict(f"your angles look like degrees (up to {worst:g}): the table takes radians{note}", "degrees")
+    try:
+        standard = bool(np.all(pose_ok(standard_fk(table, Q), T_ref, scale)))
+    except ValueError:
+        standard = False
+    if standard:
+        return Verdict(
+            "this is a standard-DH table (Paul, Robotics Toolbox): with the link matrix Rot(Z, θ) Trans(Z, d) "
+            "Trans(X, a) Rot(X, α) it reaches the right poses, but the course uses Craig's modified DH, where row i "
+            "holds α_(i-1) and a_(i-1) of the previous frame (lecture 02 §5)",
+            "standard_dh",
+        )
+    n = len(rev)
+    for j in range(n):
+        flipped = Q.copy()
+        flipped[:, j] = -flipped[:, j]
+        if np.all(pose_ok(T_got, fk(flipped), scale)):
+            what = "turns" if rev[j] else "slides"
+            return Verdict(
+                f"joint {j + 1} {what} the wrong way: your z_{j + 1} points against the positive sense the picture "
+                "shows (everything else is right)",
+                "joint_sign",
+            )
+    if _constant(T_got @ np.linalg.inv(T_ref), scale):
+        return Verdict(
+            "your chain moves like the mechanism, but your frame {0} is not the base frame the question fixes "
+            "(every pose is off by the same transform on the base side)",
+            "base_frame",
+        )
+    if _constant(np.linalg.inv(T_ref) @ T_got, scale):
+        return Verdict(
+            "your chain moves like the mechanism, but your last frame is not the tool frame the question fixes "
+            "(every pose is off by the same transform on the tool side)",
+            "tool_frame",
+        )
+    zero = np.zeros((1, n))
+    if np.all(pose_ok(chain_fk(table, zero), fk(zero), scale)):
+        for j in range(n):
+            single = zero.copy()
+            single[0, j] = 0.7 if rev[j] else 0.3 * max(scale, 1e-9)
+            if not np.all(pose_ok(chain_fk(table, single), fk(single), scale)):
+                return Verdict(
+                    f"your table gives the right pose at q = 0 but not when the joints move: moving joint {j + 1} "
+                    f"alone already gives another pose. Check where joint {j + 1}'s axis z_{j + 1} is and how it "
+                    f"points (α_{j}, a_{j} and the rows before it)",
+                    "only_at_zero",
+                )
+        return Verdict("your table gives the right pose at q = 0 but not when several joints move", "only_at_zero")
+    return Verdict(
+        f"your chain reaches other poses: at the hidden joint values the tool is off by up to "
+        f"{_off(T_got, T_ref)}, already at q = 0"
+    )

@@ -1,0 +1,165 @@
+"""The instructor's view of a graded class: per question, who passed and which mistakes were common.
+
+:func:`class_summary` reads the graded results (:class:`~puma_course.grading.model.NotebookResult`,
+one per student and exercise) and counts, for every question, how many students passed it, partly
+passed it, failed it or did not attempt it, their mean points, and the mistakes the grader diagnosed
+(:mod:`puma_course.grading.diagnose`), each counted once per student who made it. :func:`write_summary`
+writes it as Markdown next to the grades CSV (``grades.csv`` -> ``grades-summary.md``) and returns a few
+lines for the terminal: the questions the class found hardest and their commonest mistake.
+``puma-course grade`` calls it after grading.
+"""
+
+from __future__ import annotations
+
+import os
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .diagnose import TITLES
+from .model import EXERCISES, NotebookResult, Question
+from .report import verdict
+
+__all__ = ["QuestionSummary", "question_summaries", "class_summary", "write_summary", "summary_path"]
+
+#: Statuses of notebooks that were not graded at all (they count as "not submitted").
+UNGRADED = ("missing", "malformed")
+
+
+@dataclass
+class QuestionSummary:
+    """What the class did on one question."""
+
+    exercise: str
+    question: Question
+    submitted: int = 0
+    passed: int = 0
+    partly: int = 0
+    failed: int = 0
+    not_attempted: int = 0
+    points: float = 0.0
+    mistakes: Counter[str] = field(default_factory=Counter)
+
+    @property
+    def mean(self) -> float:
+        """Mean points over the students who submitted the exercise."""
+        return self.points / self.submitted if self.submitted else 0.0
+
+    def common(self, k: int = 3) -> list[tuple[str, int]]:
+        """The ``k`` mistakes made by most students, as (key, students), most common first."""
+        return sorted(self.mistakes.items(), key=lambda kv: (-kv[1], kv[0]))[:k]
+
+
+def question_summaries(results: Sequence[NotebookResult]) -> list[QuestionSummary]:
+    """One :class:`QuestionSummary` per question of every exercise that appears in ``results``.
+
+    >>> from puma_course.grading import EXERCISES
+    >>> ex = EXERCISES["ex01_rotations"]
+    >>> r = NotebookResult.blank("ann", ex)
+    >>> r.scores["q1"], r.question_notes["q1"] = 2.0, ["9/9 cases pass"]
+    >>> r.mistakes["q2"] = ["transposed", "transposed"]
+    >>> s = question_summaries([r])
+    >>> s[0].passed, s[1].failed, s[1].mistakes["transposed"]
+    (1, 1, 1)
+    """
+    order = [name for name in EXERCISES if any(r.exercise == name for r in results)]
+    out: list[QuestionSummary] = []
+    for name in order:
+        mine = [r for r in results if r.exercise == name]
+        for q in EXERCISES[name].questions:
+            s = QuestionSummary(name, q)
+            for r in mine:
+                if r.status in UNGRADED:
+                    continue
+                s.submitted += 1
+                earned = r.scores.get(q.qid, 0.0)
+                s.points += earned
+                word = verdict(q, earned, r.question_notes.get(q.qid, []))
+                if word == "passed":
+                    s.passed += 1
+                elif word == "partly":
+                    s.partly += 1
+                elif word == "FAILED":
+                    s.failed += 1
+                else:
+                    s.not_attempted += 1
+                s.mistakes.update(set(r.mistakes.get(q.qid, [])))
+            out.append(s)
+    return out
+
+
+def _mistakes_cell(s: QuestionSummary) -> str:
+    return "; ".join(f"{TITLES.get(key, key)} (`{key}`): {n}" for key, n in s.common()) or "–"
+
+
+def class_summary(results: Sequence[NotebookResult]) -> str:
+    """The class summary as Markdown: one table per exercise, one row per question.
+
+    >>> from puma_course.grading import EXERCISES
+    >>> r = NotebookResult.blank("ann", EXERCISES["ex01_rotations"])
+    >>> print(class_summary([r]).splitlines()[0])
+    # Class summary: 1 student(s), 1 exercise(s)
+    """
+    students = sorted({r.student for r in results})
+    summaries = question_summaries(results)
+    names = list(dict.fromkeys(s.exercise for s in summaries))
+    lines = [f"# Class summary: {len(students)} student(s), {len(names)} exercise(s)", ""]
+    lines += [
+        "Per question: how many of the students who handed the exercise in passed it (full points), passed it "
+        "partly, failed it or did not attempt it; their mean points; and the mistakes the grader recognised, each "
+        "counted once per student who made it in at least one case.",
+        "",
+    ]
+    for name in names:
+        mine = [s for s in summaries if s.exercise == name]
+        handed = mine[0].submitted
+        lines += [
+            f"## {name}: {EXERCISES[name].title}",
+            "",
+            f"Handed in by {handed} of {len(students)} student(s).",
+            "",
+        ]
+        lines += [
+            "| question | points | passed | partly | failed | not attempted | mean | most common mistakes (students) |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- |",
+        ]
+        for s in mine:
+            bonus = " (bonus)" if s.question.bonus else ""
+            lines.append(
+                f"| {s.question.qid} `{s.question.function}`{bonus} | {s.question.points:g} | {s.passed} | {s.partly} "
+                f"| {s.failed} | {s.not_attempted} | {s.mean:.2f} | {_mistakes_cell(s)} |"
+            )
+        lines.append("")
+    return "\n".join(lines) + "\n"
+
+
+def summary_path(output: str | os.PathLike[str]) -> Path:
+    """Where the summary of the grades file ``output`` goes: next to it, ``NAME-summary.md``.
+
+    >>> summary_path("out/grades.csv").as_posix()
+    'out/grades-summary.md'
+    """
+    out = Path(output)
+    return out.with_name(f"{out.stem}-summary.md")
+
+
+def write_summary(
+    results: Sequence[NotebookResult], output: str | os.PathLike[str], lines: int = 8
+) -> tuple[Path, str]:
+    """Write :func:`class_summary` next to the grades file ``output``; return its path and a short text.
+
+    The text names the file and the ``lines`` questions with the lowest share of students passing,
+    each with its commonest diagnosed mistake.
+    """
+    path = summary_path(output)
+    path.write_text(class_summary(results), encoding="utf-8")
+    hard = sorted((s for s in question_summaries(results) if s.submitted), key=lambda s: s.passed / s.submitted)
+    text = [f"class summary: {path}"]
+    for s in hard[:lines]:
+        if s.passed == s.submitted:
+            break
+        common = s.common(1)
+        why = f"; commonest mistake: {TITLES.get(common[0][0], common[0][0])} ({common[0][1]})" if common else ""
+        text.append(f"  {s.exercise} {s.question.qid} {s.question.function}: {s.passed}/{s.submitted} passed{why}")
+    return path, "\n".join(text)

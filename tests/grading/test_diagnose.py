@@ -1,0 +1,443 @@
+"""Feedback that names the mistake: each diagnosed mistake, crafted by hand, is recognised and worded.
+
+Every test builds the wrong answer a student would write (a transposed matrix, degrees, the standard-DH
+link matrix, the factors in reverse order, ...) with numpy, hands it to the real question's judge, and
+checks the verdict's key and message. The right answer passes; an answer with no recognisable mistake gets
+the generic reason, not a made-up diagnosis.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from puma_course.grading import EXERCISES
+from puma_course.grading.diagnose import TITLES, Mistake, close, diagnose, matches
+from puma_course.grading.model import Verdict
+
+
+def judge(name, qid, got, *args):
+    """The verdict of question ``name:qid`` on ``got`` for the arguments ``args``."""
+    q = EXERCISES[name].question(qid)
+    expected = q.reference(*args)
+    if not callable(expected) and not isinstance(expected, dict):
+        expected = np.asarray(expected, dtype=float)
+    return q.judge(got, expected, args)
+
+
+def right(name, qid, *args):
+    return np.asarray(EXERCISES[name].question(qid).right_answer(*args), dtype=float)
+
+
+def assert_named(verdict: Verdict, key: str, *words: str) -> None:
+    assert not verdict.passed and verdict.mistake == key, verdict
+    for word in words:
+        assert word in verdict.reason, (word, verdict.reason)
+
+
+def rot(axis, t):
+    c, s = np.cos(t), np.sin(t)
+    return {
+        "x": np.array([[1, 0, 0], [0, c, -s], [0, s, c]]),
+        "y": np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
+        "z": np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]),
+    }[axis]
+
+
+def homogeneous(R, p):
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, p
+    return T
+
+
+def skew(k):
+    return np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+
+
+# ------------------------------------------------------------------------------------------ rotations (ex01)
+def test_a_transposed_rotation():
+    assert judge("ex01_rotations", "q1", rot("z", 0.7), "z", 0.7).passed
+    assert_named(judge("ex01_rotations", "q1", rot("z", 0.7).T, "z", 0.7), "transposed", "transpose")
+    R = rot("x", 0.4) @ rot("y", 1.1)
+    T = homogeneous(R, [1.0, 2.0, 3.0])
+    wrong = homogeneous(R, -R.T @ [1.0, 2.0, 3.0])  # the inverse's rotation block not transposed
+    assert_named(judge("ex01_rotations", "q4", wrong, T), "transposed", "Rᵀ")
+
+
+def test_degrees_where_radians_were_expected():
+    # an angle argument taken as degrees: np.cos(np.radians(angle))
+    assert_named(judge("ex01_rotations", "q1", rot("y", np.radians(1.2)), "y", 1.2), "degrees", "degrees")
+    # an angle returned in degrees
+    R = rot("z", 1.0)
+    assert_named(judge("ex01_rotations", "q3", [0, 0, 1, np.degrees(1.0)], R), "degrees", "radians")
+    params = np.array([np.pi / 2, 0.4, -1.0, 0.15])
+    T = right("ex02_dh_frames", "q2", *params)
+    assert_named(judge("ex02_dh_frames", "q1", [90.0, 0.4, np.degrees(-1.0), 0.15], T), "degrees")
+
+
+def test_an_axis_not_normalised():
+    a, t = np.array([1.0, 1.0, 0.0]), 2.0
+    raw = np.eye(3) + np.sin(t) * skew(a) + (1 - np.cos(t)) * skew(a) @ skew(a)
+    assert_named(judge("ex01_rotations", "q2", raw, a, t), "unnormalised", "a/|a|")
+    R = rot("x", 0.5)  # axis e_x, angle 0.5: a student returning 2 sin(θ) k as the axis
+    assert_named(judge("ex01_rotations", "q3", [2 * np.sin(0.5), 0, 0, 0.5], R), "unnormalised", "length")
+
+
+def test_a_row_or_a_column_with_the_wrong_sign():
+    wrong = rot("x", 0.3)
+    wrong[2] *= -1.0
+    assert_named(judge("ex01_rotations", "q1", wrong, "x", 0.3), "sign_flip", "row 3")
+    wrong = rot("z", 1.2)
+    wrong[:, 0] *= -1.0
+    assert_named(judge("ex01_rotations", "q1", wrong, "z", 1.2), "sign_flip", "column 1")
+    T = right("ex02_dh_frames", "q2", 0.7, 0.4, -1.0, 0.15)
+    assert_named(judge("ex02_dh_frames", "q1", [0.7, 0.4, -1.0, -0.15], T), "sign_flip", "d_i")
+
+
+def test_an_angle_off_by_a_whole_turn():
+    R = rot("y", 2.0)
+    assert_named(judge("ex01_rotations", "q3", [0, 1, 0, 2.0 + 2 * np.pi], R), "angle_2pi", "(0, π)")
+    v, w, axis = [1.0, 0, 0], [0, -1.0, 0], [0, 0, 1.0]
+    assert_named(judge("ex07_porter_geometric", "q3", -np.pi / 2 + 2 * np.pi, v, w, axis), "angle_2pi")
+
+
+def test_the_same_rotation_outside_the_range_and_the_inverses_translation():
+    assert_named(judge("ex01_rotations", "q3", [0, 0, -1, -1.0], rot("z", 1.0)), "range", "(-k, -θ)")
+    R, p = rot("z", 0.5), np.array([1.0, 2.0, 0.0])
+    assert_named(judge("ex01_rotations", "q4", homogeneous(R.T, -p), homogeneous(R, p)), "translation", "-Rᵀp")
+
+
+# ------------------------------------------------------------------------------------------ DH (ex02-ex04)
+def sdh(theta, d, a, alpha):
+    ca, sa, ct, st = np.cos(alpha), np.sin(alpha), np.cos(theta), np.sin(theta)
+    return np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0, sa, ca, d], [0, 0, 0, 1]])
+
+
+def test_the_standard_dh_link_matrix_instead_of_the_modified_one():
+    params = (np.pi / 2, 0.4, -1.0, 0.15)
+    assert_named(judge("ex02_dh_frames", "q2", sdh(-1.0, 0.15, 0.4, np.pi / 2), *params), "standard_dh", "Craig")
+    # reading the four numbers where a standard-DH matrix shows them (θ from column 1, α from row 3, d = p_z)
+    T = right("ex02_dh_frames", "q2", 0.7, 0.3, 0.5, 0.2)
+    theta, alpha = np.arctan2(T[1, 0], T[0, 0]), np.arctan2(T[2, 1], T[2, 2])
+    a, d = np.cos(theta) * T[0, 3] + np.sin(theta) * T[1, 3], T[2, 3]
+    assert np.allclose(sdh(0.5, 0.2, 0.3, 0.7)[[0, 1, 2], 3], [0.3 * np.cos(0.5), 0.3 * np.sin(0.5), 0.2])
+    assert_named(judge("ex02_dh_frames", "q1", [alpha, a, theta, d], T), "standard_dh", "standard-DH")
+
+
+def test_link_matrices_multiplied_in_the_wrong_order():
+    table = np.array([[0.0, 0, 0.3, 0.5, 0], [-np.pi / 2, 0.2, 0, 0.1, 1], [np.pi / 2, 0, -0.4, 0, 0]])
+    q = np.array([0.4, 0.25, -1.0])
+    links = []
+    for (alpha, a, theta, d, sigma), qi in zip(table, q, strict=True):
+        links.append(right("ex02_dh_frames", "q2", alpha, a, theta + (0 if sigma else qi), d + (qi if sigma else 0)))
+    assert judge("ex03_puma_fk", "q1", links[0] @ links[1] @ links[2], table, q).passed
+    assert_named(judge("ex03_puma_fk", "q1", links[2] @ links[1] @ links[0], table, q), "order", "reverse")
+
+
+def test_the_printed_misprint_used_as_printed():
+    q, L = np.array([0.3, 0.8, -0.5, 0.2, 1.0]), (360.0, 135.0, 250.0, 215.0, 100.0)
+    T = right("ex04_mk3_fk", "q2", q, *L)
+    # the printed 4T5: its offset (0, 0, -d5) instead of (0, -d5, 0); from {4}, (0, -d5, 0) is d5 z5
+    wrong = T.copy()
+    wrong[:3, 3] = (
+        T[:3, 3]
+        - 100.0 * T[:3, 2]
+        + T[:3, :3] @ (np.linalg.inv(right("ex02_dh_frames", "q2", np.pi / 2, 0, 1.0, 0)[:3, :3]) @ [0, 0, -100.0])
+    )
+    assert_named(judge("ex04_mk3_fk", "q2", wrong, q, *L), "printed_formula", "misprinted")
+
+
+def test_an_offset_along_the_wrong_axis_or_with_the_wrong_sign():
+    T = homogeneous(rot("y", 0.4) @ rot("z", 1.0), [600.0, 50.0, 260.0])
+    assert judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 2], T, 100.0).passed
+    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 0], T, 100.0), "wrong_axis", "x5")
+    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] + 100 * T[:3, 2], T, 100.0), "offset_sign", "beyond")
+    assert_named(judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 2], T, 0.3), "wrong_axis", "z5")
+
+
+# ------------------------------------------------------------------------------------------ Porter (ex05-ex07)
+def porter_factors(q, l1, l3, l4, printed=False):
+    a1, a2, q2, a3, a4, a5 = q
+
+    def R(axis, t):
+        return homogeneous(rot(axis, t), np.zeros(3))
+
+    def tr(axis, d):
+        return homogeneous(np.eye(3), {"x": [d, 0, 0], "z": [0, 0, d]}[axis])
+
+    slide = [] if printed else [tr("x", q2)]
+    return [R("z", a1), tr("z", l1), R("y", a2), *slide, R("y", a3), tr("z", -l3), R("z", a4), tr("x", l4), R("x", a5)]
+
+
+def test_porters_product_printed_without_the_slide_and_in_the_reverse_order():
+    q, L = np.array([0.3, 0.7, 1.3, -0.4, 0.9, 0.6]), (1.0, 0.5, 0.3)
+    F = porter_factors(q, *L)
+    assert judge("ex05_porter_fk", "q1", np.linalg.multi_dot(F), q, *L).passed
+    assert_named(judge("ex05_porter_fk", "q1", np.linalg.multi_dot(F[::-1]), q, *L), "order", "moving")
+    printed = np.linalg.multi_dot(porter_factors(q, *L, printed=True))
+    assert_named(judge("ex05_porter_fk", "q1", printed, q, *L), "printed_formula", "as printed")
+    assert_named(judge("ex05_porter_fk", "q1", np.linalg.inv(np.linalg.multi_dot(F)), q, *L), "inverse")
+
+
+def test_the_printed_normal_and_the_printed_rod_length():
+    name = "ex07_porter_geometric"
+    T, L = EXERCISES[name].question("q1").public[0][0], (1.0, 0.5, 0.3)
+    n = right(name, "q1", T, 1.0, 0.3)
+    assert_named(judge(name, "q1", -n, T, 1.0, 0.3), "printed_formula", "-y1")
+    assert_named(judge(name, "q1", 3 * n, T, 1.0, 0.3), "unnormalised")
+    p4, x5 = T[:3, 3] - 0.3 * T[:3, 0], T[:3, 0]
+    z4 = np.cross(n, x5) / np.linalg.norm(np.cross(n, x5))
+    assert judge(name, "q2", [p4 - 0.5 * z4, p4 + 0.5 * z4], T, *L).passed  # any order
+    assert_named(judge(name, "q2", [p4 + 0.3 * z4, p4 - 0.3 * z4], T, *L), "printed_formula", "l4")
+    assert_named(judge(name, "q2", [p4 + 0.5 * z4, p4 + 0.5 * z4], T, *L), "duplicates")
+
+
+def test_the_unsigned_angle():
+    v, w, axis = np.array([1.0, 0, 0]), np.array([-1.0, -1.0, 0]), np.array([0, 0, 1.0])
+    assert judge("ex07_porter_geometric", "q3", -3 * np.pi / 4, v, w, axis).passed
+    assert_named(judge("ex07_porter_geometric", "q3", 3 * np.pi / 4, v, w, axis), "unsigned_angle", "never negative")
+
+
+def test_ik_sets_any_order_but_no_duplicate_no_missing_branch_no_negative_stroke():
+    name, L = "ex06_porter_explicit", (1.0, 0.5, 0.3)
+    T = EXERCISES[name].question("q2").public[0][0]
+    S = right(name, "q2", T, *L)
+    assert len(S) == 4
+    assert (
+        judge(name, "q2", S[::-1], T, *L).passed
+        and judge(name, "q2", S[[2, 0, 3, 1]] + 2 * np.pi * np.array([1, 0, 0, 0, -1, 0]), T, *L).passed
+    )
+    assert_named(judge(name, "q2", np.vstack([S, S[:1]]), T, *L), "duplicates", "same configuration")
+    missing = judge(name, "q2", S[:2], T, *L)
+    assert_named(missing, "missing_solutions", "misses 2 of the 4")
+    assert "back/" in missing.reason or "front/" in missing.reason  # the branches are named
+    a1, a2, q2, a3, a4, a5 = S[0]
+    other = np.array([a1, a2 + np.pi, -q2, a3 - np.pi, a4, a5])  # reaches T with a negative stroke
+    assert_named(judge(name, "q2", np.vstack([S[1:], other]), T, *L), "negative_stroke", "q2 =")
+    in_degrees = S.copy()
+    in_degrees[:, [0, 1, 3, 4, 5]] = np.degrees(S[:, [0, 1, 3, 4, 5]])
+    assert_named(judge(name, "q2", in_degrees, T, *L), "degrees")
+    bad = S.copy()
+    bad[1, 3] += 0.2
+    assert_named(judge(name, "q2", bad, T, *L), "not_a_solution", "row 2")
+
+
+def test_a_tool_composed_on_the_wrong_side():
+    name, L = "ex06_porter_explicit", (1.0, 0.5, 0.3)
+    T_tool, *_, E = EXERCISES[name].question("q3").public[0]
+    assert judge(name, "q3", right(name, "q3", T_tool, *L, E), T_tool, *L, E).passed
+    wrong = right(name, "q2", T_tool @ E, *L)  # F05 = T_tool E instead of T_tool E^-1
+    assert_named(judge(name, "q3", wrong, T_tool, *L, E), "order", "wrong side")
+    assert_named(judge(name, "q3", right(name, "q2", T_tool, *L), T_tool, *L, E), "tool_frame", "F5")
+
+
+def test_the_parallel_planes_representative():
+    name, L = "ex07_porter_geometric", (1.0, 0.5, 0.3)
+    T = EXERCISES[name].question("q4").public[0][0]
+    good = right(name, "q4", T, *L)
+    assert judge(name, "q4", good, T, *L).passed
+    back = [q for q in right("ex06_porter_explicit", "q2", T, *L) if np.cos(q[0] - good[0]) < 0]
+    assert_named(judge(name, "q4", back[0], T, *L), "back_plane", "from the back")
+    # the same construction with the elbow on the far side of the circle: a longer stroke
+    x5, z5 = T[:3, 0], T[:3, 2]
+    p2, p4 = np.array([0, 0, 1.0]), T[:3, 3] - 0.3 * x5
+    n = right(name, "q1", T, 1.0, 0.3)
+    p3 = p4 - 0.5 * (p2 - p4) / np.linalg.norm(p2 - p4)
+
+    def ang(v, w, a):
+        return np.arctan2(a @ np.cross(v, w), v @ w)
+
+    far = [
+        np.arctan2(p4[1], p4[0]),
+        ang(p2, p3 - p2, n) - np.pi / 2,
+        np.linalg.norm(p3 - p2),
+        ang(p3 - p2, p4 - p3, n) - np.pi / 2,
+        ang(n, x5, (p3 - p4) / 0.5) + np.pi / 2,
+        ang(p3 - p4, z5, x5),
+    ]
+    assert_named(judge(name, "q4", far, T, *L), "not_minimal", "smallest stroke")
+
+
+# ------------------------------------------------------------------------------------------ DH tables
+def rrp(h, d2):
+    H = np.pi / 2
+    return np.array([[0.0, 0.0, 0.0, h, 0], [H, 0.0, H, -d2, 0], [H, 0.0, 0.0, 0.0, 1]])
+
+
+@pytest.mark.parametrize(
+    ("change", "key", "words"),
+    [
+        (lambda t: t[:, [0, 1, 2, 3, 4]] * [180 / np.pi, 1, 180 / np.pi, 1, 1], "degrees", ("degrees",)),
+        (lambda t: np.c_[np.r_[t[1:, 0], 0.0], t[:, 1], t[:, 2:]], "standard_dh", ("standard-DH", "Craig")),
+        (lambda t: t * [1, 1, 1, 1, 0], "joint_type", ("joint 3 is prismatic",)),
+        (lambda t: t - [[0, 0, 0, 0.8, 0], [0, 0, 0, 0, 0], [0, 0, 0, 0, 0]], "base_frame", ("frame {0}",)),
+        (lambda t: t + [[0, 0, 0, 0, 0], [0, 0, 0, 0, 0], [0, 0, np.pi / 2, 0, 0]], "tool_frame", ("tool frame",)),
+    ],
+    ids=["degrees", "standard-dh", "joint-type", "base-frame", "tool-frame"],
+)
+def test_a_wrong_table_is_named(change, key, words):
+    verdict = judge("ex02_dh_frames", "q3", change(rrp(0.8, 0.2)), 0.8, 0.2)
+    assert_named(verdict, key, *words)
+
+
+def test_a_table_right_only_at_q_zero_and_a_joint_turning_the_wrong_way():
+    H, h, d2 = np.pi / 2, 0.8, 0.2
+    # joint 1's axis displaced along x0, the displacement undone by a1: right at q = 0 only
+    shifted = np.array([[0.0, 0.3, 0.0, h, 0], [H, -0.3, H, -d2, 0], [H, 0.0, 0.0, 0.0, 1]])
+    assert_named(judge("ex02_dh_frames", "q3", shifted, h, d2), "only_at_zero", "q = 0", "joint 1")
+    # z2 along +y0: positive q2 lowers the tip; the offsets keep q = 0 right
+    flipped = np.array([[0.0, 0.0, 0.0, h, 0], [-H, 0.0, -H, d2, 0], [-H, 0.0, 0.0, 0.0, 1]])
+    assert_named(judge("ex02_dh_frames", "q3", flipped, h, d2), "joint_sign", "joint 2")
+
+
+# ------------------------------------------------------------------------------------------ the three-step arm (ex08)
+def test_the_straight_start_the_other_elbow_and_the_wrong_side():
+    name = "ex08_three_step"
+    w, F, l1, l2, elbow, tb, Fb = EXERCISES[name].question("q4").public[0]
+    t0 = np.arctan2(w[1], w[0])
+    K = rot("z", t0 - tb[0])
+    assert judge(name, "q1", K @ Fb, w, tb, Fb).passed
+    assert_named(judge(name, "q1", rot("z", t0) @ Fb, w, tb, Fb), "straight_start", "straight arm")
+    assert_named(judge(name, "q1", K, w, tb, Fb), "straight_start")
+    assert_named(judge(name, "q1", Fb @ K, w, tb, Fb), "order", "right")
+    other = right(name, "q2", w, l1, l2, "down")
+    assert_named(judge(name, "q2", other, w, l1, l2, "up"), "branch", "other elbow")
+    F2 = right(name, "q3", w, l1, l2, elbow, tb, Fb)
+    assert judge(name, "q4", F @ F2.T, w, F, l1, l2, elbow, tb, Fb).passed
+    assert_named(judge(name, "q4", F2.T @ F, w, F, l1, l2, elbow, tb, Fb), "order", "moving")
+    assert_named(judge(name, "q4", F2 @ F.T, w, F, l1, l2, elbow, tb, Fb), "transposed")
+
+
+def zyz(R):
+    return [
+        np.arctan2(R[1, 2], R[0, 2]),
+        np.arctan2(np.hypot(R[0, 2], R[1, 2]), R[2, 2]),
+        np.arctan2(R[2, 1], -R[2, 0]),
+    ]
+
+
+def test_wrist_angles_about_the_fixed_axes():
+    name = "ex08_three_step"
+    args = EXERCISES[name].question("q5").public[0]
+    w, F, l1, l2, elbow, tb, Fb = args
+    F2 = right(name, "q3", w, l1, l2, elbow, tb, Fb)
+    assert judge(name, "q5", zyz(F2.T @ F), *args).passed
+    a, b, c = zyz(F2.T @ F)  # an equivalent triple: (φ + π, -ϑ, ψ + π)
+    assert judge(name, "q5", [a + np.pi, -b, c + np.pi], *args).passed
+    assert_named(judge(name, "q5", zyz(F @ F2.T), *args), "order", "fixed axes")
+    assert_named(judge(name, "q5", np.degrees(zyz(F2.T @ F)), *args), "degrees")
+
+
+# ---------------------------------------------------------------------------------- PUMA-560 IK, paths (ex09, ex10)
+def test_the_nearest_solution_and_unwrapped_distances():
+    name = "ex09_puma_ik"
+    T, q_ref, *L = EXERCISES[name].question("q3").public[1]
+    S = right(name, "q2", T, *L)
+    d = np.angle(np.exp(1j * (S - q_ref)))
+    plain = S - q_ref
+    nearest, unwrapped = S[np.argmin(np.sum(d * d, 1))], S[np.argmin(np.sum(plain * plain, 1))]
+    assert not np.allclose(nearest, unwrapped)  # the public case is built so that wrapping decides
+    assert judge(name, "q3", nearest, T, q_ref, *L).passed
+    assert_named(judge(name, "q3", unwrapped, T, q_ref, *L), "unwrapped_distance", "wrapped")
+    farther = next(S[i] for i in np.argsort(np.sum(d * d, 1))[1:] if not np.allclose(S[i], unwrapped))
+    assert_named(judge(name, "q3", farther, T, q_ref, *L), "not_nearest", "not the nearest")
+    q, r = EXERCISES["ex10_trajectories"].question("q1").public[0]
+    assert_named(judge("ex10_trajectories", "q1", np.linalg.norm(q - r), q, r), "unwrapped_distance")
+
+
+def test_solutions_sorted_in_another_order():
+    name = "ex10_trajectories"
+    S, q_prev = EXERCISES[name].question("q2").public[0]
+    good = right(name, "q2", S, q_prev)
+    assert judge(name, "q2", good, S, q_prev).passed
+    assert_named(judge(name, "q2", good[::-1], S, q_prev), "solution_order", "another order")
+    assert_named(judge(name, "q2", np.vstack([good, good[:1]]), S, q_prev), "duplicates")
+
+
+def test_a_robot_in_a_cell_solved_as_if_at_the_origin_or_without_its_tool():
+    name = "ex09_puma_ik"
+    T_world, B, d6 = EXERCISES[name].question("q4").public[0]
+    L = (0.4318, 0.0203, 0.15005, 0.4318)
+    tool = homogeneous(np.eye(3), [0, 0, d6])
+    assert judge(
+        name, "q4", right(name, "q2", np.linalg.inv(B) @ T_world @ np.linalg.inv(tool), *L), T_world, B, d6
+    ).passed
+    assert_named(
+        judge(name, "q4", right(name, "q2", T_world @ np.linalg.inv(tool), *L), T_world, B, d6),
+        "base_frame",
+        "world origin",
+    )
+    assert_named(judge(name, "q4", right(name, "q2", np.linalg.inv(B) @ T_world, *L), T_world, B, d6), "tool_frame")
+    assert_named(
+        judge(name, "q4", right(name, "q2", np.linalg.inv(B) @ T_world @ tool, *L), T_world, B, d6), "offset_sign"
+    )
+
+
+def test_a_path_that_jumps_or_starts_elsewhere():
+    name = "ex10_trajectories"
+    path, q0, d = EXERCISES[name].question("q3").public[0]
+    good = right(name, "q3", path, q0, d)
+    assert judge(name, "q3", good, path, q0, d).passed
+    # the naive rule: at every pose the solution of the same label as the start, flip or not by the sign of θ5
+    expected = EXERCISES[name].question("q3").reference(path, q0, d)
+    jumpy = good.copy()
+    k = len(good) // 2
+    jumpy[k:, 3] += np.pi
+    jumpy[k:, 4] *= -1
+    jumpy[k:, 5] += np.pi  # the other wrist solution from the middle on: same poses, a jump of about 255°
+    assert_named(EXERCISES[name].question("q3").judge(jumpy, expected, (path, q0, d)), "jump", "joint(s) 4, 5, 6")
+    other = good.copy()
+    other[:, 3] += np.pi
+    other[:, 4] *= -1
+    other[:, 5] += np.pi  # the whole path on the other wrist branch: smooth, but not where the arm stands
+    assert_named(EXERCISES[name].question("q3").judge(other, expected, (path, q0, d)), "start_jump", "q0")
+    wrist = right(
+        "ex09_puma_ik",
+        "q2",
+        path[0] @ np.linalg.inv(homogeneous(np.eye(3), [0, 0, d])),
+        0.4318,
+        0.0203,
+        0.15005,
+        0.4318,
+    )
+    assert len(wrist) == 8
+
+
+# ------------------------------------------------------------------------------------------ the machinery
+def test_every_emitted_key_has_a_title_and_a_mistake_with_an_unknown_key_is_refused():
+    for ex in EXERCISES.values():
+        for q in ex.questions:
+            assert all(m.key in TITLES for m in q.mistakes)
+    with pytest.raises(ValueError, match="key: expected one of"):
+        Mistake("typo", lambda *a: None)
+
+
+def test_no_diagnosis_without_a_matching_mistake_and_broken_checks_are_skipped():
+    R = rot("z", 0.7)
+    verdict = judge("ex01_rotations", "q1", R + 0.05, "z", 0.7)
+    assert not verdict.passed and verdict.mistake is None and verdict.reason.startswith("values differ")
+
+    def broken(got, expected, args, reference):
+        raise ZeroDivisionError
+
+    assert diagnose((Mistake("order", broken), matches("order", "reversed", lambda: R.T)), R.T, R, (), None) == (
+        "order",
+        "reversed",
+    )
+    assert diagnose((matches("order", "x", lambda: R.T),), "text", R, (), None) is None
+    assert close([1.0, np.nan], np.array([1.0, 1.0])) is False
+
+
+def test_a_mistake_that_gives_the_right_answer_is_not_reported():
+    # about an axis whose rotation equals its transpose (a half turn) a "transposed" diagnosis would be wrong
+    R = rot("z", np.pi)
+    assert judge("ex01_rotations", "q1", R, "z", np.pi).passed
+    assert judge("ex01_rotations", "q1", R + 0.5, "z", np.pi).mistake is None
+
+
+def test_every_mistake_the_graders_name_has_a_crafted_case_in_this_file():
+    from pathlib import Path
+
+    source = Path(__file__).read_text(encoding="utf-8")
+    untested = [key for key in TITLES if f'"{key}"' not in source]
+    assert not untested, untested
