@@ -57,6 +57,7 @@ __all__ = [
     "joint_sliders",
     "new_axes",
     "panels",
+    "style",
     "plot_chain",
     "plot_robot",
     "pose_readout",
