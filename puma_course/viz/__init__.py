@@ -8,6 +8,7 @@
 * :mod:`~puma_course.viz.viewer`: the WebGL viewer (an anywidget with three.js bundled): any
   chain or robot, turned with the mouse, ghost arms, targets, animations;
 * :mod:`~puma_course.viz.widgets`: joint sliders and the :class:`Panel` joining them to a viewer;
+* :mod:`~puma_course.viz.animation`: ``jshtml(anim)``, matplotlib's animation player without its CDN link;
 * :mod:`~puma_course.viz.style`: the course's figure style (``use_course_style()``);
 * :mod:`~puma_course.viz.panels`: the lectures' panels, :func:`robot_panel` (any robot, optional
   IK ghosts) and :func:`dh_link_panel`.
@@ -26,7 +27,8 @@ It loads matplotlib, ipywidgets and anywidget; ``import puma_course`` does not i
 
 from __future__ import annotations
 
-from . import arms, frames, panels, style, three_step, viewer, widgets
+from . import animation, arms, frames, panels, style, three_step, viewer, widgets
+from .animation import jshtml
 from .arms import animate_frames, animate_robot, draw_chain, draw_robot, plot_chain, plot_robot
 from .frames import AXIS_COLORS, draw_frame, draw_frames, draw_points, new_axes, set_equal
 from .panels import RobotPanel, dh_link_panel, robot_panel
@@ -36,6 +38,8 @@ from .widgets import Panel, SliderList, frame_name, joint_sliders, pose_readout
 
 __all__ = [
     "AXIS_COLORS",
+    "animation",
+    "jshtml",
     "COURSE_STYLE",
     "use_course_style",
     "Panel",
