@@ -59,7 +59,7 @@ def lab_command(root: str | os.PathLike[str], jupyter_args: Sequence[str] = (), 
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``puma-course`` (sub-commands lab, release, grade, check).
+    """The argument parser of ``puma-course`` (sub-commands lab, release, grade, check, site).
 
     ``lab`` takes any further option for JupyterLab: parse with ``parse_known_args`` (as
     :func:`main` does) to collect them.
@@ -145,6 +145,16 @@ def build_parser() -> argparse.ArgumentParser:
         "--timeout-cell", type=float, default=10.0, metavar="S", help="seconds per cell and per call (default 10)"
     )
     ck.add_argument("--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)")
+    site = sub.add_parser(
+        "site",
+        parents=[course],
+        help="build the course's website (lectures, exercises, notation) into _site/",
+        description="Build the course as a static website from the committed notebooks, without running them "
+        "and without the network. Open <output>/index.html in a browser.",
+    )
+    site.add_argument(
+        "-o", "--output", type=Path, default=None, metavar="DIR", help="where the site goes (default: <course>/_site)"
+    )
     return parser
 
 
@@ -303,6 +313,22 @@ def _check(args: argparse.Namespace) -> int:
     return 0 if r.status in ("ok", "cell-error") else 1
 
 
+def _site(args: argparse.Namespace) -> int:
+    try:
+        from .site import build_site
+    except ImportError as exc:  # pragma: no cover - the extra is missing
+        print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
+        return 2
+    report = build_site(_course(args), args.output)
+    print(
+        f"built {len(report.pages)} pages in {report.seconds:.1f} s, {report.size_bytes / 1e6:.1f} MB: "
+        f"open {report.out / 'index.html'} in a browser"
+    )
+    for line in report.warnings[:20]:
+        print(f"  sphinx: {line}", file=sys.stderr)
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``puma-course``; returns the exit code (2: bad input, such as no course found).
 
@@ -314,7 +340,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if extra and args.command != "lab":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.jupyter_args = extra
-    handlers = {"lab": _lab, "release": _release, "grade": _grade, "check": _check}
+    handlers = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
     try:
         return handlers[args.command](args)
     except CourseNotFoundError as exc:

@@ -1,0 +1,194 @@
+"""Build the course's static website (see the package docstring for what it holds and why)."""
+
+from __future__ import annotations
+
+import io
+import re
+import shutil
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..course import find_course
+
+__all__ = ["SiteReport", "build_site", "MATHJAX_FILE", "MATHJAX_VERSION"]
+
+#: MathJax 3.2.2's single-file component: TeX input with every extension, SVG output. It draws glyphs
+#: as SVG paths, so the page fetches no font and nothing else at view time (2.2 MB, served locally).
+MATHJAX_FILE = "tex-svg-full.js"
+MATHJAX_VERSION = "3.2.2"
+
+
+@dataclass(frozen=True)
+class SiteReport:
+    """What a build produced: the output folder, its pages, the time it took, its size, Sphinx's warnings."""
+
+    out: Path
+    pages: tuple[str, ...]
+    seconds: float
+    size_bytes: int
+    warnings: tuple[str, ...] = field(default_factory=tuple)
+
+
+def _readme_sections(readme: str) -> dict[str, str]:
+    """The README's level-2 sections by their heading text (up to the first parenthesis)."""
+    parts = re.split(r"^## ", readme, flags=re.M)
+    out = {"_intro": parts[0]}
+    for part in parts[1:]:
+        title, _, body = part.partition("\n")
+        out[title.split("(")[0].strip()] = body
+    return out
+
+
+def _title(nb_path: Path) -> str:
+    import nbformat
+
+    nb = nbformat.read(nb_path, as_version=4)
+    for cell in nb.cells:
+        if cell.cell_type == "markdown":
+            for line in cell.source.splitlines():
+                if line.startswith("# "):
+                    return line[2:].strip()
+    return nb_path.stem.replace("_", " ")
+
+
+def _landing_page(root: Path, lectures: list[Path], exercises: list[Path]) -> str:
+    sections = _readme_sections((root / "README.md").read_text(encoding="utf-8"))
+    intro = sections["_intro"].split("\n", 1)[1].strip()  # without the "# puma-course" title
+    start = sections.get("Start", "")
+    command = re.search(r"```bash\n(.*?)```", start, re.S)
+    install = command.group(1).strip() if command else 'python -m pip install -e ".[dev]" && puma-course lab'
+    lines = ["# puma-course: kinematics of robot manipulators", "", intro, "", "## Read, then run", "",
+             "Every page of this site is a notebook of the course, shown with the outputs it had when it was "
+             "last run: figures, tables, animations that play, and a picture of each 3-D panel. Nothing here "
+             "runs code; to change the numbers and turn the arms, install the course (Python 3.10 or newer) "
+             "and open it in JupyterLab, from the course folder:", "", "```bash", install, "```", "",
+             "Each lecture page has a download button (top right) for its notebook.", "",
+             "## Lectures", ""]  # fmt: skip
+    for nb in lectures:
+        lines.append(f"- [{_title(nb)}](notebooks/{nb.name})")
+    lines += ["", "## Exercises", "",
+              "The exercises as they are handed out: write each answer where the notebook says, then run its "
+              "self-check. Solutions are not published.", ""]  # fmt: skip
+    for nb in exercises:
+        lines.append(f"- [{_title(nb)}](exercises/{nb.name})")
+    lines += ["", "## The course's conventions", "", "[Notation and conventions](conventions.md): the symbols of "
+              "every arm, units, the three readings of a transform, the DH flavour, the IK results.", ""]  # fmt: skip
+    lines += ["```{toctree}", ":hidden:", ":caption: Lectures", ""] + [f"notebooks/{nb.stem}" for nb in lectures]
+    lines += ["```", "", "```{toctree}", ":hidden:", ":caption: Exercises", ""]
+    lines += [f"exercises/{nb.stem}" for nb in exercises] + ["```", ""]
+    lines += ["```{toctree}", ":hidden:", ":caption: The course", "", "conventions", "```", ""]
+    return "\n".join(lines)
+
+
+def _conventions_page(root: Path) -> str:
+    sections = _readme_sections((root / "README.md").read_text(encoding="utf-8"))
+    out = ["# Notation and conventions", "",
+           "The course states its notation and its conventions once; every lecture follows them.", ""]  # fmt: skip
+    for key in ("Notation", "Conventions"):
+        body = sections.get(key, "")
+        # links into the repository (notebooks, folders) are rewritten for the site or dropped
+        body = re.sub(r"\[([^\]]+)\]\((?!https?:)(?!notebooks/|exercises/)[^)]*\)", r"\1", body)
+        out += [f"## {key}", "", body.strip(), ""]
+    return "\n".join(out)
+
+
+def _mathjax_source() -> Path:
+    """MathJax's component, from the ``sphinx-mathjax-offline`` distribution (which bundles MathJax 3.2.2)."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("sphinx-mathjax-offline")
+    if spec is None or not spec.submodule_search_locations:
+        raise RuntimeError("the site needs MathJax: pip install -e '.[site]' (it brings sphinx-mathjax-offline)")
+    return Path(next(iter(spec.submodule_search_locations))) / "static" / "mathjax" / MATHJAX_FILE
+
+
+def _copy_mathjax(dest: Path) -> None:
+    dest.mkdir(parents=True, exist_ok=True)
+    shutil.copy2(_mathjax_source(), dest / MATHJAX_FILE)
+    shutil.copy2(Path(__file__).with_name("MATHJAX-LICENSE"), dest / "LICENSE")
+
+
+_CONF = """
+project = "puma-course"
+author = "the puma-course authors"
+extensions = ["myst_nb"]
+exclude_patterns = ["_build", "**/.ipynb_checkpoints"]
+html_theme = "sphinx_book_theme"
+html_title = "puma-course"
+html_static_path = ["../assets"]
+html_theme_options = {{
+    "use_download_button": True,
+    "use_fullscreen_button": False,
+    "use_repository_button": False,
+    "launch_buttons": {{}},
+    "show_toc_level": 2,
+}}
+html_show_sourcelink = False
+html_copy_source = True
+myst_enable_extensions = ["dollarmath", "amsmath", "html_image", "html_admonition"]
+myst_heading_anchors = 3
+nb_execution_mode = "off"
+nb_ipywidgets_js = {{}}
+nb_mime_priority_overrides = [("html", "application/vnd.jupyter.widget-view+json", None)]
+nb_merge_streams = True
+mathjax_path = "mathjax/{mathjax}"
+# MyST marks every section "tex2jax_ignore" (a stray $ in prose is not mathematics); MathJax typesets
+# the elements it marked "math" and the notebooks' outputs, and nothing else
+mathjax3_config = {{
+    "options": {{"processHtmlClass": "math|output_area", "ignoreHtmlClass": "tex2jax_ignore|mathjax_ignore"}},
+    "tex": {{"inlineMath": [["\\\\(", "\\\\)"]], "displayMath": [["\\\\[", "\\\\]"]], "processEscapes": True}},
+    "svg": {{"fontCache": "global"}},
+}}
+# the theme's light/dark switch starts from the reader's system setting otherwise, and the notebooks'
+# figures are drawn for a white page
+html_context = {{"default_mode": "light"}}
+myst_update_mathjax = False  # the configuration above is complete
+suppress_warnings = ["myst.header", "mystnb.unknown_mime_type"]
+"""
+
+
+def build_site(course: str | Path | None = None, out: str | Path | None = None) -> SiteReport:
+    """Build the website of the course at ``course`` (default: the course around the current folder).
+
+    ``out`` (default ``<course>/_site``) receives the HTML; it is replaced. Returns a
+    :class:`SiteReport`. Raises ``ValueError`` when the folder is not a course.
+    """
+    from sphinx.application import Sphinx
+
+    root = find_course(course)
+    out_dir = Path(out) if out is not None else root / "_site"
+    lectures = sorted((root / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+    exercises = sorted((root / "exercises").glob("ex*.ipynb"))
+    if not lectures:
+        raise ValueError(f"course: expected lectures in {root / 'notebooks'}, found none")
+    start = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="puma-site-") as tmp:
+        base = Path(tmp)
+        src = base / "src"
+        (src / "notebooks").mkdir(parents=True)
+        (src / "exercises").mkdir()
+        for nb in lectures:
+            shutil.copy2(nb, src / "notebooks" / nb.name)
+        for nb in exercises:
+            shutil.copy2(nb, src / "exercises" / nb.name)
+        if (root / "figures").is_dir():
+            shutil.copytree(root / "figures", src / "figures", ignore=shutil.ignore_patterns("*.py", "__pycache__"))
+        (src / "index.md").write_text(_landing_page(root, lectures, exercises), encoding="utf-8")
+        (src / "conventions.md").write_text(_conventions_page(root), encoding="utf-8")
+        (src / "conf.py").write_text(_CONF.format(mathjax=MATHJAX_FILE), encoding="utf-8")
+        _copy_mathjax(base / "assets" / "mathjax")
+        if out_dir.exists():
+            shutil.rmtree(out_dir)
+        warnings = io.StringIO()
+        app = Sphinx(str(src), str(src), str(out_dir), str(base / "doctrees"), "html",
+                     status=io.StringIO(), warning=warnings, freshenv=True)  # fmt: skip
+        app.build()
+    for source_map in out_dir.glob("_static/**/*.map"):  # the theme's 3 MB of source maps serve no reader
+        source_map.unlink()
+    pages = tuple(sorted(str(p.relative_to(out_dir)) for p in out_dir.rglob("*.html") if "_static" not in p.parts))
+    size = sum(p.stat().st_size for p in out_dir.rglob("*") if p.is_file())
+    plain = re.sub(r"\x1b\[[0-9;]*m", "", warnings.getvalue())  # without the terminal's colours
+    found = tuple(line for line in plain.splitlines() if line.strip())
+    return SiteReport(out_dir, pages, time.perf_counter() - start, size, found)

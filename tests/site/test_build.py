@@ -1,0 +1,86 @@
+"""The website's build, without a browser: ``puma-course site`` from the committed notebooks.
+
+What a reader needs is on it (every lecture and exercise, the notation page, the downloads), and what
+would break "no network" or "no solutions" is not (a remote script, a solution notebook). The
+browser-level checks (math rendered, animations playing, search) are in tests/browser/test_site.py.
+"""
+
+from __future__ import annotations
+
+import html
+import re
+from pathlib import Path
+
+import pytest
+
+from puma_course.cli import main
+from puma_course.course import CourseNotFoundError
+from tests.support import ROOT
+
+pytest.importorskip("myst_nb", reason="the site's tools are in the 'site' extra")
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
+    import contextlib
+    import io
+
+    out = tmp_path_factory.mktemp("site") / "html"
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        assert main(["site", "--course", str(ROOT), "-o", str(out)]) == 0
+    return out, printed.getvalue()
+
+
+def test_the_command_reports_pages_time_and_size(built):
+    out, printed = built
+    m = re.search(r"built (\d+) pages in ([\d.]+) s, ([\d.]+) MB", printed)
+    assert m, printed
+    assert int(m.group(1)) == len([p for p in out.rglob("*.html") if "_static" not in p.parts])
+    assert float(m.group(3)) > 1.0
+
+
+def test_every_lecture_and_exercise_has_a_page_and_no_solution_does(built):
+    out, _ = built
+    for nb in (ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"):
+        assert (out / "notebooks" / f"{nb.stem}.html").is_file(), nb.name
+    for nb in (ROOT / "exercises").glob("ex*.ipynb"):
+        assert (out / "exercises" / f"{nb.stem}.html").is_file(), nb.name
+    assert (out / "conventions.html").is_file() and (out / "search.html").is_file()
+    assert not list(out.rglob("*solution*")), "a solutions file reached the site"
+
+
+def test_each_lecture_page_offers_its_notebook_for_download(built):
+    out, _ = built
+    for page in (out / "notebooks").glob("*.html"):
+        href = f"../_sources/notebooks/{page.stem}.ipynb"
+        assert href in page.read_text(encoding="utf-8"), f"{page.name}: no download link to its notebook"
+        assert (out / "_sources" / "notebooks" / f"{page.stem}.ipynb").is_file()
+
+
+def test_the_landing_page_says_what_the_course_is_and_how_to_install_it(built):
+    out, _ = built
+    text = html.unescape(re.sub(r"<[^>]+>", "", (out / "index.html").read_text(encoding="utf-8")))
+    assert "kinematics" in text.lower()
+    assert "pip install" in text and "puma-course lab" in text
+    for nb in (ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"):
+        assert f"notebooks/{nb.stem}.html" in (out / "index.html").read_text(encoding="utf-8")
+
+
+def test_no_page_loads_anything_from_another_host(built):
+    """Scripts, styles, fonts and images come from the site; links to other sites may stay links."""
+    out, _ = built
+    remote = re.compile(
+        r"""<(?:script|img|iframe|source)[^>]+src=["']?(?:https?:)?//|<link[^>]+href=["']?(?:https?:)?//"""
+    )
+    offenders = [str(p.relative_to(out)) for p in out.rglob("*.html") if remote.search(p.read_text(encoding="utf-8"))]
+    assert not offenders, offenders
+    assert (out / "_static" / "mathjax" / "tex-svg-full.js").stat().st_size > 1_000_000
+    assert "Apache License" in (out / "_static" / "mathjax" / "LICENSE").read_text(encoding="utf-8")
+
+
+def test_the_site_of_a_folder_that_is_not_a_course_is_refused(tmp_path):
+    from puma_course.site import build_site
+
+    with pytest.raises(CourseNotFoundError):
+        build_site(tmp_path, tmp_path / "out")
