@@ -62,4 +62,5 @@ EXERCISE = Exercise(
             hint="The inverse rotation is R^T and the inverse translation is -R^T p.",
         ),
     ),
+    allowed=(),  # the self-check only: rotx ... rodrigues, axis_angle, inverse_transform are the answers
 )

@@ -56,4 +56,5 @@ EXERCISE = Exercise(
             hint="Return a (7, 4, 4) array starting with the identity (frame {0}) and ending with ^0T_6.",
         ),
     ),
+    allowed=(),  # the self-check only: mdh and the PUMA-560 are the answers
 )

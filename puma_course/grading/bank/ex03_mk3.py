@@ -46,4 +46,5 @@ EXERCISE = Exercise(
             hint="It is the third column of the rotation part; only θ1 and θ2 + θ3 + θ4 matter.",
         ),
     ),
+    allowed=(),  # the self-check only: the MK3 is the answer
 )

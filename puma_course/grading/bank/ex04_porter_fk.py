@@ -51,4 +51,5 @@ EXERCISE = Exercise(
             hint="Compare the printed second entry with the first: only c1 and s1 should swap roles.",
         ),
     ),
+    allowed=(),  # the self-check only: Porter is the answer
 )

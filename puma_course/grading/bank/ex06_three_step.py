@@ -81,4 +81,5 @@ EXERCISE = Exercise(
             "F2 is orthogonal, so its inverse is its transpose.",
         ),
     ),
+    allowed=("puma_course.transforms:rodrigues",),  # the solution builds its frames with K(a, θ)
 )

@@ -281,11 +281,11 @@ def _need(src: _Source, name: str, kept: set[int], imported: set[str]) -> list[t
             if used in module_attrs and src.imports[used].module.split(".")[0] == ROOT_PACKAGE:
                 imported.add(used)
                 attrs = module_attrs[used]
-                origin = src.imports[used].module
+                source_module = src.imports[used].module
                 if attrs is None:
-                    more.append((origin, None))
+                    more.append((source_module, None))
                 else:
-                    more += [(origin, "__package__")] + [(origin, a) for a in sorted(attrs)]
+                    more += [(source_module, "__package__")] + [(source_module, a) for a in sorted(attrs)]
             elif used in src.binders and used != name:
                 more += _need(src, used, kept, imported)
     return more

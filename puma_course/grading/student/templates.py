@@ -14,7 +14,7 @@ __all__ = ["HEADER", "MODULE_FOOTER", "PACKAGE_FOOTER", "GRADING_STUB", "message
 HEADER = '"""The grader\'s copy of {module} for {exercise}: only what this exercise allows (generated)."""\n'
 
 #: Appended to every generated module; ``{allowed}`` is the exercise's allowed list, as text.
-MODULE_FOOTER = '''
+MODULE_FOOTER = """
 
 _ALLOWED_HERE = {allowed!r}
 
@@ -27,7 +27,7 @@ def __getattr__(name):
         f"(what this exercise lets you import from puma_course: {{_ALLOWED_HERE}})",
         name=f"{{__name__}}.{{name}}",
     )
-'''
+"""
 
 #: Appended to the top-level ``__init__``: absent sub-modules fail with the same message.
 PACKAGE_FOOTER = '''

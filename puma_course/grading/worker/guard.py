@@ -64,8 +64,8 @@ def describe(exc: BaseException) -> tuple[str, int]:
         text = str(exc).strip()
     except BaseException:  # noqa: BLE001 - a hostile __str__ or traceback must not stop the worker
         text = "(the error message could not be read)"
-    first = text.splitlines()[0] if text else ""
-    return f"{type_name(exc)}: {first}"[:2000], line
+    first = text.splitlines()[0].strip() if text else ""
+    return (f"{type_name(exc)}: {first}" if first else type_name(exc))[:2000], line
 
 
 def resolve(spec: str) -> Any:
@@ -190,5 +190,3 @@ def limit_resources(limits: dict[str, Any] | None = None) -> None:
             resource.setrlimit(kind, (cap, min(cap + 5, hard) if kind == resource.RLIMIT_CPU else cap))
         except (ValueError, OSError):
             pass
-
-

@@ -102,5 +102,3 @@ def notebook_cells(data: bytes) -> list[str]:
             raise NotebookError("too-much-code")
         sources.append(strip_hidden(src))
     return sources
-
-
