@@ -16,8 +16,8 @@ order in one namespace (a cell that raises or runs past ``timeout_cell`` is reco
 cell still runs), then calls each requested function on the grader's inputs and streams JSON lines
 back on the original stdout, one event per line::
 
-    {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell", "line": n, "column": n}
-    {"kind": "cell", "index": i, "status": "ok" | "error" | "timeout", "detail": "...", "line": n}
+    {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
+    {"kind": "cell", "index": i, "status": "error" | "timeout", "detail": "...", "line": n}   (cells that ran: nothing)
     {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
     {"kind": "done"}
 
@@ -158,10 +158,11 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
 
     ns: dict[str, Any] = {"__name__": "__main__", "display": display}
     for index, source in enumerate(sources):
-        event: dict[str, Any] = {"kind": "cell", "index": index, "status": "ok"}
+        event: dict[str, Any] = {"kind": "cell", "index": index}
         try:
             code = compile(strip_magics(source), f"<cell {index + 1}>", "exec")
             run_timed(exec, code, ns)
+            continue  # a cell that ran says nothing
         except CellTimeout:
             event["status"] = "timeout"
         except BaseException as exc:  # noqa: BLE001 - SystemExit, KeyboardInterrupt: all are the student's
