@@ -131,7 +131,10 @@ def of(category: str) -> list[Any]:
     """pytest parameters (fixture, mode) for one category, with ids."""
     assert category in CATEGORIES
     return [
-        pytest.param(fx, mode, id=f"{fx.name}-{mode}") for fx in fixtures() if fx.category == category for mode in fx.modes
+        pytest.param(fx, mode, id=f"{fx.name}-{mode}")
+        for fx in fixtures()
+        if fx.category == category
+        for mode in fx.modes
     ]
 
 
@@ -332,7 +335,12 @@ def _marked_files(mark: str, since: float) -> list[str]:
     for folder in (ROOT / "puma_course", SITE / "puma_course", ROOT):
         for p in folder.rglob("*") if folder != ROOT else folder.glob("*"):
             try:
-                if p.is_file() and not p.is_symlink() and p.stat().st_mtime >= since and mark.encode() in p.read_bytes():
+                if (
+                    p.is_file()
+                    and not p.is_symlink()
+                    and p.stat().st_mtime >= since
+                    and mark.encode() in p.read_bytes()
+                ):
                     found.append(str(p))
             except OSError:
                 continue
@@ -341,7 +349,7 @@ def _marked_files(mark: str, since: float) -> list[str]:
 
 def check_run(run: AttackRun) -> None:
     """The assertions every hostile fixture must pass (see the module docstring)."""
-    fx, exercises = run.fixture, run.fixture.exercises
+    exercises = run.fixture.exercises
     full = {ex: sum(q.points for q in EXERCISES[ex].questions) for ex in exercises}
     # the run finished: a CSV row and a feedback file for every student and exercise
     students = {r["student"] for r in run.rows}

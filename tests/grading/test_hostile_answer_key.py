@@ -1,4 +1,4 @@
-"""Hostile fixtures, answer-key access: no part of the package beyond what the exercise allows is in the student's reach.
+"""Hostile fixtures, answer-key access: nothing of the package beyond what the exercise allows is within reach.
 
 Each fixture (tests/fixtures/hostile/answer_key/) is graded beside an honest and a blank classmate; see
 tests/grading/hostile.py for what every run must satisfy.

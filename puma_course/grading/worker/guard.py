@@ -185,8 +185,10 @@ def limit_resources(limits: dict[str, Any] | None = None) -> None:
             continue
         try:
             soft, hard = resource.getrlimit(kind)
-            cap = value if hard == resource.RLIM_INFINITY else min(value, hard)
+            unlimited = hard == resource.RLIM_INFINITY
+            cap = value if unlimited else min(value, hard)
             # CPU: the soft limit sends SIGXCPU, the hard one SIGKILL a little later
-            resource.setrlimit(kind, (cap, min(cap + 5, hard) if kind == resource.RLIMIT_CPU else cap))
+            top = (cap + 5 if unlimited else min(cap + 5, hard)) if kind == resource.RLIMIT_CPU else cap
+            resource.setrlimit(kind, (cap, top))
         except (ValueError, OSError):
             pass
