@@ -12,6 +12,8 @@ import pytest
 
 from tests.grading.hostile import check_run, of, run_attack
 
+pytestmark = pytest.mark.hostile
+
 #: The attacker's status for the fixtures where it is decided by the file alone.
 STATUS = {
     "symlink_to_solution": "refused",

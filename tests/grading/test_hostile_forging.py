@@ -15,6 +15,8 @@ from puma_course.grading import EXERCISES
 from puma_course.grading.text import quoted
 from tests.grading.hostile import check_run, of, run_attack
 
+pytestmark = pytest.mark.hostile
+
 CODE_SPAN = re.compile(r"(`+)(?:(?!\1).)*?\1")
 INERT = ("\x1b", "\u202e", "\u2028", "\u2029", "\x85", "\x00", "\u200b")
 

@@ -10,6 +10,8 @@ import pytest
 
 from tests.grading.hostile import check_run, of, run_attack
 
+pytestmark = pytest.mark.hostile
+
 
 @pytest.mark.parametrize(("fx", "mode"), of("persistence"))
 def test_persistence_attack_leaves_nothing(fx, mode, tmp_path, monkeypatch):

@@ -10,6 +10,8 @@ import pytest
 
 from tests.grading.hostile import LIMITS, check_run, of, run_attack
 
+pytestmark = pytest.mark.hostile
+
 
 @pytest.mark.parametrize(("fx", "mode"), of("slow"))
 def test_slow_attack_costs_at_most_its_limits(fx, mode, tmp_path, monkeypatch):
