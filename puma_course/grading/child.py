@@ -44,6 +44,9 @@ class ChildResult:
     overflow: bool = False
     done: bool = False
     seconds: float = 0.0
+    #: the first bytes the process wrote to its stderr (the worker silences it before any student
+    #: code runs, so this is bubblewrap's or Python's own complaint when the worker could not start)
+    stderr: bytes = b""
 
 
 class _Lines:
@@ -99,7 +102,7 @@ def run(cmd: Sequence[str], payload: bytes, *, cwd: str | None, env: dict[str, s
         list(cmd),
         stdin=subprocess.PIPE,
         stdout=subprocess.PIPE,
-        stderr=subprocess.DEVNULL,
+        stderr=subprocess.PIPE if os.name == "posix" else subprocess.DEVNULL,
         cwd=cwd,
         env=env,
         start_new_session=os.name == "posix",
@@ -112,7 +115,7 @@ def run(cmd: Sequence[str], payload: bytes, *, cwd: str | None, env: dict[str, s
             _communicate(proc, payload, result, timeout)
     finally:
         _kill(proc)
-        for stream in (proc.stdin, proc.stdout):
+        for stream in (proc.stdin, proc.stdout, proc.stderr):
             try:
                 if stream is not None:
                     stream.close()
@@ -124,13 +127,14 @@ def run(cmd: Sequence[str], payload: bytes, *, cwd: str | None, env: dict[str, s
 
 
 def _loop(proc: subprocess.Popen[bytes], payload: bytes, result: ChildResult, deadline: float) -> None:
-    assert proc.stdin is not None and proc.stdout is not None
-    out_fd, in_fd = proc.stdout.fileno(), proc.stdin.fileno()
-    os.set_blocking(out_fd, False)
-    os.set_blocking(in_fd, False)
+    assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
+    out_fd, in_fd, err_fd = proc.stdout.fileno(), proc.stdin.fileno(), proc.stderr.fileno()
+    for fd in (out_fd, in_fd, err_fd):
+        os.set_blocking(fd, False)
     lines = _Lines(result)
     sel = selectors.DefaultSelector()
     sel.register(out_fd, selectors.EVENT_READ, "out")
+    sel.register(err_fd, selectors.EVENT_READ, "err")
     view = memoryview(payload)
     if view:
         sel.register(in_fd, selectors.EVENT_WRITE, "in")
@@ -163,6 +167,15 @@ def _loop(proc: subprocess.Popen[bytes], payload: bytes, result: ChildResult, de
                         proc.stdin.close()
                 elif key.data == "out":
                     eof = _read_some(out_fd, lines) == "eof"
+                elif key.data == "err":
+                    try:
+                        chunk = os.read(err_fd, 4096)
+                    except OSError:
+                        chunk = b""
+                    if chunk:
+                        result.stderr = (result.stderr + chunk)[:4096]
+                    else:
+                        sel.unregister(err_fd)
                 else:
                     exited = True
             if pidfd < 0 and proc.poll() is not None:

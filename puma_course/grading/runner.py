@@ -38,6 +38,7 @@ from .report import write_csv, write_feedback
 from .sandbox import Sandbox, child_env, choose
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, read_path, read_student, scan
+from .text import quoted
 
 __all__ = [
     "GradingIntegrityWarning",
@@ -184,6 +185,18 @@ def _grade_data(
     start = time.perf_counter()
     result = NotebookResult.blank(student, exercise)
     outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+    if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
+        # the worker never started (the sandbox could not be set up, say): not the student's doing; once more
+        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+        if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
+            said = outcome.stderr.decode("utf-8", "replace").strip().splitlines()
+            result.status = "grader-error"
+            result.notes.append(
+                f"the grading process could not start (exit code {outcome.returncode})"
+                + (f": {quoted(said[-1])}" if said else "")
+            )
+            result.seconds = time.perf_counter() - start
+            return result
     events.apply(result, exercise, plan, outcome, timeout_cell=timeout_cell, stop_note=stop_note)
     result.seconds = time.perf_counter() - start
     return result

@@ -39,7 +39,7 @@ def test_the_worker_never_receives_expected_values(monkeypatch, tmp_path):
     sub = tmp_path / "ex01_rotations.ipynb"
     nbformat.write(nbformat.v4.new_notebook(), sub)
     result = grade_notebook(sub, EX, "s", seed=1)
-    assert result.status == "crashed" and result.score == 0
+    assert result.status == "grader-error" and result.score == 0  # no worker answered at all: not the student's doing
     header, _, notebook = seen["payload"].partition(b"\n")
     job = json.loads(header)
     assert job["calls"] and all(set(c) == {"qid", "case", "function", "args"} for c in job["calls"])
@@ -77,6 +77,17 @@ def _worker(cells, calls, exercise=EX, sandbox: Sandbox | None = None, timeout=3
         )
 
 
+def test_a_worker_that_cannot_start_is_the_graders_error_not_the_students(tmp_path, monkeypatch):
+    sub = tmp_path / "ex01_rotations.ipynb"
+    nbformat.write(nbformat.v4.new_notebook(), sub)
+    broken = Sandbox("bwrap", "/bin/sh", sites=choose("none").sites)
+    monkeypatch.setattr(
+        Sandbox, "bwrap_args", lambda self, *a, **k: ["-c", "echo 'bwrap: no user namespaces' >&2; exit 1"]
+    )
+    r = grade_notebook(sub, EX, "s", sandbox=broken)
+    assert r.status == "grader-error" and "could not start (exit code 1): `bwrap: no user namespaces`" in r.notes[0]
+
+
 def test_the_worker_runs_the_stage_copy_not_the_package():
     cells = [
         "import puma_course, sys",
@@ -85,7 +96,7 @@ def test_the_worker_runs_the_stage_copy_not_the_package():
         " float(any('puma_course' in str(p) and 'site-packages' not in str(p) for p in sys.path[1:]))]",
     ]
     out = _worker(cells, [{"qid": "q1", "case": 0, "function": "where", "args": [0]}])
-    assert out.done and out.events[0]["value"] == [1.0, 1.0, 0.0], out.events
+    assert out.done and out.events[1]["value"] == [1.0, 1.0, 0.0], out.events
 
 
 def test_the_worker_strips_hidden_tests_and_reports_failing_cells_only():
@@ -95,17 +106,17 @@ def test_the_worker_strips_hidden_tests_and_reports_failing_cells_only():
         "1 / 0",
     ]
     out = _worker(cells, [{"qid": "q1", "case": 0, "function": "f", "args": [1.0]}])
-    assert [e["kind"] for e in out.events] == ["cell", "call", "done"]
-    assert out.events[0]["index"] == 2 and out.events[0]["detail"].startswith("ZeroDivisionError")
-    assert out.events[1]["value"] == [2.0]
+    assert [e["kind"] for e in out.events] == ["ready", "cell", "call", "done"]
+    assert out.events[1]["index"] == 2 and out.events[1]["detail"].startswith("ZeroDivisionError")
+    assert out.events[2]["value"] == [2.0]
 
 
 def test_an_absent_name_says_it_is_not_available_in_this_exercise():
     out = _worker(["from puma_course import rotx"], [])
-    assert out.events[0]["status"] == "error"
-    assert "puma_course.rotx is not available in this exercise" in out.events[0]["detail"]
+    assert out.events[1]["status"] == "error"
+    assert "puma_course.rotx is not available in this exercise" in out.events[1]["detail"]
     out = _worker(["import puma_course.kinematics.dh"], [])
-    assert "puma_course.kinematics is not available in this exercise" in out.events[0]["detail"]
+    assert "puma_course.kinematics is not available in this exercise" in out.events[1]["detail"]
 
 
 def test_an_allowed_name_works_and_a_forbidden_one_still_trips(tmp_path):
@@ -116,7 +127,7 @@ def test_an_allowed_name_works_and_a_forbidden_one_still_trips(tmp_path):
         "def base_angle(w):\n    return float(rodrigues([0, 0, 1], 0.1)[0, 0])",
     ]
     calls = [{"qid": "q1", "case": 0, "function": "base_angle", "args": [[1.0, 2.0, 3.0]]}]
-    assert _worker(cells, calls, exercise=ex).events[0]["value"] == pytest.approx(0.995004165)
+    assert _worker(cells, calls, exercise=ex).events[1]["value"] == pytest.approx(0.995004165)
     # an allowed helper that is also a question's answer key: the tripwire is the second line
     key = ("puma_course.transforms:rodrigues",)
     q = Question(

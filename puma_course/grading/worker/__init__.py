@@ -16,6 +16,7 @@ order in one namespace (a cell that raises or runs past ``timeout_cell`` is reco
 cell still runs), then calls each requested function on the grader's inputs and streams JSON lines
 back on the original stdout, one event per line::
 
+    {"kind": "ready"}   (first, once the job is read: the worker started)
     {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
     {"kind": "cell", "index": i, "status": "error" | "timeout", "detail": "...", "line": n}   (cells that ran: nothing)
     {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
@@ -96,6 +97,7 @@ def main() -> None:
             view = view[n:]
 
     header, _, notebook = sys.stdin.buffer.read().partition(b"\n")
+    emit({"kind": "ready"})  # the worker started: what follows is the notebook's doing
     job = json.loads(header)
     limit_resources(job.get("limits"))
     _ready(job)
