@@ -158,16 +158,18 @@ def _run_worker(
     timeout: float,
     private: Sequence[Path],
 ) -> child.ChildResult:
-    with contextlib.ExitStack() as stack:
-        if box.kind == "bwrap":
-            work = None
-        else:
-            work = stack.enter_context(tempfile.TemporaryDirectory(prefix="puma-grade-"))
+    """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one."""
+
+    def launch(work: str | None) -> child.ChildResult:
         lib, _, seen_work = box.paths(stage.libs[exercise.name], stage.bin, Path(work or "."))
         payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.sites], box.kind == "bwrap") + data
         cmd = box.command(stage.libs[exercise.name], stage.bin, private)
         return child.run(cmd, payload, cwd=work, env=child_env(seen_work), timeout=timeout)
-    raise AssertionError("unreachable")  # pragma: no cover
+
+    if box.kind == "bwrap":
+        return launch(None)
+    with tempfile.TemporaryDirectory(prefix="puma-grade-", ignore_cleanup_errors=True) as work:
+        return launch(work)
 
 
 def _grade_data(
