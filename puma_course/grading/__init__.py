@@ -11,10 +11,12 @@ exercise), serves three jobs:
   into ``exercises/NAME.ipynb`` (stubs for solutions, hidden tests removed, points and headings
   written from the bank) and, with ``check_only``, says which exercises are out of date.
 * **Grade** (instructor side, :mod:`.runner` and :mod:`.worker`): :func:`grade` runs every
-  submitted notebook in its own fresh ``python -I`` process with time limits, calls the student's
-  functions on inputs drawn at grading time (seeded), brings back only the numbers they return,
-  and compares them in the grader's process with the package's reference
-  (:mod:`.compare`); :mod:`.report` writes the CSV and the feedback.
+  submitted notebook in its own fresh process, inside an operating-system sandbox where one is
+  available (:mod:`.sandbox`), with time and resource limits, against a student-side
+  ``puma_course`` that holds only what the exercise allows (:mod:`.student`: no answer key
+  within reach); it calls the student's functions on inputs drawn at grading time (seeded), brings
+  back only the numbers they return, and compares them in the grader's process with the
+  package's reference (:mod:`.compare`); :mod:`.report` writes the CSV and the feedback.
 
 Deleting or editing tests in a submitted notebook changes nothing: the questions live here.
 """
@@ -25,7 +27,7 @@ from . import bank as _bank  # noqa: F401 - registers every exercise in EXERCISE
 from .model import EXERCISES, Exercise, NotebookResult, Question
 from .release import release, release_notebook
 from .report import format_check_report
-from .runner import GradingIntegrityWarning, grade, grade_notebook
+from .runner import GradingIntegrityWarning, SandboxWarning, grade, grade_notebook
 from .selfcheck import check, use_exercise
 
 __all__ = [
@@ -34,6 +36,7 @@ __all__ = [
     "Question",
     "NotebookResult",
     "GradingIntegrityWarning",
+    "SandboxWarning",
     "use_exercise",
     "check",
     "release",

@@ -13,16 +13,29 @@ the same verdicts, scores and hints everywhere:
 
 from __future__ import annotations
 
+import contextlib
 import csv
+import io
 import os
 import re
+import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
 from .model import EXERCISES, Exercise, NotebookResult, Question
+from .text import csv_safe, file_stem, one_line, quoted
 from .worker import NOT_ATTEMPTED
 
-__all__ = ["verdict", "format_question", "format_check_report", "feedback_markdown", "write_csv", "safe_name"]
+__all__ = [
+    "verdict",
+    "format_question",
+    "format_check_report",
+    "feedback_markdown",
+    "write_feedback",
+    "write_csv",
+    "csv_rows",
+    "safe_name",
+]
 
 _COUNT_LINE = re.compile(r"^\d+/\d+ cases pass$")
 
@@ -98,9 +111,27 @@ def format_check_report(result: NotebookResult, exercise: Exercise) -> str:
     return "\n".join(lines)
 
 
-def feedback_markdown(student: str, results: Sequence[NotebookResult], seed: int) -> str:
-    """One student's feedback file: per exercise the status, the score, one table row per question, hints."""
-    lines = [f"# Feedback for {student}", ""]
+def feedback_markdown(
+    student: str, results: Sequence[NotebookResult], seed: int, unsandboxed: str | None = None
+) -> str:
+    """One student's feedback file: per exercise the status, the score, one table row per question, hints.
+
+    The student's folder name and every text of the student's that a note repeats are quoted as
+    code, so the file shows them literally (no headings, links or table rows of the student's
+    making). ``unsandboxed`` is the reason the notebooks ran without the operating-system sandbox,
+    if they did: the file then says so first.
+
+    >>> feedback_markdown("x\\n# Total: 56 / 56", [], seed=1).splitlines()[0]
+    '# Feedback for `x\\\\x0a# Total: 56 / 56`'
+    """
+    lines = [f"# Feedback for {quoted(student, 120)}", ""]
+    if unsandboxed is not None:
+        lines += [
+            "> **Warning: graded without the operating-system sandbox** "
+            f"({one_line(unsandboxed, 300)}). The grades may not be reliable if a classmate's "
+            "notebook interfered with the grading.",
+            "",
+        ]
     total = sum(r.score for r in results)
     top = sum(r.max_score for r in results)
     lines += [f"Total: **{total:g} / {top:g}** points.", ""]
@@ -113,10 +144,10 @@ def feedback_markdown(student: str, results: Sequence[NotebookResult], seed: int
             "",
         ]
         for note in r.notes:
-            lines.append(f"- {note}")
+            lines.append(f"- {one_line(note, 600)}")
         if r.notes:
             lines.append("")
-        if r.status in ("missing", "malformed"):
+        if r.status in ("missing", "malformed", "refused", "unreadable"):
             continue
         lines += ["| question | points | result |", "| --- | --- | --- |"]
         for q in ex.questions:
@@ -132,34 +163,91 @@ def feedback_markdown(student: str, results: Sequence[NotebookResult], seed: int
 
 
 def safe_name(name: str) -> str:
-    """A file-name-safe form of a student's folder name.
+    """A file-name-safe form of a student's folder name (bounded in length, never hidden or empty).
 
     >>> safe_name("../Ann Lee")
     'Ann_Lee'
     """
-    return re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "student"
+    return file_stem(name)
 
 
-def write_csv(output: str | os.PathLike[str], results: Sequence[NotebookResult], names: Sequence[str]) -> None:
-    """Write the grades: student, exercise, score, max_score, one column per question id, status, notes.
+def _replace_atomically(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a fresh temporary file and a rename: whole or not at all, and a
+    link planted at ``path`` is replaced, never followed."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:50]}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", newline="", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
 
-    The file is written under a temporary name and moved into place, so it appears whole or not at all.
-    """
+
+def write_feedback(
+    folder: str | os.PathLike[str], results: Sequence[NotebookResult], seed: int, unsandboxed: str | None = None
+) -> dict[str, Path]:
+    """One Markdown file per student in ``folder`` (created); returns the file of each student."""
+    out = Path(folder)
+    out.mkdir(parents=True, exist_ok=True)
+    by_student: dict[str, list[NotebookResult]] = {}
+    for r in results:
+        by_student.setdefault(r.student, []).append(r)
+    used: set[str] = set()
+    files = {}
+    for student, mine in by_student.items():
+        stem = base = file_stem(student)
+        k = 2
+        while stem.lower() in used:  # two names that make the same file name (also on case-insensitive disks)
+            stem, k = f"{base}_{k}", k + 1
+        used.add(stem.lower())
+        files[student] = out / f"{stem}.md"
+        _replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed))
+    return files
+
+
+def csv_rows(
+    results: Sequence[NotebookResult], names: Sequence[str], seed: int | None = None, sandbox: str = ""
+) -> list[list[str]]:
+    """The CSV's rows, header first (see :func:`write_csv`)."""
     qids: list[str] = []
     for name in names:
         for q in EXERCISES[name].questions:
             if q.qid not in qids:
                 qids.append(q.qid)
+    rows = [["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "seed", "notes"]]
+    for r in results:
+        ex = EXERCISES.get(r.exercise)
+        bonus = sum(r.scores.get(q.qid, 0.0) for q in ex.questions if q.bonus) if ex is not None else 0.0
+        row = [csv_safe(r.student), r.exercise, f"{r.score:g}", f"{r.max_score:g}", f"{round(bonus, 2):g}"]
+        row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
+        row += [r.status, sandbox, "" if seed is None else str(seed)]
+        row.append(csv_safe(one_line(" | ".join(r.notes), 500)))
+        rows.append(row)
+    return rows
+
+
+def write_csv(
+    output: str | os.PathLike[str],
+    results: Sequence[NotebookResult],
+    names: Sequence[str],
+    *,
+    seed: int | None = None,
+    sandbox: str = "",
+) -> None:
+    """Write the grades: student, exercise, score, max_score, bonus, one column per question id, status,
+    sandbox, seed, notes.
+
+    ``bonus`` is the part of the score that bonus questions earned (it counts in ``score``, not in
+    ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none") and ``seed`` which
+    hidden inputs they got. A text cell that a spreadsheet would read as a formula starts with
+    ``'``. The file is written under a fresh temporary name and moved into place, so it appears
+    whole or not at all.
+    """
     out = Path(output)
     if out.parent and not out.parent.exists():
         out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = out.with_name(out.name + ".tmp")
-    with open(tmp, "w", newline="", encoding="utf-8") as fh:
-        writer = csv.writer(fh)
-        writer.writerow(["student", "exercise", "score", "max_score", *qids, "status", "notes"])
-        for r in results:
-            row = [r.student, r.exercise, f"{r.score:g}", f"{r.max_score:g}"]
-            row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
-            row += [r.status, " | ".join(r.notes)[:500]]
-            writer.writerow(row)
-    os.replace(tmp, out)
+    buffer = io.StringIO()
+    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox))
+    _replace_atomically(out, buffer.getvalue())

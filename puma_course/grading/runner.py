@@ -1,54 +1,70 @@
-"""The grader's side: plan the calls, run each notebook in a fresh child process, score what comes back.
+"""The grader's side: plan the calls, run each notebook in a fresh sandboxed worker, score what comes back.
 
-:func:`grade` grades ``SUBMISSIONS/<student>/<exercise>.ipynb`` for a class: it computes every
-expected value first (:func:`make_plan`, in this process), reads every submitted file into memory
-before any student code runs, then grades each notebook with :func:`grade_notebook`: a fresh
-``python -I`` child (:mod:`puma_course.grading.worker`) in a temporary folder, with a time limit
-per cell, per call and per notebook, gets the code cells and the calls (never the expected
-values) through a pipe and sends back only the numbers the student's functions return. The
-comparison happens here. Results go to a CSV and feedback files (:mod:`puma_course.grading.report`).
+:func:`grade` grades ``SUBMISSIONS/<student>/<exercise>.ipynb`` for a class. It computes every
+expected value first (:func:`make_plan`, in this process), chooses the operating-system sandbox
+(:mod:`.sandbox`: bubblewrap where it runs, else none, loudly), builds the run's stage (the worker
+and a student-side ``puma_course`` per exercise holding only what the exercise allows:
+:mod:`.stage`), and then grades the students, ``jobs`` at a time, each within a total time limit
+of its own. Each notebook is read without following links (:mod:`.submissions`) and handed, as
+bytes, to a fresh worker (:mod:`.worker`, run by :mod:`.child`), which parses it, runs its code
+cells and calls the student's functions on the planned inputs, with a time limit per cell, per
+call and per notebook. Only the numbers the functions return come back; the comparison, and the
+wording of every message, happen here (:mod:`.events`). Results go to a CSV and feedback files
+(:mod:`.report`).
 """
 
 from __future__ import annotations
 
 import concurrent.futures
+import contextlib
 import copy
 import json
 import os
 import secrets
-import subprocess
 import sys
 import tempfile
-import threading
 import time
 import warnings
 import zlib
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .model import EXERCISES, Exercise, NotebookResult, Question, Verdict, score_question
-from .report import feedback_markdown, safe_name, write_csv
+from . import child, events
+from .model import EXERCISES, Exercise, NotebookResult
+from .report import write_csv, write_feedback
+from .sandbox import Sandbox, child_env, choose
+from .stage import Stage
+from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, read_path, read_student, scan
+from .text import quoted
 
-__all__ = ["GradingIntegrityWarning", "make_plan", "grade_notebook", "grade", "MAX_NOTEBOOK_BYTES", "PACKAGE_PARENT"]
+__all__ = [
+    "GradingIntegrityWarning",
+    "SandboxWarning",
+    "make_plan",
+    "grade_notebook",
+    "grade",
+    "MAX_NOTEBOOK_BYTES",
+    "PACKAGE_PARENT",
+]
 
-MAX_NOTEBOOK_BYTES = 20_000_000
-MAX_OUTPUT_BYTES = 8_000_000
-
-#: The folder that holds the ``puma_course`` package (not the course's folder): put first on the
-#: child's ``sys.path`` so that the child imports this very package, installed or not.
+#: The folder that holds the ``puma_course`` package (in a course checkout, the course itself).
 PACKAGE_PARENT = Path(__file__).resolve().parents[2]
 _PACKAGE_DIR = PACKAGE_PARENT / "puma_course"
-#: The child's whole program (run with ``python -I -c``): this package first on the path, then the worker.
-CHILD_BOOTSTRAP = (
-    f"import sys; sys.path.insert(0, {str(PACKAGE_PARENT)!r}); from puma_course.grading.worker import main; main()"
-)
+#: Notebooks of a class read into memory before any student code runs, when there is no OS sandbox.
+PRE_READ_BYTES = 512 << 20
+#: Limits the worker sets on itself (see :func:`puma_course.grading.worker.limit_resources`).
+LIMITS = {"memory": 4 << 30, "file_size": 64 << 20, "open_files": 256, "processes": 64}
 
 
 class GradingIntegrityWarning(UserWarning):
     """The course package's files changed while grading: a submission may have tampered with them."""
+
+
+class SandboxWarning(UserWarning):
+    """The notebooks are graded without the operating-system sandbox."""
 
 
 def _package_digest() -> dict[str, bytes]:
@@ -99,138 +115,105 @@ def make_plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
     return calls
 
 
-def _load(path: Path) -> bytes:
-    size = path.stat().st_size
-    if size > MAX_NOTEBOOK_BYTES:
-        raise ValueError(f"the file is {size} bytes, more than {MAX_NOTEBOOK_BYTES}")
-    return path.read_bytes()
+def _positive(name: str, value: float) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 or value == float("inf"):
+        raise ValueError(f"{name}: expected a positive number of seconds, got {value!r}")
+    return float(value)
 
 
-def _parse_cells(data: bytes) -> list[str]:
-    """The code cells of a notebook's bytes, or ValueError saying why they cannot be read."""
-    import nbformat
-
-    try:
-        nb = nbformat.reads(data.decode("utf-8", errors="replace"), as_version=4)
-    except Exception as exc:  # noqa: BLE001 - nbformat raises many kinds
-        raise ValueError(f"not a readable notebook ({type(exc).__name__}: {str(exc)[:150]})") from None
-    cells = nb.get("cells")
-    if not isinstance(cells, list):
-        raise ValueError("the notebook has no list of cells")
-    sources = []
-    for cell in cells:
-        if not isinstance(cell, dict) or cell.get("cell_type") != "code":
-            continue
-        src = cell.get("source", "")
-        if isinstance(src, list):
-            src = "".join(str(s) for s in src)
-        if not isinstance(src, str):
-            raise ValueError("a code cell's source is not text")
-        sources.append(src)
-    return sources
+def _box(sandbox: str | Sandbox) -> Sandbox:
+    return sandbox if isinstance(sandbox, Sandbox) else choose(sandbox)
 
 
-def _child_env(workdir: str) -> dict[str, str]:
-    env = {k: v for k, v in os.environ.items() if k in ("PATH", "LANG", "LC_ALL", "SYSTEMROOT", "TMPDIR")}
-    env.update(
-        HOME=workdir,
-        MPLBACKEND="Agg",
-        MPLCONFIGDIR=workdir,
-        PYTHONHASHSEED="0",
-        OMP_NUM_THREADS="1",
-        OPENBLAS_NUM_THREADS="1",
-        MKL_NUM_THREADS="1",
-        PYTHONDONTWRITEBYTECODE="1",
-    )
-    return env
+def _job(
+    exercise: Exercise, plan: list[dict[str, Any]], timeout_cell: float, timeout: float, paths: list[str], nproc: bool
+) -> bytes:
+    """The worker's first line: what to call (never what is expected), its limits, its import path.
+
+    The process limit is set only inside the sandbox's user namespace, where it counts the worker's
+    own processes; outside, it would count every process of the grading user.
+    """
+    limits = {**LIMITS, "cpu_seconds": int(timeout) + 2}
+    if not nproc:
+        limits.pop("processes")
+    job = {
+        "calls": [{k: v for k, v in item.items() if k not in ("expected", "call_args")} for item in plan],
+        "timeout_cell": timeout_cell,
+        "max_size": 10_000,
+        "forbidden": {q.qid: list(q.forbidden) for q in exercise.questions if q.forbidden},
+        "path": paths,
+        "limits": limits,
+        "filename": f"{exercise.name}.ipynb",
+    }
+    return json.dumps(job).encode() + b"\n"
 
 
-def _drain(stream: Any, cap: int, sink: list[bytes], overflow: list[bool]) -> None:
-    kept = 0
-    while True:
-        chunk = stream.read(65536)
-        if not chunk:
-            return
-        if kept < cap:
-            sink.append(chunk[: cap - kept])
-            kept += len(sink[-1])
-        if kept >= cap:
-            overflow[0] = True
-
-
-def _run_child(
-    cells: list[str],
-    calls: list[dict[str, Any]],
-    workdir: str,
+def _run_worker(
+    data: bytes,
+    exercise: Exercise,
+    plan: list[dict[str, Any]],
+    stage: Stage,
+    box: Sandbox,
     timeout_cell: float,
-    timeout_total: float,
-    forbidden: dict[str, list[str]] | None = None,
-) -> tuple[list[dict[str, Any]], bool, int | None, bool]:
-    """Run the worker; return (events, timed_out, returncode, output_overflow)."""
-    job = json.dumps(
-        {"cells": cells, "calls": calls, "timeout_cell": timeout_cell, "max_size": 10_000, "forbidden": forbidden or {}}
-    )
-    kwargs: dict[str, Any] = {}
-    if os.name == "posix":
-        kwargs.update(start_new_session=True)  # its own process group, killed as a whole
-    proc = subprocess.Popen(
-        [sys.executable, "-I", "-c", CHILD_BOOTSTRAP],
-        stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.DEVNULL,
-        cwd=workdir,
-        env=_child_env(workdir),
-        **kwargs,
-    )
-    sink: list[bytes] = []
-    overflow = [False]
-    reader = threading.Thread(target=_drain, args=(proc.stdout, MAX_OUTPUT_BYTES, sink, overflow), daemon=True)
-    reader.start()
-    try:
-        assert proc.stdin is not None
-        proc.stdin.write(job.encode())
-        proc.stdin.close()
-    except (BrokenPipeError, OSError):
-        pass
-    timed_out = False
-    try:
-        proc.wait(timeout=timeout_total)
-    except subprocess.TimeoutExpired:
-        timed_out = True
-    if timed_out or os.name == "posix":
-        # kill the whole session: a student's code may have started children of its own
-        try:
-            os.killpg(proc.pid, 9) if os.name == "posix" else proc.kill()
-        except (ProcessLookupError, PermissionError, OSError):
-            pass
-        if timed_out:
-            proc.wait()
-    reader.join(timeout=5)
-    if not reader.is_alive() and proc.stdout is not None:
-        proc.stdout.close()
-    events = []
-    for line in b"".join(sink).splitlines():
-        try:
-            event = json.loads(line)
-        except (ValueError, UnicodeDecodeError):
-            continue
-        if isinstance(event, dict):
-            events.append(event)
-    return events, timed_out, proc.returncode, overflow[0]
+    timeout: float,
+    private: Sequence[Path],
+) -> child.ChildResult:
+    """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one."""
+
+    def launch(work: str | None) -> child.ChildResult:
+        lib, _, seen_work = box.paths(stage.libs[exercise.name], stage.bin, Path(work or "."))
+        payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.sites], box.kind == "bwrap") + data
+        cmd = box.command(stage.libs[exercise.name], stage.bin, private)
+        return child.run(cmd, payload, cwd=work, env=child_env(seen_work), timeout=timeout)
+
+    if box.kind == "bwrap":
+        return launch(None)
+    with tempfile.TemporaryDirectory(prefix="puma-grade-", ignore_cleanup_errors=True) as work:
+        return launch(work)
 
 
-def _judge(q: Question, event: dict[str, Any] | None, expected: Any, args: tuple[Any, ...]) -> Verdict:
-    """The verdict on the child's answer to one call (its event): right, or the reason for the student."""
-    if event is None:
-        return Verdict("no answer came back (the notebook stopped before this call)")
-    if "error" in event:
-        return Verdict(str(event["error"])[:300])
-    if "value" not in event:
-        return Verdict("no value came back")
-    try:
-        return q.judge(event["value"], expected, args)
-    except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the grading
-        return Verdict(f"could not compare the value ({type(exc).__name__})")
+def _grade_data(
+    data: bytes,
+    exercise: Exercise,
+    student: str,
+    plan: list[dict[str, Any]],
+    stage: Stage,
+    box: Sandbox,
+    timeout_cell: float,
+    timeout: float,
+    stop_note: str,
+    private: Sequence[Path] = (),
+) -> NotebookResult:
+    start = time.perf_counter()
+    result = NotebookResult.blank(student, exercise)
+    outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+    if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
+        # the worker never started (the sandbox could not be set up, say): not the student's doing; once more
+        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+        if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
+            said = outcome.stderr.decode("utf-8", "replace").strip().splitlines()
+            result.status = "grader-error"
+            result.notes.append(
+                f"the grading process could not start (exit code {outcome.returncode})"
+                + (f": {quoted(said[-1])}" if said else "")
+            )
+            result.seconds = time.perf_counter() - start
+            return result
+    events.apply(result, exercise, plan, outcome, timeout_cell=timeout_cell, stop_note=stop_note)
+    result.seconds = time.perf_counter() - start
+    return result
+
+
+def _stop_note(seconds: float, by_student: bool) -> str:
+    if by_student:
+        return (
+            f"stopped after {seconds:g} s: the total time for all of this student's notebooks ran out; "
+            "answers that came back before that were graded"
+        )
+    return (
+        f"the notebook ran longer than {seconds:g} s in total and was stopped; "
+        "answers that came back before that were graded"
+    )
 
 
 def grade_notebook(
@@ -242,70 +225,65 @@ def grade_notebook(
     timeout_total: float = 60.0,
     plan: list[dict[str, Any]] | None = None,
     data: bytes | None = None,
+    *,
+    sandbox: str | Sandbox = "none",
 ) -> NotebookResult:
     """Grade one submitted notebook (``path`` None or absent: status "missing").
 
     ``plan`` is the exercise's :func:`make_plan` for ``seed`` (computed here when None). The file is
-    read once (or ``data`` holds its bytes, read earlier); the child gets its code cells through
-    a pipe and runs in a fresh temporary directory holding a copy, so the submission is never
-    modified and nothing written to disk while grading can change what is graded.
+    read once, without following a link (or ``data`` holds its bytes, read earlier); the worker
+    gets it through a pipe and runs in a fresh folder, so the submission is never modified and
+    nothing written to disk while grading can change what is graded. ``sandbox`` is "none" (the
+    default here: ``puma-course check`` runs a student's own notebook), "auto" or "bwrap".
     """
-    start = time.perf_counter()
-    if path is None or (data is None and not Path(path).is_file()):
-        return NotebookResult.blank(student, exercise, "missing", f"no file {exercise.name}.ipynb was submitted")
-    path = Path(path)
+    if data is None:
+        if path is None:
+            return NotebookResult.blank(student, exercise, "missing", f"no file {exercise.name}.ipynb was submitted")
+        nb = read_path(path)
+        if nb.state != "read" or nb.data is None:
+            return NotebookResult.blank(student, exercise, nb.state, nb.note)
+        data = nb.data
+    box = _box(sandbox)
+    calls = make_plan(exercise, seed) if plan is None else plan
+    with Stage([exercise]) as stage:
+        return _grade_data(
+            data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
+        )
+
+
+@contextlib.contextmanager
+def _undumpable(on: bool) -> Iterator[None]:
+    """Linux, without the OS sandbox: make the grader's memory unreachable through /proc and ptrace for its workers."""
+    libc = None
+    if on and sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(4, 0, 0, 0, 0)  # PR_SET_DUMPABLE = 4
+        except (OSError, AttributeError):
+            libc = None
     try:
-        if data is None:
-            data = _load(path)
-        cells = _parse_cells(data)
-    except (ValueError, OSError) as exc:
-        return NotebookResult.blank(student, exercise, "malformed", str(exc))
-    result = NotebookResult.blank(student, exercise)
-    calls_plan = make_plan(exercise, seed) if plan is None else plan
-    # the child gets what to call, never what is expected
-    child_calls = [{k: v for k, v in item.items() if k not in ("expected", "call_args")} for item in calls_plan]
-    with tempfile.TemporaryDirectory(prefix="puma-grade-") as workdir:
-        (Path(workdir) / path.name).write_bytes(data)
-        forbidden = {q.qid: list(q.forbidden) for q in exercise.questions if q.forbidden}
-        events, timed_out, returncode, overflow = _run_child(
-            cells, child_calls, workdir, timeout_cell, timeout_total, forbidden
-        )
-    done = any(e.get("kind") == "done" for e in events)
-    for e in events:
-        if e.get("kind") == "cell" and e.get("status") in ("error", "timeout"):
-            result.notes.append(f"code cell {int(e.get('index', -1)) + 1}: {str(e.get('error', ''))[:300]}")
-    got: dict[tuple[str, Any], dict[str, Any]] = {}
-    for e in events:
-        if e.get("kind") == "call":
-            got.setdefault((str(e.get("qid")), e.get("case")), e)
-    outcomes: dict[str, list[tuple[str, str | None]]] = {q.qid: [] for q in exercise.questions}
-    for item in calls_plan:
-        q = exercise.question(item["qid"])
-        kind = "public case" if item["case"] < len(q.public) else "hidden case"
-        verdict = _judge(q, got.get((q.qid, item["case"])), item["expected"], item.get("call_args", ()))
-        outcomes[q.qid].append((f"{kind} {item['case'] + 1}", verdict.reason))
-        if verdict.mistake is not None:
-            result.mistakes.setdefault(q.qid, []).append(verdict.mistake)
-    for q in exercise.questions:
-        result.scores[q.qid], result.question_notes[q.qid] = score_question(q.points, outcomes[q.qid])
-    if timed_out:
-        result.status = "timeout"
-        result.notes.append(
-            f"the notebook ran longer than {timeout_total:g} s in total and was stopped; "
-            "answers that came back before that were graded"
-        )
-    elif not done:
-        result.status = "crashed"
-        result.notes.append(
-            f"the notebook's process ended early (exit code {returncode}); "
-            "answers that came back before that were graded"
-        )
-    elif any(e.get("kind") == "cell" and e.get("status") != "ok" for e in events):
-        result.status = "cell-error"
-    if overflow:
-        result.notes.append("the notebook wrote too much output; the rest was discarded")
-    result.seconds = time.perf_counter() - start
-    return result
+        yield
+    finally:
+        if libc is not None:
+            libc.prctl(4, 1, 0, 0, 0)
+
+
+def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[str, float]) -> None:
+    if not submissions.is_dir():
+        raise ValueError(f"submissions: expected a folder with one sub-folder per student, got {str(submissions)!r}")
+    for name in names:
+        if name not in EXERCISES:
+            raise ValueError(f"exercises: expected names among {sorted(EXERCISES)}, got {name!r}")
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise ValueError(f"jobs: expected a whole number of notebooks at a time, at least 1, got {jobs!r}")
+    for key, value in times.items():
+        _positive(key, value)
+
+
+def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
+    return NotebookResult.blank(student, ex, state if state != "read" else "grader-error", note)
 
 
 def grade(
@@ -318,95 +296,102 @@ def grade(
     seed: int | None = None,
     exercises: Sequence[str] | None = None,
     progress: Callable[[NotebookResult], None] | None = None,
+    *,
+    sandbox: str | Sandbox = "auto",
+    timeout_student: float = 120.0,
+    private: Sequence[str | os.PathLike[str]] = (),
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
-    Writes ``output`` (CSV: student, exercise, score, max_score, one column per
-    question id, status, notes) and, if ``feedback`` is given, one Markdown file
-    per student. Returns the results (sorted by student, exercise).
+    Writes ``output`` (CSV: see :func:`~puma_course.grading.report.write_csv`) and, if ``feedback``
+    is given, one Markdown file per student. ``sandbox`` is "auto" (bubblewrap where it runs, else
+    none with a :class:`SandboxWarning`), "bwrap", "none", or a :class:`~.sandbox.Sandbox` chosen
+    earlier; ``timeout_student`` caps the time of all of a student's notebooks together;
+    ``private`` names more folders the sandbox must hide (the course's ``solutions/``, say).
+    Returns the results (sorted by student, exercise).
     """
     sub_dir = Path(submissions)
-    if not sub_dir.is_dir():
-        raise ValueError(f"submissions: expected a folder with one sub-folder per student, got {str(sub_dir)!r}")
     names = list(exercises) if exercises else list(EXERCISES)
-    for name in names:
-        if name not in EXERCISES:
-            raise ValueError(f"exercises: expected names among {sorted(EXERCISES)}, got {name!r}")
+    times = {"timeout_cell": timeout_cell, "timeout_total": timeout_total, "timeout_student": timeout_student}
+    _check_args(sub_dir, names, jobs, times)
     seed = secrets.randbits(31) if seed is None else int(seed)
-    students = sorted(p.name for p in sub_dir.iterdir() if p.is_dir() and not p.name.startswith("."))
+    box = _box(sandbox)
+    if box.kind != "bwrap":
+        warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
+    try:
+        students = scan(sub_dir)
+    except OSError as exc:
+        raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     plans = {name: make_plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
     package_before = _package_digest()
-    # read every file into memory before any student code runs: a student's process
-    # cannot alter what is graded for anyone, itself included
-    tasks = []
-    for student in students:
-        for name in names:
-            path = sub_dir / student / f"{name}.ipynb"
-            data: bytes | Exception | None = None
-            if path.is_file():
+    hidden = [_PACKAGE_DIR, PACKAGE_PARENT / "solutions", sub_dir, Path(output), *(Path(p) for p in private)]
+    hidden += [Path(feedback)] if feedback is not None else []
+    with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
+        hidden.append(stage.root)
+        pre: dict[str, StudentFiles] = {}
+        if box.kind != "bwrap":
+            # no sandbox: read what fits in memory before any student code runs, so that a student's
+            # process cannot alter what is graded for a classmate it runs before
+            used = 0
+            for s in students:
+                files = read_student(sub_dir, s, names)
+                used += sum(len(nb.data or b"") for nb in files.notebooks.values())
+                if used > PRE_READ_BYTES:
+                    break
+                pre[s.raw] = files
+
+        def work(s: Any) -> list[NotebookResult]:
+            files = pre.pop(s.raw, None) or read_student(sub_dir, s, names)
+            end = time.monotonic() + timeout_student
+            out = []
+            for name in names:
+                ex, nb = EXERCISES[name], files.notebooks[name]
                 try:
-                    data = _load(path)
-                except (ValueError, OSError) as exc:
-                    data = exc
-            tasks.append((student, name, path, data))
+                    left = end - time.monotonic()
+                    if nb.state != "read" or nb.data is None:
+                        res = _blank(s.name, ex, nb.state, nb.note)
+                        if nb.state == "missing" and files.others:
+                            res.notes.append(
+                                f"notebooks found under other names: {', '.join(files.others)} "
+                                f"(name the file exactly {name}.ipynb)"
+                            )
+                    elif left < 0.5:
+                        note = (
+                            f"not run: this student's notebooks already used their total time ({timeout_student:g} s)"
+                        )
+                        res = _blank(s.name, ex, "timeout", note)
+                    else:
+                        limit = min(timeout_total, left)
+                        note = _stop_note(limit, limit < timeout_total)
+                        res = _grade_data(
+                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden
+                        )
+                except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
+                    why = f"{type(exc).__name__}: {exc}"[:300]
+                    res = _blank(s.name, ex, "grader-error", f"the grader failed on this notebook: {why}")
+                nb.data = None
+                out.append(res)
+                if progress is not None:
+                    progress(res)
+            return out
 
-    def work(task: tuple[str, str, Path, bytes | Exception | None]) -> NotebookResult:
-        student, name, path, data = task
-        ex = EXERCISES[name]
-        try:
-            if isinstance(data, Exception):
-                res = NotebookResult.blank(student, ex, "malformed", str(data))
-            else:
-                res = grade_notebook(
-                    path if data is not None else None,
-                    ex,
-                    student,
-                    seed,
-                    timeout_cell,
-                    timeout_total,
-                    plans[name],
-                    data=data,
-                )
-        except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
-            res = NotebookResult.blank(
-                student, ex, "grader-error", f"the grader failed on this notebook: {type(exc).__name__}: {exc}"
-            )
-        if progress is not None:
-            progress(res)
-        return res
-
-    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, int(jobs))) as pool:
-        results = list(pool.map(work, tasks))
+        with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+            results = [r for batch in pool.map(work, students) for r in batch]
+        changed = [f"grading stage: {p}" for p in stage.changed()]
     results.sort(key=lambda r: (r.student, r.exercise))
     package_after = _package_digest()
-    changed = sorted(
+    changed += sorted(
         k for k in set(package_before) | set(package_after) if package_before.get(k) != package_after.get(k)
     )
     if changed:
         warnings.warn(
             f"the puma_course package files changed while grading ({', '.join(changed)}); a submission "
             "may have tampered with them, so the grades of notebooks graded afterwards are not reliable. "
-            "Grade in a container or as a user who cannot write the package.",
+            "Grade with the sandbox, as a user who cannot write the package.",
             GradingIntegrityWarning,
             stacklevel=2,
         )
-    write_csv(output, results, names)
-    for r in results:
-        if r.status == "missing":
-            others = sorted(p.name for p in (sub_dir / r.student).glob("*.ipynb") if p.stem not in EXERCISES)
-            if others:
-                r.notes.append(
-                    f"notebooks found under other names: {', '.join(others)} (name the file exactly {r.exercise}.ipynb)"
-                )
+    write_csv(output, results, names, seed=seed, sandbox=box.label)
     if feedback is not None:
-        fb_dir = Path(feedback)
-        fb_dir.mkdir(parents=True, exist_ok=True)
-        used: set[str] = set()
-        for student in students:
-            mine = [r for r in results if r.student == student]
-            stem = safe_name(student)
-            while stem in used:  # two folder names that sanitise alike
-                stem += "_"
-            used.add(stem)
-            (fb_dir / f"{stem}.md").write_text(feedback_markdown(student, mine, seed), encoding="utf-8")
+        write_feedback(feedback, results, seed, unsandboxed=box.reason if box.kind != "bwrap" else None)
     return results

@@ -1,9 +1,10 @@
 """Grading is robust and fair: each crafted submission in tests/fixtures/submissions gets what it earned.
 
 One grading run over a copy of the fixture class (17 students, exercise 1 only) with short
-limits (3 s per cell and per call, 8 s per notebook), plus a student built here who tampers
-with files whose paths it is given. Expected scores are worked out from what each crafted
-notebook does (see tests/fixtures/submissions/*/ex01_rotations.ipynb).
+limits (3 s per cell and per call, 8 s per notebook), under the sandbox the machine has ("auto"),
+plus a student built here who tampers with files whose paths it is given. Expected scores are
+worked out from what each crafted notebook does (see tests/fixtures/submissions/*/ex01_rotations.ipynb).
+The many more hostile submissions of tests/fixtures/hostile/ are graded by the test_hostile_* files.
 """
 
 from __future__ import annotations
@@ -11,12 +12,13 @@ from __future__ import annotations
 import csv
 import hashlib
 import shutil
+import warnings
 from pathlib import Path
 
 import nbformat
 import pytest
 
-from puma_course.grading import EXERCISES, grade
+from puma_course.grading import EXERCISES, SandboxWarning, grade
 from tests.support import ROOT
 
 FIXTURES = ROOT / "tests" / "fixtures" / "submissions"
@@ -33,10 +35,10 @@ EXPECTED = {
     "huge_print": (10, "ok", {}),
     "missing_function": (7, "ok", {"q2": 0}),
     "wrong_type": (2, "ok", {"q4": 2}),
-    "cheat_monkeypatch": (0, "ok", {}),
+    "cheat_monkeypatch": (0, "cell-error", {}),  # the question bank is not there to patch
     "exit_sys": (10, "cell-error", {}),
     "exit_os": (0, "crashed", {}),
-    "answer_key": (2, "ok", {"q4": 2}),
+    "answer_key": (2, "cell-error", {"q4": 2}),  # the package's answers are not there to import
     "read_expected": (2, "ok", {"q1": 0, "q4": 2}),
     "tamper_files": (10, "ok", {}),
     "memory_hog": (10, "cell-error", {}),
@@ -78,7 +80,9 @@ def graded(tmp_path_factory):
     nbformat.write(tamper, own_nb)
     before = _digest(subs)
     fb = root / "feedback"
-    results = grade(subs, out, feedback=fb, jobs=2, timeout_cell=3, timeout_total=8, seed=11, exercises=[EX])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SandboxWarning)
+        results = grade(subs, out, feedback=fb, jobs=2, timeout_cell=3, timeout_total=8, seed=11, exercises=[EX])
     with open(out, newline="", encoding="utf-8") as fh:
         rows = {row["student"]: row for row in csv.DictReader(fh)}
     return {
@@ -88,6 +92,7 @@ def graded(tmp_path_factory):
         "subs": subs,
         "feedback": fb,
         "out": out,
+        "sandbox": rows["good"]["sandbox"],
     }
 
 
@@ -115,13 +120,24 @@ def test_the_grades_file_is_written_by_the_grader_last(graded):
     assert "1000" not in text
 
 
-def test_the_tamperer_damaged_only_files_on_disk_not_grades(graded):
-    # the tamperer did overwrite files it could reach on disk (the grader is no OS sandbox) ...
+def test_the_tamperer_damaged_no_grade_and_in_the_sandbox_no_file(graded):
     after = _digest(graded["subs"])
     changed = {k for k in after if after[k] != graded["before"].get(k)}
-    assert changed <= {f"good/{EX}.ipynb", f"tamper_files/{EX}.ipynb"}
+    if graded["sandbox"] == "bwrap":
+        assert changed == set()  # nothing outside the worker's folder is writable, or even visible
+    else:
+        # without the sandbox the tamperer overwrites what it can reach on disk ...
+        assert changed <= {f"good/{EX}.ipynb", f"tamper_files/{EX}.ipynb"}
     # ... but every notebook was read before any student code ran, so "good" still has full marks
     assert float(graded["rows"]["good"]["score"]) == 10
+
+
+def test_the_csv_records_the_sandbox_and_the_seed(graded):
+    rows = graded["rows"].values()
+    assert {r["sandbox"] for r in rows} == {graded["sandbox"]} and graded["sandbox"] in ("bwrap", "none")
+    assert {r["seed"] for r in rows} == {"11"} and {r["bonus"] for r in rows} == {"0"}
+    warned = "graded without the operating-system sandbox" in (graded["feedback"] / "good.md").read_text("utf-8")
+    assert warned == (graded["sandbox"] == "none")
 
 
 def test_other_submissions_are_never_modified(graded):
@@ -138,7 +154,7 @@ def test_feedback_explains_what_passed_and_failed(graded):
     assert "no function named rodrigues_formula() was defined" in text
     assert "7 / 10" in text
     text = (fb / "answer_key.md").read_text(encoding="utf-8")
-    assert "course package's answer" in text
+    assert "puma_course.rodrigues is not available in this exercise" in text
     text = (fb / "endless_loop.md").read_text(encoding="utf-8")
     assert "ran longer than 3 s" in text
     text = (fb / "malformed_json.md").read_text(encoding="utf-8")

@@ -7,7 +7,8 @@ import inspect
 
 from puma_course import cli
 from puma_course.grading import EXERCISES, NotebookResult, check, format_check_report
-from puma_course.grading.report import feedback_markdown, format_question, verdict, write_csv
+from puma_course.grading.report import feedback_markdown, format_question, verdict, write_csv, write_feedback
+from puma_course.grading.text import quoted
 
 EX = EXERCISES["ex01_rotations"]
 
@@ -85,9 +86,74 @@ def test_check_prints_through_the_same_formatter(capsys, right_rotation):
 
 def test_csv_columns(tmp_path):
     out = tmp_path / "sub" / "grades.csv"
-    write_csv(out, [_result(), _result("missing")], [EX.name])
+    write_csv(out, [_result(), _result("missing")], [EX.name], seed=12, sandbox="bwrap")
     with open(out, newline="", encoding="utf-8") as fh:
         rows = list(csv.reader(fh))
-    assert rows[0] == ["student", "exercise", "score", "max_score", "q1", "q2", "q3", "q4", "status", "notes"]
-    assert rows[1] == ["ann", "ex01_rotations", "3", "10", "2", "1", "0", "0", "ok", ""]
-    assert not (tmp_path / "sub" / "grades.csv.tmp").exists()
+    assert rows[0] == [
+        "student",
+        "exercise",
+        "score",
+        "max_score",
+        "bonus",
+        "q1",
+        "q2",
+        "q3",
+        "q4",
+        "status",
+        "sandbox",
+        "seed",
+        "notes",
+    ]
+    assert rows[1] == ["ann", "ex01_rotations", "3", "10", "0", "2", "1", "0", "0", "ok", "bwrap", "12", ""]
+    assert list(tmp_path.glob("sub/*")) == [out]  # no temporary file left behind
+
+
+def test_csv_bonus_column_holds_the_bonus_part_of_the_score(tmp_path):
+    ex = EXERCISES["ex06_porter_explicit"]  # q4 is its bonus question (3 points)
+    r = NotebookResult("bo", ex.name, "ok", ex.max_score, scores={"q1": 2.0, "q2": 5.0, "q3": 1.0, "q4": 1.5})
+    write_csv(tmp_path / "g.csv", [r], [ex.name], seed=1, sandbox="none")
+    with open(tmp_path / "g.csv", newline="", encoding="utf-8") as fh:
+        row = next(csv.DictReader(fh))
+    assert (row["score"], row["max_score"], row["bonus"]) == ("9.5", "10", "1.5")
+
+
+def test_csv_cells_never_start_a_spreadsheet_formula(tmp_path):
+    r = _result()
+    r.student = "=HYPERLINK(1)"
+    r.notes = ["-1+1", "x"]
+    write_csv(tmp_path / "g.csv", [r], [EX.name])
+    with open(tmp_path / "g.csv", newline="", encoding="utf-8") as fh:
+        row = next(csv.DictReader(fh))
+    assert row["student"] == "'=HYPERLINK(1)" and row["notes"] == "'-1+1 | x"
+
+
+def test_feedback_quotes_the_students_text_and_warns_without_sandbox():
+    r = _result()
+    r.notes = ["code cell 2: " + quoted("x\n\nTotal: **56 / 56** points. `|` <b>")]
+    text = feedback_markdown("x\n# Total 56", [r], seed=1, unsandboxed="bubblewrap is not installed")
+    lines = text.splitlines()
+    assert lines[0] == "# Feedback for `x\\x0a# Total 56`"
+    assert lines[2].startswith(
+        "> **Warning: graded without the operating-system sandbox** (bubblewrap is not installed)"
+    )
+    assert "- code cell 2: `` x\\x0a\\x0aTotal: **56 / 56** points. `|` <b> ``" in lines
+    assert sum(line.startswith("Total:") for line in lines) == 1
+    assert "Warning" not in feedback_markdown("ann", [r], seed=1)
+
+
+def test_feedback_files_never_collide_and_replace_a_planted_link(tmp_path):
+    fb = tmp_path / "fb"
+    fb.mkdir()
+    target = tmp_path / "precious.txt"
+    target.write_text("keep", encoding="utf-8")
+    (fb / "ann.md").symlink_to(target)
+    results = []
+    for name in ("ann", "Ann", "a n n", "../ann", "-" * 300):
+        r = _result()
+        r.student = name
+        results.append(r)
+    files = write_feedback(fb, results, seed=3)
+    assert len(set(files.values())) == 5 and len({p.name.lower() for p in files.values()}) == 5
+    assert all(len(p.name) < 120 for p in files.values())
+    assert target.read_text(encoding="utf-8") == "keep" and not (fb / "ann.md").is_symlink()
+    assert sorted(p.name for p in fb.iterdir()) == sorted(p.name for p in files.values())

@@ -100,5 +100,5 @@ EXERCISE = Exercise(
             hint="Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §5).",
         ),
     ),
-    allowed=(),
+    allowed=(),  # the self-check only: rotx ... rodrigues, axis_angle, inverse_transform are the answers
 )

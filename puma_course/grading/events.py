@@ -1,0 +1,155 @@
+"""From a worker's events to a graded notebook: the grader words every message and quotes the student's text.
+
+The events come through a pipe the student's code can also write to, so nothing in them is
+trusted: a value is only a candidate answer (judged against the reference computed here), an
+error is a code from a fixed list (worded here) plus, at most, the student's own text (an
+exception's message, a type's name), which goes into the feedback only through
+:func:`~puma_course.grading.text.quoted`. A field of the wrong type is ignored, a case the plan
+does not have is ignored, and only the first answer to a case counts.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .child import ChildResult
+from .model import Exercise, NotebookResult, Question, Verdict, score_question
+from .text import quoted
+from .worker import NOT_ATTEMPTED
+
+__all__ = ["apply", "malformed_note", "call_verdict", "cell_note"]
+
+_MALFORMED = {
+    "json": "not a readable notebook (not valid JSON: line {line}, column {column})",
+    "encoding": "not a readable notebook (not UTF-8 text)",
+    "nesting": "not a readable notebook (its JSON is nested too deeply)",
+    "no-cells": "not a readable notebook (no list of cells)",
+    "cell": "not a readable notebook (a code cell's source is not text)",
+    "too-much-code": "the notebook holds more code than the grader runs (5,000,000 characters): not run",
+}
+
+
+def _int(value: Any) -> int:
+    return value if isinstance(value, int) and not isinstance(value, bool) and 0 <= value < 10**9 else 0
+
+
+def _text(value: Any) -> str:
+    return value if isinstance(value, str) else ""
+
+
+def malformed_note(event: dict[str, Any]) -> str:
+    """The note for a notebook the worker could not read (only its reason code and position are used).
+
+    >>> malformed_note({"code": "json", "line": 1, "column": 87})
+    'not a readable notebook (not valid JSON: line 1, column 87)'
+    """
+    template = _MALFORMED.get(_text(event.get("code")), "not a readable notebook")
+    return template.format(line=_int(event.get("line")), column=_int(event.get("column")))
+
+
+def _where(event: dict[str, Any]) -> str:
+    line = _int(event.get("line"))
+    return f" (line {line} of its cell)" if line else ""
+
+
+def call_verdict(
+    q: Question, event: dict[str, Any] | None, expected: Any, args: tuple[Any, ...], limits: str
+) -> Verdict:
+    """The verdict on the worker's answer to one call: right, or the reason (the student's text quoted).
+
+    ``limits`` is the per-call time limit as the student reads it ("10 s").
+    """
+    if event is None:
+        return Verdict("no answer came back (the notebook stopped before this call)")
+    error = event.get("error")
+    if error is not None:
+        detail = _text(event.get("detail"))
+        reasons = {
+            "not-attempted": f"{NOT_ATTEMPTED} (NotImplementedError)",
+            "no-function": f"no function named {q.function}() was defined",
+            "not-callable": f"{q.function} is a {quoted(detail, 60)}, not a function",
+            "skipped": "skipped: an earlier case of this question ran out of time",
+            "timeout": f"the call ran longer than {limits}",
+            "convert-timeout": f"converting the returned value to numbers took longer than {limits}",
+            "raised": f"raised {quoted(detail)}{_where(event)}",
+            "not-numbers": f"returned a {quoted(detail, 60)}, which is not an array of numbers",
+            "too-many": f"returned {_int(event.get('size'))} numbers, more than the 10000 allowed",
+        }
+        if error == "answer-key":
+            spec = detail if detail in q.forbidden else ""
+            name = spec.replace(":", ".") if spec else "a function of the course package"
+            return Verdict(f"used the course package's answer ({name}) instead of your own code")
+        return Verdict(reasons.get(_text(error), "the call failed"))
+    if "value" not in event:
+        return Verdict("no value came back")
+    try:
+        return q.judge(event["value"], expected, args)
+    except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the grading
+        return Verdict(f"could not compare the value ({type(exc).__name__})")
+
+
+def cell_note(event: dict[str, Any], limits: str) -> str | None:
+    """The note for a code cell that raised or ran out of time (None for one that ran)."""
+    index = _int(event.get("index")) + 1
+    status = event.get("status")
+    if status == "timeout":
+        return f"code cell {index}: ran longer than {limits}"
+    if status == "error":
+        return f"code cell {index}: {quoted(_text(event.get('detail')))}{_where(event)}"
+    return None
+
+
+def apply(
+    result: NotebookResult,
+    exercise: Exercise,
+    plan: list[dict[str, Any]],
+    child: ChildResult,
+    *,
+    timeout_cell: float,
+    stop_note: str,
+) -> None:
+    """Score ``result`` from the worker's events (``stop_note``: why the notebook was stopped, if it timed out)."""
+    limits = f"{timeout_cell:g} s"
+    malformed = next((e for e in child.events if e.get("kind") == "malformed"), None)
+    if malformed is not None and not any(e.get("kind") in ("cell", "call") for e in child.events):
+        result.status = "malformed"
+        result.notes.append(malformed_note(malformed))
+        return
+    cells = [e for e in child.events if e.get("kind") == "cell"]
+    for e in cells[:20]:
+        note = cell_note(e, limits)
+        if note is not None:
+            result.notes.append(note)
+    bad = [e for e in cells[20:] if cell_note(e, limits) is not None]
+    if bad:
+        result.notes.append(f"{len(bad)} more code cells failed")
+    got: dict[tuple[str, int], dict[str, Any]] = {}
+    for e in child.events:
+        if e.get("kind") == "call" and isinstance(e.get("qid"), str) and isinstance(e.get("case"), int):
+            got.setdefault((e["qid"], e["case"]), e)
+    outcomes: dict[str, list[tuple[str, str | None]]] = {q.qid: [] for q in exercise.questions}
+    for item in plan:
+        q = exercise.question(item["qid"])
+        kind = "public case" if item["case"] < len(q.public) else "hidden case"
+        verdict = call_verdict(q, got.get((q.qid, item["case"])), item["expected"], item.get("call_args", ()), limits)
+        outcomes[q.qid].append((f"{kind} {item['case'] + 1}", verdict.reason))
+        if verdict.mistake is not None:
+            result.mistakes.setdefault(q.qid, []).append(verdict.mistake)
+    for q in exercise.questions:
+        result.scores[q.qid], result.question_notes[q.qid] = score_question(q.points, outcomes[q.qid])
+    if child.timed_out:
+        result.status = "timeout"
+        result.notes.append(stop_note)
+    elif child.overflow:
+        result.status = "crashed"
+        result.notes.append("the notebook sent too much output to the grader and was stopped")
+    elif not child.done:
+        result.status = "crashed"
+        code = child.returncode
+        result.notes.append(
+            "the notebook's process ended early"
+            + (f" (exit code {code})" if isinstance(code, int) else "")
+            + "; answers that came back before that were graded"
+        )
+    elif any(e.get("status") in ("error", "timeout") for e in cells):
+        result.status = "cell-error"

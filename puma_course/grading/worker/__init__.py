@@ -1,0 +1,229 @@
+"""The child side of grading: parse one notebook, run its code cells, call the student's functions, report plain data.
+
+The grader (:mod:`puma_course.grading.runner`) copies this folder out of the package and runs it
+in a fresh ``python -I -S -B`` process (under the OS sandbox when there is one), so it needs the
+standard library only (numpy once student code runs) and imports nothing from the course package:
+the ``puma_course`` a student's cell imports is the student-side copy named in the job
+(:mod:`puma_course.grading.student`). Its standard input holds one JSON line, the job::
+
+    {"calls": [{"qid", "case", "function", "args"}, ...], "timeout_cell": s, "max_size": n,
+     "forbidden": {qid: ["module:attr", ...]}, "path": [folder, ...], "limits": {...}, "filename": name}
+
+followed by the submitted notebook's bytes, which it parses here (never in the grader's process):
+its code cells, with hidden-test blocks removed as the release removes them (they check a
+solution against the package, which the student side does not have). It executes the cells in
+order in one namespace (a cell that raises or runs past ``timeout_cell`` is recorded and the next
+cell still runs), then calls each requested function on the grader's inputs and streams JSON lines
+back on the original stdout, one event per line::
+
+    {"kind": "ready"}   (first, once the job is read: the worker started)
+    {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
+    {"kind": "cell", "index": i, "status": "error" | "timeout", "detail": "...", "line": n}   (cells that ran: nothing)
+    {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
+    {"kind": "done"}
+
+Only numbers travel back (at most ``max_size`` of them), and errors travel as a code plus the
+student's own text (``detail``); the grader words them, quotes the student's text and compares
+the numbers with the package's reference in its own process, so nothing the student's code does
+here can change how values are judged. The student's prints go to a small capped buffer, and the
+OS-level stdout/stderr are pointed at /dev/null so that a flood of output costs nothing.
+
+"Forbidden" package functions (a question's answer key, e.g. ``puma_course.transforms:rodrigues``
+for "write Rodrigues' formula") are absent from the student side unless the exercise allows them;
+an allowed one is wrapped before any student code runs, and a call to it *while that question's
+function is being graded* fails the case: a second line of defence, not the first.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import sys
+from typing import Any
+
+from .guard import (
+    CappedWriter,
+    describe,
+    forbidden_codes,
+    guarded_call,
+    install_tripwires,
+    limit_resources,
+    resolve,
+    type_name,
+)
+from .notebook import NotebookError, notebook_cells, strip_hidden, strip_magics
+
+__all__ = [
+    "main",
+    "strip_magics",
+    "strip_hidden",
+    "notebook_cells",
+    "NotebookError",
+    "resolve",
+    "forbidden_codes",
+    "guarded_call",
+    "limit_resources",
+    "NOT_ATTEMPTED",
+]
+
+#: The reason given for a case whose function still raises NotImplementedError (the released stub).
+NOT_ATTEMPTED = "not attempted yet"
+
+
+class CellTimeout(BaseException):
+    """Raised by the alarm when a cell or a call runs past its time limit."""
+
+
+def _ready(job: dict[str, Any]) -> None:
+    """Set the import path to the student side first, then the standard library and site-packages (no .pth files)."""
+    stdlib = [p for p in sys.path if p]
+    sys.path[:] = [str(p) for p in job.get("path", [])[:1]] + stdlib + [str(p) for p in job.get("path", [])[1:]]
+    sys.argv = ["notebook"]
+    sys.dont_write_bytecode = True
+
+
+def main() -> None:
+    """Run one job read from stdin (see the module docstring)."""
+    # Keep private references before any student code can monkeypatch them.
+    dumps, write = json.dumps, os.write
+    out_fd = os.dup(1)
+
+    def emit(event: dict[str, Any]) -> None:
+        data = (dumps(event) + "\n").encode()
+        view = memoryview(data)
+        while view:
+            n = write(out_fd, view)
+            view = view[n:]
+
+    header, _, notebook = sys.stdin.buffer.read().partition(b"\n")
+    emit({"kind": "ready"})  # the worker started: what follows is the notebook's doing
+    job = json.loads(header)
+    limit_resources(job.get("limits"))
+    _ready(job)
+    try:
+        sources = notebook_cells(notebook)
+    except NotebookError as exc:
+        emit({"kind": "malformed", "code": exc.code, "line": exc.line, "column": exc.column})
+        return
+    name = str(job.get("filename", ""))
+    if name and "/" not in name and "\\" not in name and not name.startswith("."):
+        try:
+            with open(name, "wb") as fh:  # a copy, for a student whose code opens its own notebook
+                fh.write(notebook)
+        except OSError:
+            pass
+    del notebook
+    devnull = os.open(os.devnull, os.O_RDWR)
+    for fd in (0, 1, 2):
+        os.dup2(devnull, fd)
+    sink = CappedWriter()
+    sys.stdout = sys.stderr = sink
+    _run(job, sources, emit)
+
+
+def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
+    """Execute the cells, then make the calls (see the module docstring)."""
+    import numpy as np
+
+    asarray, to_float = np.asarray, float
+    setitimer, ITIMER_REAL = signal.setitimer, signal.ITIMER_REAL
+
+    def on_alarm(signum: int, frame: Any) -> None:
+        raise CellTimeout()
+
+    timeout = float(job.get("timeout_cell", 10.0))
+    max_size = int(job.get("max_size", 10_000))
+
+    def run_timed(fn: Any, *args: Any) -> Any:
+        signal.signal(signal.SIGALRM, on_alarm)
+        setitimer(ITIMER_REAL, timeout)
+        try:
+            return fn(*args)
+        finally:
+            setitimer(ITIMER_REAL, 0)
+
+    def described(exc: BaseException) -> tuple[str, int]:
+        try:
+            return run_timed(describe, exc)  # a hostile __str__ must not escape the time limit
+        except CellTimeout:
+            return f"{type_name(exc)}: (its message took too long to read)", 0
+
+    def display(*objs: Any, **kwargs: Any) -> None:  # IPython's display() for plain Python
+        for obj in objs:
+            print(repr(obj))
+
+    forbidden = {qid: set(specs) for qid, specs in job.get("forbidden", {}).items()}
+    state: dict[str, Any] = {"guard": set(), "hit": None}
+    install_tripwires(set().union(*forbidden.values()) if forbidden else set(), state)
+    codes = {qid: forbidden_codes(specs) for qid, specs in forbidden.items()}
+
+    ns: dict[str, Any] = {"__name__": "__main__", "display": display}
+    for index, source in enumerate(sources):
+        event: dict[str, Any] = {"kind": "cell", "index": index}
+        try:
+            code = compile(strip_magics(source), f"<cell {index + 1}>", "exec")
+            run_timed(exec, code, ns)
+            continue  # a cell that ran says nothing
+        except CellTimeout:
+            event["status"] = "timeout"
+        except BaseException as exc:  # noqa: BLE001 - SystemExit, KeyboardInterrupt: all are the student's
+            event["status"] = "error"
+            event["detail"], event["line"] = described(exc)
+        emit(event)
+
+    slow: set[str] = set()  # questions whose function already ran out of time: skip their other cases
+    for call in job["calls"]:
+        event = {"kind": "call", "qid": call["qid"], "case": call["case"]}
+        fn = ns.get(call["function"])
+        if call["qid"] in slow:
+            event["error"] = "skipped"
+        elif fn is None:
+            event["error"] = "no-function"
+        elif not callable(fn):
+            event["error"], event["detail"] = "not-callable", type_name(fn)
+        else:
+            args = [asarray(a, dtype=to_float) if isinstance(a, list) else a for a in call["args"]]
+            state["guard"], state["hit"] = forbidden.get(call["qid"], set()), None
+            try:
+                value, hit = run_timed(guarded_call, fn, args, codes.get(call["qid"], {}))
+                if hit is not None and state["hit"] is None:
+                    state["hit"] = hit
+            except CellTimeout:
+                event["error"] = "timeout"
+                slow.add(call["qid"])
+            except NotImplementedError:
+                event["error"] = "not-attempted"
+            except BaseException as exc:  # noqa: BLE001
+                event["error"] = "raised"
+                event["detail"], event["line"] = described(exc)
+            else:
+
+                def to_floats(value: Any) -> Any:
+                    raw = asarray(value)
+                    if raw.dtype.kind == "c":
+                        raise TypeError("complex numbers are not accepted")
+                    return asarray(raw, dtype=to_float)
+
+                try:
+                    arr = run_timed(to_floats, value)  # a hostile __array__ must not escape the time limit
+                except CellTimeout:
+                    event["error"] = "convert-timeout"
+                    slow.add(call["qid"])
+                except BaseException as exc:  # noqa: BLE001
+                    event["error"], event["detail"] = "not-numbers", type_name(value)
+                    event["why"] = described(exc)[0]
+                else:
+                    if state["hit"] is not None:
+                        event["error"], event["detail"] = "answer-key", state["hit"]
+                    elif arr.size > max_size:
+                        event["error"], event["size"] = "too-many", int(arr.size)
+                    else:
+                        event["value"] = arr.tolist()
+            state["guard"] = set()
+        emit(event)
+    emit({"kind": "done"})
+
+
+if __name__ == "__main__":  # pragma: no cover - started by the grader
+    main()

@@ -1,0 +1,194 @@
+"""The worker's guards: resource limits, the answer-key tripwire, safe descriptions of the student's errors.
+
+Everything here runs in the student's process, before or around the student's code, and needs
+the standard library only.
+"""
+
+from __future__ import annotations
+
+import sys
+import traceback
+from typing import Any
+
+__all__ = [
+    "CappedWriter",
+    "type_name",
+    "describe",
+    "resolve",
+    "forbidden_codes",
+    "guarded_call",
+    "install_tripwires",
+    "limit_resources",
+]
+
+
+class CappedWriter:
+    """A text sink that keeps the first ``cap`` characters and counts the rest."""
+
+    def __init__(self, cap: int = 4000) -> None:
+        self.cap = cap
+        self.kept: list[str] = []
+        self.size = 0
+
+    def write(self, text: Any) -> int:
+        text = str(text)
+        if self.size < self.cap:
+            self.kept.append(text[: self.cap - self.size])
+        self.size += len(text)
+        return len(text)
+
+    def flush(self) -> None:
+        pass
+
+    def isatty(self) -> bool:
+        return False
+
+
+def type_name(obj: Any) -> str:
+    """The name of ``obj``'s type, read past any metaclass property (no student code runs).
+
+    >>> type_name(1.5)
+    'float'
+    """
+    return str(type.__dict__["__name__"].__get__(type(obj), type))
+
+
+def describe(exc: BaseException) -> tuple[str, int]:
+    """The exception's type and first line of message (the student's text, quoted by the grader) and its cell line."""
+    line = 0
+    try:
+        for frame in reversed(traceback.extract_tb(exc.__traceback__)):
+            if frame.filename.startswith("<cell"):
+                line = int(frame.lineno or 0)
+                break
+        text = str(exc).strip()
+    except BaseException:  # noqa: BLE001 - a hostile __str__ or traceback must not stop the worker
+        text = "(the error message could not be read)"
+    first = text.splitlines()[0].strip() if text else ""
+    return (f"{type_name(exc)}: {first}" if first else type_name(exc))[:2000], line
+
+
+def resolve(spec: str) -> Any:
+    """The object named by ``"module:attr[.attr]"`` (None if it does not exist or cannot be imported).
+
+    >>> resolve("puma_course.transforms:rotx").__name__
+    'rotx'
+    """
+    import importlib
+
+    modname, _, path = spec.partition(":")
+    try:
+        obj: Any = importlib.import_module(modname)
+        for part in path.split("."):
+            obj = getattr(obj, part)
+    except (ImportError, AttributeError):
+        return None
+    return obj
+
+
+def forbidden_codes(specs: Any) -> dict[Any, str]:
+    """Map the code objects of the named functions (unwrapped) to their names, for :func:`guarded_call`."""
+    codes = {}
+    for spec in specs:
+        obj = resolve(spec)
+        while obj is not None and hasattr(obj, "__wrapped__"):
+            obj = obj.__wrapped__
+        code = getattr(obj, "__code__", None)
+        if code is not None:
+            codes[code] = spec
+    return codes
+
+
+def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | None]:
+    """Call ``fn(*args)``; also return the first forbidden function (by code object) it called, if any.
+
+    Uses ``sys.setprofile``, so it sees calls however the function got hold of them
+    (``from puma_course import rodrigues`` included).
+
+    >>> import numpy as np
+    >>> from puma_course.transforms import rotx
+    >>> guarded_call(lambda t: rotx(t), (0.1,), forbidden_codes(["puma_course.transforms:rotx"]))[1]
+    'puma_course.transforms:rotx'
+    """
+    if not codes:
+        return fn(*args), None
+    hit: list[str] = []
+
+    def profile(frame: Any, event: str, arg: Any) -> None:
+        if event == "call" and not hit and frame.f_code in codes:
+            hit.append(codes[frame.f_code])
+
+    old = sys.getprofile()
+    sys.setprofile(profile)
+    try:
+        value = fn(*args)
+    finally:
+        sys.setprofile(old)
+    return value, (hit[0] if hit else None)
+
+
+def install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
+    """Wrap each allowed ``module:attr[.attr]`` so that calls during a guarded question are recorded in ``state``."""
+    import functools
+    import importlib
+
+    for spec in sorted(specs):
+        modname, _, path = spec.partition(":")
+        try:
+            owner: Any = importlib.import_module(modname)
+            parts = path.split(".")
+            for part in parts[:-1]:
+                owner = getattr(owner, part)
+            original = getattr(owner, parts[-1])
+        except (ImportError, AttributeError):
+            continue  # not in the student side: nothing to guard
+
+        def make(original: Any, spec: str) -> Any:
+            @functools.wraps(original)
+            def wrapper(*args: Any, **kwargs: Any) -> Any:
+                if spec in state["guard"] and state["hit"] is None:
+                    state["hit"] = spec
+                return original(*args, **kwargs)
+
+            return wrapper
+
+        wrapped = make(original, spec)
+        setattr(owner, parts[-1], wrapped)
+        if len(parts) == 1:  # re-exports such as puma_course.rodrigues
+            for mod in list(sys.modules.values()):
+                name = getattr(mod, "__name__", "") or ""
+                if name.split(".")[0] == "puma_course" and mod.__dict__.get(parts[-1]) is original:
+                    setattr(mod, parts[-1], wrapped)
+
+
+def limit_resources(limits: dict[str, Any] | None = None) -> None:
+    """Cap this process (POSIX; no-op elsewhere): address space, file size, open files, CPU seconds, processes, no core.
+
+    ``limits`` may give ``memory``, ``file_size``, ``open_files``, ``cpu_seconds`` and ``processes``
+    (0 or absent: that limit is left as it is, except memory 4 GiB and file size 200 MiB).
+    """
+    limits = limits or {}
+    try:
+        import resource
+    except ImportError:  # pragma: no cover - Windows
+        return
+    wanted = [
+        (resource.RLIMIT_AS, int(limits.get("memory", 4 << 30))),
+        (resource.RLIMIT_FSIZE, int(limits.get("file_size", 200 << 20))),
+        (resource.RLIMIT_CORE, 0),
+        (resource.RLIMIT_NOFILE, int(limits.get("open_files", 0))),
+        (resource.RLIMIT_CPU, int(limits.get("cpu_seconds", 0))),
+        (getattr(resource, "RLIMIT_NPROC", -1), int(limits.get("processes", 0))),
+    ]
+    for kind, value in wanted:
+        if kind < 0 or (value <= 0 and kind != resource.RLIMIT_CORE):
+            continue
+        try:
+            soft, hard = resource.getrlimit(kind)
+            unlimited = hard == resource.RLIM_INFINITY
+            cap = value if unlimited else min(value, hard)
+            # CPU: the soft limit sends SIGXCPU, the hard one SIGKILL a little later
+            top = (cap + 5 if unlimited else min(cap + 5, hard)) if kind == resource.RLIMIT_CPU else cap
+            resource.setrlimit(kind, (cap, top))
+        except (ValueError, OSError):
+            pass
