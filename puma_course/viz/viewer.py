@@ -235,7 +235,7 @@ class Viewer(anywidget.AnyWidget):
         L = np.array([f["length"] for f in self.scene["frames"]])[:, None]
         return [L * F[:, :3, k] for k in range(3)]
 
-    def static_png(self, dpi: int = 90) -> bytes:
+    def static_png(self, dpi: int = 110) -> bytes:
         """A PNG of the pose shown (matplotlib, the same view as the live one): the picture left in the notebook.
 
         >>> import numpy as np
