@@ -133,7 +133,8 @@ def plot_frame_sequence(
     nrows = -(-k // ncols)
     if row_titles is not None and len(row_titles) != nrows:
         raise ValueError(f"row_titles: expected {nrows} texts (one per row), got {len(row_titles)}")
-    fig = plt.figure(figsize=figsize or (2.75 * ncols + (1.2 if row_titles else 0.0), 2.9 * nrows))
+    size = (round(2.8 * ncols + (1.2 if row_titles else 0.0), 1), round(2.9 * nrows, 1))
+    fig = plt.figure(figsize=figsize or size)
     axes = np.empty((nrows, ncols), dtype=object)
     for i in range(nrows * ncols):
         ax = fig.add_subplot(nrows, ncols, i + 1, projection="3d")
