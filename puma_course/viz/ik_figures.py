@@ -97,10 +97,9 @@ def draw_wrist(ax: Any, arm: Puma560, q: Any, *, length: float = 0.07, frames: S
         T = F[j].copy()
         T[:3, 3] = places[j]
         arts += draw_frame(ax, T, None, length=L, lw=lw)
-        if labels:  # in the octant none of the triad's own axes points into
-            u = -(T[:3, 0] + T[:3, 1] + T[:3, 2]) / math.sqrt(3.0)
+        if labels:  # beyond the tip of the x axis (red): the axis a flip reverses
             box = {"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.8}
-            arts.append(ax.text(*(places[j] + 0.55 * L * u), f"{{{j}}}", ha="center", va="center", bbox=box))
+            arts.append(ax.text(*(places[j] + 1.3 * L * T[:3, 0]), f"{{{j}}}", ha="center", va="center", bbox=box))
     return arts
 
 
