@@ -1,0 +1,416 @@
+"""Figures of lecture 09, the PUMA-560's inverse kinematics, and the small computations behind them.
+
+* :func:`plot_solutions`: every solution of one pose on one scale, with the wrist (:func:`draw_wrist`:
+  frames {4}, {5}, {6} each on its own link) so that a flip pair differs visibly; :func:`plot_wrist_flip`;
+* :func:`plot_shoulder_top_view`: θ1 seen from above, the offset d3, the circle ρ = |d3|, both shoulders;
+* :func:`branch_gaps`, :func:`singularity_sweep`, :func:`plot_singularity_sweeps`: det J and the gap between
+  the two branches that merge, along a sweep of one joint through each singularity;
+* :func:`plot_workspace` (a sampled workspace from above and from the side) and :func:`projector_picture`.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import warnings
+from collections.abc import Sequence
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.patches import Arc, Circle
+
+from .._validate import as_array, as_count, as_length
+from ..kinematics.ik import IKSolutions, SingularityWarning, nearest_index
+from ..kinematics.puma560 import BRANCH_LABELS, Puma560
+from ..transforms import wrap_angle
+from .arms import draw_robot
+from .frames import draw_frame, set_equal
+from .viewer import Viewer
+
+__all__ = [
+    "DECIDED_JOINT",
+    "SWEPT_JOINT",
+    "branch_gaps",
+    "draw_wrist",
+    "plot_shoulder_top_view",
+    "plot_singularity_sweeps",
+    "plot_solutions",
+    "plot_workspace",
+    "plot_wrist_flip",
+    "projector_picture",
+    "singularity_sweep",
+]
+
+#: The joint each singularity's ± decides (0-based index into q): θ1 shoulder, θ3 elbow, θ5 wrist.
+DECIDED_JOINT = {"shoulder": 0, "elbow": 2, "wrist": 4}
+#: The joint :func:`singularity_sweep` turns to cross each singularity: θ2, θ3, θ5.
+SWEPT_JOINT = {"shoulder": 1, "elbow": 2, "wrist": 4}
+#: Which branch meets which: XOR of the index in BRANCH_LABELS (4 shoulder, 2 elbow, 1 wrist bit).
+#: At the shoulder singularity left/up meets right/down: "up" is measured along the reach X, which turns over.
+_PARTNER = {"shoulder": 6, "elbow": 2, "wrist": 1}
+
+
+def _puma(arm: Any) -> Puma560:
+    if not isinstance(arm, Puma560):
+        raise ValueError(f"arm: expected a Puma560(), got {type(arm).__name__}")
+    return arm
+
+
+# ------------------------------------------------------------------------------------------------ the wrist
+def draw_wrist(ax: Any, arm: Puma560, q: Any, *, length: float = 0.07, frames: Sequence[int] = (4, 5, 6),
+               axes: bool = True, labels: bool = True, lw: float = 2.5) -> list[Any]:  # fmt: skip
+    """Draw the PUMA-560's wrist at ``q``: the forearm's end, the hand's flange, the joint axes z4, z5, z6
+    (dashed, with ``axes``) and the triads of ``frames`` (some of {4}, {5}, {6}), each on its own link.
+
+    The three frames share one origin, the wrist centre; drawn there they hide each other. A frame
+    is fixed to its link, so it may be drawn anywhere on it: {4} is drawn on the forearm (back along
+    z4), {5} at the wrist centre, {6} at the end of the flange (along z6). Returns the artists.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from puma_course.viz import new_axes
+    >>> fig, ax = new_axes()
+    >>> arts = draw_wrist(ax, Puma560(), Puma560().q("qn"))
+    >>> len(arts)  # forearm, flange, 3 axes, 3 triads of 3 lines with a label each
+    17
+    >>> plt.close(fig)
+    """
+    arm = _puma(arm)
+    L = as_length(length, "length", positive=True)
+    if isinstance(frames, str) or not set(frames) <= {4, 5, 6}:
+        raise ValueError(f"frames: expected some of the wrist frames 4, 5, 6, got {frames!r}")
+    F = arm.frames(arm.check_q(q))
+    if F.ndim != 3:
+        raise ValueError(f"q: expected one joint vector of shape (6,), got a batch of {F.shape[0]}")
+    w, z4, z6 = F[4, :3, 3], F[4, :3, 2], F[6, :3, 2]
+    arts = list(ax.plot(*np.stack([w - 2.2 * L * z4, w]).T, color="tab:orange", lw=9, alpha=0.45,
+                        solid_capstyle="butt"))  # fmt: skip
+    arts += ax.plot(*np.stack([w, w + 1.5 * L * z6]).T, color="0.3", lw=6, solid_capstyle="butt")
+    if axes:
+        for j in (4, 5, 6):
+            z = F[j, :3, 2]
+            arts += ax.plot(*np.stack([w - 1.4 * L * z, w + 1.4 * L * z]).T, ls="--", lw=1, color="0.45")
+    places = {4: w - 1.4 * L * z4, 5: w, 6: w + 1.5 * L * z6}
+    for j in sorted(set(frames)):
+        T = F[j].copy()
+        T[:3, 3] = places[j]
+        arts += draw_frame(ax, T, None, length=L, lw=lw)
+        if labels:  # beyond the tip of the x axis (red): the axis a flip reverses
+            box = {"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.8}
+            arts.append(ax.text(*(places[j] + 1.3 * L * T[:3, 0]), f"{{{j}}}", ha="center", va="center", bbox=box))
+    return arts
+
+
+def _view_of_wrist(F: np.ndarray) -> tuple[float, float]:
+    """(elev, azim) in degrees: looking at the wrist from beside the forearm, a little behind and above it."""
+    z4 = F[4, :3, 2]
+    side = np.cross(z4, [0.0, 0.0, 1.0])
+    side = side / max(float(np.linalg.norm(side)), 1e-12) if np.linalg.norm(side) > 1e-6 else F[4, :3, 0]
+    d = -0.5 * z4 - side + 0.5 * np.array([0.0, 0.0, 1.0])
+    d = d / np.linalg.norm(d)
+    return math.degrees(math.asin(float(d[2]))), math.degrees(math.atan2(float(d[1]), float(d[0])))
+
+
+def plot_wrist_flip(arm: Puma560, q_noflip: Any, q_flip: Any, *, titles: Sequence[str] = ("noflip", "flip"),
+                    length: float = 0.07) -> Figure:  # fmt: skip
+    """Two close-ups of the wrist side by side, seen from the same direction (:func:`draw_wrist`).
+
+    For a flip pair the forearm and the hand are the same; the triads of {4} and {5} turn over.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> arm = Puma560()
+    >>> sol = arm.ik(arm.fk(np.radians([30, -50, 20, 40, 60, -30])))
+    >>> fig = plot_wrist_flip(arm, sol.q[0], sol.q[1])
+    >>> [ax.get_title().splitlines()[0] for ax in fig.axes]
+    ['noflip', 'flip']
+    >>> plt.close(fig)
+    """
+    arm = _puma(arm)
+    Q = [arm.check_q(q_noflip), arm.check_q(q_flip)]
+    elev, azim = _view_of_wrist(arm.frames(Q[0]))
+    fig = plt.figure(figsize=(9.0, 4.6))
+    for k, (q, title) in enumerate(zip(Q, titles, strict=True)):
+        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
+        ax.view_init(elev=elev, azim=azim)
+        arts = draw_wrist(ax, arm, q, length=length)
+        set_equal(ax, np.hstack([a.get_data_3d() for a in arts if hasattr(a, "get_data_3d")]).T, margin=0.02)
+        ax.set_box_aspect((1, 1, 1), zoom=1.2)
+        ax.set_axis_off()
+        t4, t5, t6 = (round(float(np.degrees(v)), 1) + 0.0 for v in q[3:])
+        ax.set_title(f"{title}\nθ4 = {t4:g}°, θ5 = {t5:g}°, θ6 = {t6:g}°")
+    return fig
+
+
+def plot_solutions(arm: Puma560, solutions: IKSolutions, *, grid: float = 0.25, elev: float = 20,
+                   azim: float = -60, columns: int = 4) -> Figure:  # fmt: skip
+    """Every solution of ``solutions`` in its own 3-D panel, all on one scale (grid lines every ``grid`` metres).
+
+    Each arm carries its wrist (:func:`draw_wrist`): the hand's flange (dark) and the triad of {4}
+    on the forearm; a flip pair has the same links, and its {4} is turned over by half a turn.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> arm = Puma560()
+    >>> fig = plot_solutions(arm, arm.ik(arm.fk(arm.q("qn"))))
+    >>> len(fig.axes), fig.axes[0].get_title()
+    (8, 'left/up/noflip')
+    >>> plt.close(fig)
+    """
+    arm = _puma(arm)
+    if not isinstance(solutions, IKSolutions) or len(solutions) == 0:
+        raise ValueError(f"solutions: expected the IKSolutions of a reachable pose, got {solutions!r}")
+    grid = as_length(grid, "grid", positive=True)
+    cols = as_count(columns, "columns", minimum=1)
+    rows = -(-len(solutions) // cols)
+    pts = arm.points(solutions.q).reshape(-1, 3)
+    fig = plt.figure(figsize=(2.75 * cols, 2.9 * rows + 0.4))
+    for i, (label, q) in enumerate(zip(solutions.labels, solutions.q, strict=True)):
+        ax = fig.add_subplot(rows, cols, i + 1, projection="3d")
+        ax.view_init(elev=elev, azim=azim)
+        draw_robot(ax, arm, q, triads="none", lw=3.5)
+        draw_wrist(ax, arm, q, length=0.12, frames=(4,), axes=False, labels=False, lw=2.5)
+        set_equal(ax, pts, margin=0.02)
+        ax.set_box_aspect((1, 1, 1), zoom=1.15)
+        for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+            lo, hi = axis.get_view_interval()
+            axis.set_ticks(np.arange(math.ceil(lo / grid), math.floor(hi / grid) + 1) * grid)
+            axis.set_ticklabels([])
+        ax.set_title(label, fontsize=11)
+    fig.suptitle(f"{len(solutions)} configurations, one hand pose (grid lines every {grid:g} m)")
+    return fig
+
+
+# ------------------------------------------------------------------------------------------------ θ1 from above
+def plot_shoulder_top_view(arm: Puma560, T: Any) -> Figure:
+    """θ1 seen from above: the wrist centre, the circle ρ = |d3| it may not enter, and for each shoulder the
+    direction x1 (an arrow, θ1 measured from x0), the offset d3 along y1 (thick) and the arm's plane (dashed).
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> arm = Puma560()
+    >>> fig = plot_shoulder_top_view(arm, arm.fk(np.radians([30, -50, 20, 40, 60, -30])))
+    >>> fig.axes[0].get_xlabel()
+    'x [m]'
+    >>> plt.close(fig)
+    """
+    arm = _puma(arm)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SingularityWarning)
+        sol = arm.ik(T)
+    if not sol.success:
+        raise ValueError(f"T: expected a reachable pose, got one that is not ({sol.reason})")
+    w = np.asarray(T, dtype=float)[:3, 3]
+    d3 = arm.lengths["d3"]
+    fig, ax = plt.subplots(figsize=(6.4, 6.2))
+    ax.add_patch(Circle((0, 0), abs(d3), facecolor="tab:red", alpha=0.12, edgecolor="tab:red",
+                        label=f"ρ < |d3| = {abs(d3):g} m: never reached"))  # fmt: skip
+    arrow = 2.2 * abs(d3) if d3 else 0.3
+    ax.annotate("", (arrow, 0), (0, 0), arrowprops={"arrowstyle": "->", "color": "0.4", "lw": 1.2})
+    ax.text(1.15 * arrow, 0, "x0", color="0.4", ha="center", va="center")
+    shown: list[Any] = [np.zeros(2), w[:2], [1.2 * arrow, 0.0]]
+    for shoulder, color in (("left", "tab:blue"), ("right", "tab:purple")):
+        k = next((i for i, lab in enumerate(sol.labels) if lab.startswith(shoulder)), None)
+        if k is None:
+            continue
+        q = sol.q[k]
+        P = arm.points(q)[:, :2]  # foot, base, end of d3, elbow, end of a3, wrist centre
+        x1 = arrow * np.array([math.cos(q[0]), math.sin(q[0])])
+        ax.plot(*P[1:3].T, color=color, lw=5, solid_capstyle="round",
+                label=f"shoulder {shoulder}: θ1 = {math.degrees(q[0]):.1f}°")  # fmt: skip
+        ax.plot(*np.stack([P[2], P[5]]).T, color=color, lw=1.5, ls="--")
+        ax.annotate("", (float(x1[0]), float(x1[1])), (0, 0), arrowprops={"arrowstyle": "->", "color": color})
+        ax.text(float(1.15 * x1[0]), float(1.15 * x1[1]), "x1", color=color, ha="center", va="center")
+        t1 = math.degrees(q[0])
+        ax.add_patch(Arc((0, 0), 1.5 * arrow, 1.5 * arrow, theta1=min(0.0, t1), theta2=max(0.0, t1), color=color,
+                         lw=1.5))  # fmt: skip
+        shown += [P[1:], 1.2 * x1]
+    ax.plot(*w[:2], marker="*", ms=16, color="k", ls="none", label="the wrist centre")
+    S = np.vstack([np.reshape(p, (-1, 2)) for p in shown])
+    lo, hi = S.min(axis=0) - 0.06, S.max(axis=0) + 0.06
+    ax.set(xlim=(lo[0], hi[0]), ylim=(lo[1], hi[1]), aspect="equal", xlabel="x [m]", ylabel="y [m]",
+           title="from above: offset d3 (thick), arm plane (dashed)")  # fmt: skip
+    ax.locator_params(nbins=6)
+    fig.legend(loc="outside lower center", ncols=2, fontsize=10)
+    return fig
+
+
+# ------------------------------------------------------------------------------------------------ singularities
+def branch_gaps(arm: Puma560, Q: Any) -> tuple[list[str], dict[str, np.ndarray]]:
+    """The branch of each joint vector in ``Q`` (N, 6) and, per singularity, how far it is from the branch
+    it merges with there: the wrapped difference (radians) of the joint that singularity's ± decides.
+
+    The partners: flip ↔ noflip at the wrist (θ5), up ↔ down at the elbow (θ3), and at the shoulder
+    left/up ↔ right/down (θ1; "up" is measured along the reach, which turns over with the shoulder).
+    A gap is 0 where the pose is singular for that word (the two solutions coincide).
+
+    >>> labels, gaps = branch_gaps(Puma560(), np.radians([[30, -50, 20, 40, 60, -30]]))
+    >>> labels, round(float(np.degrees(gaps["wrist"][0])), 6)  # noflip and flip: θ5 and -θ5
+    (['left/up/noflip'], 120.0)
+    """
+    arm = _puma(arm)
+    Qc = np.atleast_2d(arm.check_q(Q))
+    b = arm.ik_batch(arm.fk(Qc), near=Qc)
+    if not b.reachable.all():  # fk of a joint vector is always reachable; only a bad input gets here
+        raise ValueError("Q: expected joint vectors whose poses the arm reaches")
+    rows = np.arange(len(Qc))
+    own = nearest_index(b.q, Qc, arm.revolute, b.valid)
+    gaps = {}
+    for word, j in DECIDED_JOINT.items():
+        partner = own ^ _PARTNER[word]
+        # a partner marked invalid is a duplicate: its row holds the values of the solution it merged into
+        gaps[word] = np.abs(wrap_angle(b.q[rows, own, j] - b.q[rows, partner, j]))
+    return [BRANCH_LABELS[k] for k in own], gaps
+
+
+def _factor_zeros(arm: Puma560, q0: np.ndarray, word: str) -> np.ndarray:
+    """Values of the swept joint in (-π, π] where the word's factor of det J vanishes, the others at q0. For the
+    elbow only the stretched arm: folded, the wrist centre comes within |a2 - sqrt(a3² + d4²)| (0.5 mm) of
+    joint 2's axis, the shoulder factor vanishes nearly at once and det J only touches 0."""
+    L = arm.lengths
+    if word == "elbow":  # a3 s3 + d4 c3 = 0, the arm stretched
+        return np.array([-math.atan2(L["d4"], L["a3"])])
+    if word == "shoulder":  # a2 c2 + a3 c23 - d4 s23 = c2 vx - s2 vy = 0
+        c3, s3 = math.cos(q0[2]), math.sin(q0[2])
+        base = math.atan2(L["a2"] + L["a3"] * c3 - L["d4"] * s3, L["a3"] * s3 + L["d4"] * c3)
+    else:  # s5 = 0
+        base = 0.0  # fmt: skip
+    return np.sort(wrap_angle(np.array([base, base + math.pi])))
+
+
+def singularity_sweep(arm: Puma560, q0: Any, word: str, *, half_width: float = math.radians(60),
+                      n: int = 241) -> dict[str, Any]:  # fmt: skip
+    """Turn the joint :data:`SWEPT_JOINT` [word] by ± ``half_width`` (radians) through a zero of the word's factor
+    of det J (the one nearest its value in ``q0``; for the elbow the stretched arm), the other joints at ``q0``:
+    det J, the gap of :func:`branch_gaps` and the branch labels along the way.
+
+    Returns ``{"joint", "zero", "x", "det", "gap", "labels"}`` (angles in radians, det J in m³).
+
+    >>> s = singularity_sweep(Puma560(), np.radians([30, -50, 20, 40, 60, -30]), "wrist", n=5)
+    >>> np.degrees(s["x"]).round(1).tolist(), float(s["zero"]), s["labels"][0], s["labels"][-1]
+    ([-60.0, -30.0, 0.0, 30.0, 60.0], 0.0, 'left/up/flip', 'left/up/noflip')
+    """
+    arm = _puma(arm)
+    if not isinstance(word, str) or word not in DECIDED_JOINT:
+        raise ValueError(f"word: expected one of 'shoulder', 'elbow', 'wrist', got {word!r}")
+    n = as_count(n, "n", minimum=3)
+    half_width = as_length(half_width, "half_width", positive=True)
+    q0 = as_array(q0, "q0", (6,))
+    j = SWEPT_JOINT[word]
+    zeros = _factor_zeros(arm, q0, word)
+    zero = float(zeros[np.argmin(np.abs(wrap_angle(zeros - q0[j])))])
+    x = zero + np.linspace(-half_width, half_width, n)
+    Q = np.tile(q0, (n, 1))
+    Q[:, j] = x
+    labels, gaps = branch_gaps(arm, Q)
+    det = np.linalg.det(arm.jacobian(Q))
+    return {"joint": j, "zero": zero, "x": x, "det": det, "gap": gaps[word], "labels": labels}
+
+
+def plot_singularity_sweeps(arm: Puma560, q0: Any, *, half_width: float = math.radians(60), n: int = 241) -> Figure:
+    """Three columns (shoulder, elbow, wrist): det J (top) and the gap to the merging branch (bottom) while one
+    joint turns through the singularity (:func:`singularity_sweep`); a dotted line at the zero of the
+    factor, the arm's branch word shaded.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig = plot_singularity_sweeps(Puma560(), np.radians([30, -50, 20, 40, 60, -30]), n=31)
+    >>> [ax.get_xlabel() for ax in fig.axes[3:]]
+    ['θ2 [deg]', 'θ3 [deg]', 'θ5 [deg]']
+    >>> plt.close(fig)
+    """
+    arm = _puma(arm)
+    fig, axes = plt.subplots(2, 3, figsize=(11, 5.6), sharex="col")
+    words = {"shoulder": ("left", "right"), "elbow": ("up", "down"), "wrist": ("noflip", "flip")}
+    for c, (word, (a, b)) in enumerate(words.items()):
+        s = singularity_sweep(arm, q0, word, half_width=half_width, n=n)
+        xd = np.degrees(s["x"])
+        part = 0 if word == "shoulder" else 1 if word == "elbow" else 2
+        first = np.array([lab.split("/")[part] == a for lab in s["labels"]])
+        top, bottom = axes[0, c], axes[1, c]
+        for ax in (top, bottom):
+            for where, name, col in ((first, a, "tab:blue"), (~first, b, "tab:orange")):
+                ax.fill_between(xd, 0, 1, where=where, transform=ax.get_xaxis_transform(), color=col, alpha=0.1, lw=0,
+                                label=f"the arm is '{name}'")  # fmt: skip
+            ax.axvline(math.degrees(s["zero"]), color="k", ls=":", lw=1.2)
+        top.plot(xd, s["det"], color="k", lw=1.8)
+        top.axhline(0, color="0.6", lw=0.8)
+        bottom.plot(xd, np.degrees(s["gap"]), color="tab:red", lw=1.8)
+        top.set_title(f"{word}: turn θ{s['joint'] + 1}")
+        top.legend(loc="upper center", bbox_to_anchor=(0.5, -0.04), ncols=2, fontsize=9, frameon=False,
+                   handlelength=1.0, columnspacing=0.8)  # fmt: skip
+        bottom.set_xlabel(f"θ{s['joint'] + 1} [deg]")
+        bottom.xaxis.set_major_locator(plt.MultipleLocator(30))
+        bottom.set_ylim(bottom=0)
+    axes[0, 0].set_ylabel("det J [m³]")
+    axes[1, 0].set_ylabel("gap to the merging\nbranch [deg]")
+    return fig
+
+
+# ------------------------------------------------------------------------------------------------ workspaces
+def plot_workspace(points: Any, *, units: str, title: str, color: str = "tab:blue",
+                   top_circles: Sequence[tuple[Any, float, str, str]] = (),
+                   side_circles: Sequence[tuple[Any, float, str, str]] = (),
+                   side_lines: Sequence[tuple[float, str, str]] = ()) -> Figure:  # fmt: skip
+    """Top view (x, y) and side view (ρ = distance from the base axis, z) of sampled points (N, 3).
+
+    ``top_circles``/``side_circles`` are bounds drawn over the samples, each ``(centre (2,), radius,
+    label, colour)``; ``side_lines`` vertical lines ``(ρ, label, colour)``. The legend sits below the
+    plots, never over them.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> P = np.random.default_rng(0).normal(size=(200, 3))
+    >>> fig = plot_workspace(P, units="m", title="demo", top_circles=[((0, 0), 2.0, "r = 2", "k")])
+    >>> [ax.get_xlabel() for ax in fig.axes]
+    ['x [m]', 'ρ [m]']
+    >>> plt.close(fig)
+    """
+    P = as_array(points, "points", (3,), batch=True).reshape(-1, 3)
+    rho = np.hypot(P[:, 0], P[:, 1])
+    fig, (top, side) = plt.subplots(1, 2, figsize=(9.0, 5.4), width_ratios=[2, 1.15])
+    top.scatter(P[:, 0], P[:, 1], s=1.5, alpha=0.4, color=color, lw=0, rasterized=True)
+    side.scatter(rho, P[:, 2], s=1.5, alpha=0.4, color=color, lw=0, rasterized=True)
+    t = np.linspace(0, 2 * np.pi, 361)
+    for ax, circles in ((top, top_circles), (side, side_circles)):
+        for centre, r, label, col in circles:
+            cx, cy = np.asarray(centre, dtype=float)
+            x, y = cx + r * np.cos(t), cy + r * np.sin(t)
+            if ax is side:
+                x, y = np.where(x >= 0, x, np.nan), y
+            ax.plot(x, y, color=col, lw=1.6, ls="--", label=label)
+    for rho0, label, col in side_lines:
+        side.axvline(rho0, color=col, lw=1.6, ls="--", label=label)
+    top.set(aspect="equal", xlabel=f"x [{units}]", ylabel=f"y [{units}]", title="top view")
+    side.set(aspect="equal", xlabel=f"ρ [{units}]", ylabel=f"z [{units}]", title="side view (every θ1)")
+    top.locator_params(nbins=5), side.locator_params(nbins=5)
+    fig.suptitle(title)
+    named: dict[str, Any] = {}  # one entry per label (a bound may be drawn in both views)
+    for ax in (top, side):
+        for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
+            named.setdefault(lab, h)
+    if named:
+        fig.legend(list(named.values()), list(named), loc="outside lower center", ncols=min(len(named), 3))
+    return fig
+
+
+# ------------------------------------------------------------------------------------------------ the panel's picture
+def projector_picture(widget: Any, dpi: int = 110) -> Any:
+    """Make the static picture a viewer (or a panel holding one) leaves in the notebook ``dpi`` dots per inch.
+
+    The viewer draws it at 90 dpi by default; the lectures' figures are at least 100. Returns
+    ``widget`` itself, so a cell can end with ``projector_picture(robot_panel(arm, ik=True))``.
+
+    >>> from puma_course.viz import RobotViewer
+    >>> v = projector_picture(RobotViewer(Puma560()))
+    >>> v.static_png()[:8] == b"\\x89PNG\\r\\n\\x1a\\n"
+    True
+    """
+    viewer = widget if isinstance(widget, Viewer) else getattr(widget, "viewer", None)
+    if not isinstance(viewer, Viewer):
+        raise ValueError(f"widget: expected a Viewer or a panel with a .viewer, got {type(widget).__name__}")
+    dots = as_count(dpi, "dpi", minimum=100)
+    viewer.static_png = functools.partial(Viewer.static_png, viewer, dpi=dots)  # type: ignore[method-assign]
+    return widget
