@@ -145,8 +145,8 @@ class MK3(DHChain):
     def _unreachable(self, off_p: float, off_z: float) -> str:
         return (
             "a 5-DOF arm reaches only poses whose approach vector z5 lies in the arm plane (the vertical plane "
-            f"through the base axis and the tool point): this pose leaves it (tool point {off_p:.3g} mm off the "
-            f"plane, z5 at {math.degrees(math.asin(min(off_z, 1.0))):.3g}° to it)"
+            f"through the base axis and the wrist point w = p - d5 z5): this pose leaves it (tool point "
+            f"{off_p:.3g} mm off that plane, z5 at {math.degrees(math.asin(min(off_z, 1.0))):.3g}° to it)"
         )
 
     def ik(self, T: Any, near: Any = None, *, tol: float = 1e-9) -> IKSolutions:

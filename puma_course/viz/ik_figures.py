@@ -5,12 +5,11 @@
 * :func:`plot_shoulder_top_view`: θ1 seen from above, the offset d3, the circle ρ = |d3|, both shoulders;
 * :func:`branch_gaps`, :func:`singularity_sweep`, :func:`plot_singularity_sweeps`: det J and the gap between
   the two branches that merge, along a sweep of one joint through each singularity;
-* :func:`plot_workspace` (a sampled workspace from above and from the side) and :func:`projector_picture`.
+* :func:`plot_workspace` (a sampled workspace from above and from the side).
 """
 
 from __future__ import annotations
 
-import functools
 import math
 import warnings
 from collections.abc import Sequence
@@ -27,7 +26,6 @@ from ..kinematics.puma560 import BRANCH_LABELS, Puma560
 from ..transforms import wrap_angle
 from .arms import draw_robot
 from .frames import draw_frame, set_equal
-from .viewer import Viewer
 
 __all__ = [
     "DECIDED_JOINT",
@@ -39,7 +37,6 @@ __all__ = [
     "plot_solutions",
     "plot_workspace",
     "plot_wrist_flip",
-    "projector_picture",
     "singularity_sweep",
 ]
 
@@ -397,20 +394,3 @@ def plot_workspace(points: Any, *, units: str, title: str, color: str = "tab:blu
 
 
 # ------------------------------------------------------------------------------------------------ the panel's picture
-def projector_picture(widget: Any, dpi: int = 110) -> Any:
-    """Make the static picture a viewer (or a panel holding one) leaves in the notebook ``dpi`` dots per inch.
-
-    The viewer draws it at 90 dpi by default; the lectures' figures are at least 100. Returns
-    ``widget`` itself, so a cell can end with ``projector_picture(robot_panel(arm, ik=True))``.
-
-    >>> from puma_course.viz import RobotViewer
-    >>> v = projector_picture(RobotViewer(Puma560()))
-    >>> v.static_png()[:8] == b"\\x89PNG\\r\\n\\x1a\\n"
-    True
-    """
-    viewer = widget if isinstance(widget, Viewer) else getattr(widget, "viewer", None)
-    if not isinstance(viewer, Viewer):
-        raise ValueError(f"widget: expected a Viewer or a panel with a .viewer, got {type(widget).__name__}")
-    dots = as_count(dpi, "dpi", minimum=100)
-    viewer.static_png = functools.partial(Viewer.static_png, viewer, dpi=dots)  # type: ignore[method-assign]
-    return widget

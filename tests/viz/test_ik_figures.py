@@ -201,11 +201,7 @@ def _png_dpi(png: bytes) -> float:
     return struct.unpack(">I", png[i + 4 : i + 8])[0] * 0.0254
 
 
-def test_projector_picture_draws_the_panels_picture_at_110_dpi():
-    panel = F.projector_picture(robot_panel(ARM, ik=True, q=Q_TRUE))
+def test_the_ik_panels_picture_is_drawn_at_110_dpi_with_its_ghosts():
+    panel = robot_panel(ARM, ik=True, q=Q_TRUE)
     assert round(_png_dpi(panel.viewer.static_png())) == 110
     assert len(panel.viewer.ghosts["arms"]) == 8  # the picture shows the solutions as ghosts
-    with pytest.raises(ValueError, match="widget"):
-        F.projector_picture(object())
-    with pytest.raises(ValueError, match="dpi"):
-        F.projector_picture(panel, dpi=72)
