@@ -1,12 +1,10 @@
 """Figures of Craig's frame assignment (lectures 02, 03): the common normal of two joint axes, the DH picture
 with a, α, d, θ labelled, frames placed one step at a time, and a piston driving a revolute joint.
 
-Everything drawn is computed by the kinematics layer (:func:`~puma_course.kinematics.frame_assignment.common_normal`,
-:func:`~puma_course.kinematics.frame_steps.frame_steps`, :func:`~puma_course.kinematics.frame_steps.d_theta`);
-nothing here decides a parameter. Labels go through :func:`place_labels`: each text is put beside its point on
-the first side where it overlaps no label placed before and covers no other labelled point, and
-:func:`overlapping_labels` checks a finished figure. These are static figures: the 3-D labels are placed for the
-view they were drawn in, so set the view first (the functions here set it themselves).
+Everything drawn is computed by the kinematics layer (``common_normal``, ``frame_steps``, ``d_theta``). Labels go
+through :func:`place_labels` (each beside its point where it overlaps no label placed before and covers no other
+labelled point); :func:`overlapping_labels` checks a finished figure. Static figures: 3-D labels are placed for
+the view they were drawn in, so the functions here set the view (equal scale, framed tightly) before placing them.
 """
 
 from __future__ import annotations
@@ -19,12 +17,12 @@ import numpy as np
 
 from .._validate import as_array, as_length
 from ..kinematics.frame_assignment import CommonNormal, common_normal
-from ..kinematics.frame_steps import FrameWalk, d_theta
+from ..kinematics.frame_steps import FrameWalk, _pose, d_theta
 from ..kinematics.spaces import actuator_from_joint
-from .frames import AXIS_COLORS, set_equal
+from .frames import AXIS_COLORS
 
-__all__ = ["Label", "place_labels", "overlapping_labels", "draw_common_normal", "DHPicture", "draw_dh_picture",
-           "draw_frame_walk", "draw_piston_joint", "NORMAL_COLOR", "JOINT_COLOR"]  # fmt: skip
+__all__ = ["Label", "place_labels", "overlapping_labels", "frame_tightly", "draw_common_normal", "DHPicture",
+           "draw_dh_picture", "draw_frame_walk", "draw_piston_joint", "NORMAL_COLOR", "JOINT_COLOR"]  # fmt: skip
 
 #: Colour of a common normal, a and α (link parameters); of d and θ (joint parameters).
 NORMAL_COLOR, JOINT_COLOR = "tab:purple", "tab:brown"
@@ -52,13 +50,16 @@ def _screen(ax: Any, P: np.ndarray) -> np.ndarray:
     return V[:, :2] / V[:, 3:4]
 
 
-def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, fontsize: float = 11) -> list[Any]:
+def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, fontsize: float = 11,
+                 draw: bool = True) -> list[Any]:  # fmt: skip
     """Put each label beside its point where it overlaps no label placed before; returns the annotations.
 
     Sides are tried nearest first (the preferred one, then the others around it) at growing
     distances; a side is taken when the text stays inside the axes, overlaps no earlier label and
     covers no other label's point or ``avoid`` point ((k, 3) or (k, 2)). Call it after the view
-    and limits are final. The texts are annotations at the projected points (left out of the layout).
+    and limits are final; ``draw=False`` skips the first drawing of the figure (it settles the layout)
+    when it was just drawn, e.g. labelling several axes of one figure in turn. The texts are
+    annotations at the projected points (left out of the layout).
 
     >>> import matplotlib; matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
@@ -71,11 +72,11 @@ def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, fontsiz
     >>> plt.close(fig)
     """
     fig = ax.figure
-    fig.canvas.draw()  # settle the layout and the projection before measuring
+    if draw:
+        fig.canvas.draw()  # settle the layout and the projection before measuring
     renderer = fig.canvas.get_renderer()
     anchors = _screen(ax, np.array([np.asarray(lb.point, float) for lb in labels])) if labels else np.zeros((0, 2))
-    pix = ax.transData.transform(anchors) if len(anchors) else anchors
-    keep_out = list(pix)
+    keep_out = list(ax.transData.transform(anchors) if len(anchors) else anchors)
     if avoid is not None:
         keep_out += list(ax.transData.transform(_screen(ax, np.asarray(avoid, float))))
     frame = ax.get_window_extent(renderer)
@@ -100,14 +101,12 @@ def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, fontsiz
                 score += 1e5 * (bb.x0 < frame.x0 or bb.x1 > frame.x1 or bb.y0 < frame.y0 or bb.y1 > frame.y1)
                 if score < best_score:
                     best, best_score = (r * c, r * s, ann.get_ha(), ann.get_va()), score
-                if score == 0:
+                if score == 0:  # the first free side at this distance
                     break
             if best_score == 0:
                 break
         assert best is not None
-        ann.set_position(best[:2])
-        ann.set_ha(best[2])
-        ann.set_va(best[3])
+        ann.set_position(best[:2]), ann.set_ha(best[2]), ann.set_va(best[3])
         placed.append(ann.get_window_extent(renderer).padded(2.0))
         out.append(ann)
     return out
@@ -132,6 +131,17 @@ def overlapping_labels(texts: Sequence[Any]) -> list[tuple[str, str]]:
 
 
 # ------------------------------------------------------------------------------------- 3-D pieces
+def frame_tightly(ax: Any, points: Any, margin: float = 0.05, zoom: float = 1.0) -> None:
+    """Equal scale on a 3-D axes whose box fits ``points`` (k, 3) (no cube: less white space than ``set_equal``)."""
+    P = as_array(points, "points", (None, 3), what="points to frame, shape (k, 3)")
+    lo, hi = P.min(axis=0), P.max(axis=0)
+    half = np.maximum(hi - lo, 0.3 * float(np.max(hi - lo)) + 1e-12) * (0.5 + margin)
+    mid = (lo + hi) / 2
+    ax.set(xlim3d=(mid[0] - half[0], mid[0] + half[0]), ylim3d=(mid[1] - half[1], mid[1] + half[1]),
+           zlim3d=(mid[2] - half[2], mid[2] + half[2]))  # fmt: skip
+    ax.set_box_aspect(tuple(half), zoom=zoom)
+
+
 def _seg(ax: Any, a: Any, b: Any, **kw: Any) -> list[Any]:
     return list(ax.plot(*np.stack([a, b]).T, **kw))
 
@@ -150,9 +160,8 @@ def _arc(ax: Any, centre: np.ndarray, u: np.ndarray, k: np.ndarray, angle: float
     return arts
 
 
-def _right_angle(ax: Any, foot: np.ndarray, x: np.ndarray, u: np.ndarray, s: float, color: str) -> list[Any]:
-    P = np.array([foot + s * x, foot + s * x + s * u, foot + s * u])
-    return list(ax.plot(*P.T, color=color, lw=1))
+def _right_angle(ax: Any, foot: np.ndarray, x: np.ndarray, u: np.ndarray, s: float, color: str) -> None:
+    ax.plot(*np.array([foot + s * x, foot + s * x + s * u, foot + s * u]).T, color=color, lw=1)
 
 
 def draw_common_normal(ax: Any, p1: Any, u1: Any, p2: Any, u2: Any, *, sub: str = "i-1", names: Sequence[str] = (
@@ -206,12 +215,6 @@ class DHPicture:
     labels: list[Any] = field(default_factory=list)
 
 
-def _pose(x: np.ndarray, z: np.ndarray, o: np.ndarray) -> np.ndarray:
-    T = np.eye(4)
-    T[:3, 0], T[:3, 1], T[:3, 2], T[:3, 3] = x, np.cross(z, x), z, o
-    return T
-
-
 def draw_dh_picture(ax: Any, points: Any, directions: Any, *, i: str = "i", elev: float = 22, azim: float = -58,
                     half: float | None = None) -> DHPicture:  # fmt: skip
     """Craig's central picture: joint axes i-1, i, i+1 (lines), the normals a_{i-1}, a_i, and d_i, θ_i along axis i.
@@ -260,10 +263,9 @@ def draw_dh_picture(ax: Any, points: Any, directions: Any, *, i: str = "i", elev
     ]  # fmt: skip
     ends = [c1.foot1 + t * U[0] / np.linalg.norm(U[0]) for t in spans[0]] + [c1.foot2 + t * z for t in spans[1]]
     ends += [c2.foot2 + t * u3 for t in (-0.6 * L, L)]
-    set_equal(ax, np.vstack([c1.foot1, c1.foot2, c2.foot1, c2.foot2, *ends]), margin=0.02)
+    frame_tightly(ax, np.vstack([c1.foot1, c1.foot2, c2.foot1, c2.foot2, *ends]), margin=0.02, zoom=1.15)
     ax.view_init(elev=elev, azim=azim)
     ax.set_axis_off()
-    ax.set_box_aspect((1, 1, 1), zoom=1.45)
     texts = place_labels(ax, lab, avoid=[F0[:3, 3], F1[:3, 3]], fontsize=12)
     params = dict(a_prev=c1.a, alpha_prev=c1.alpha, d=d, theta=theta, a=c2.a, alpha=c2.alpha)
     return DHPicture((c1, c2), params, (F0, F1), texts)
@@ -284,15 +286,9 @@ def _clip(a: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
     return a + t0 * d, a + t1 * d
 
 
-def _view_dir(elev: float, azim: float) -> np.ndarray:
-    e, a = np.radians(elev), np.radians(azim)
-    return np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
-
-
 def _sense(ax: Any, tip: np.ndarray, u: np.ndarray, size: float, eye: np.ndarray, **kw: Any) -> None:
     """A chevron at ``tip`` pointing along u, in the plane facing the viewer: the axis' positive sense."""
-    w = np.cross(u, eye)
-    w = w / (np.linalg.norm(w) or 1.0)
+    w = np.cross(u, eye) / (np.linalg.norm(np.cross(u, eye)) or 1.0)
     for s in (1, -1):
         _seg(ax, tip, tip - size * (0.9 * u + s * 0.5 * w), **kw)
 
@@ -307,22 +303,23 @@ def draw_frame_walk(ax: Any, walk: FrameWalk, upto: int | None = None, *, points
     arm's polyline, e.g. ``robot.points(q)``) is drawn faint for orientation. Frames placed before
     are faint; frame {upto} is bold, with its normal to the next axis (purple, a), the twist α to
     the next axis (an arc about X) and its offset d along its own axis (brown) where they are not
-    zero. ``upto=None`` draws every frame bold. The view frames ``view_points`` (default: all that
-    is drawn); what falls outside it is clipped. Returns the placed labels.
+    zero. ``upto=None`` draws every frame bold, ``upto=0`` the axes alone. The view frames
+    ``view_points`` (default: all that is drawn); what falls outside it is clipped. Returns the placed labels.
     """
     n = len(walk.steps)
     k = n if upto is None else int(upto)
-    if not 1 <= k <= n:
-        raise ValueError(f"upto: expected a step from 1 to {n}, got {upto!r}")
+    if not 0 <= k <= n:
+        raise ValueError(f"upto: expected a step from 0 to {n}, got {upto!r}")
     segs = []
     for st in walk.steps:
         t = [0.0, -st.d] + ([] if st.normal is None else [float(np.dot(st.normal.foot1 - st.origin, st.z))])
         segs.append((st.origin + (min(t) - half) * st.z, st.origin + (max(t) + half) * st.z))
     Pp = None if points is None else as_array(points, "points", (None, 3), what="an arm's polyline, shape (p, 3)")
     shown = np.vstack([np.array(segs).reshape(-1, 3)] + ([] if Pp is None else [Pp]))
-    set_equal(ax, shown if view_points is None else as_array(view_points, "view_points", (None, 3)), margin=0.05)
+    frame_tightly(ax, shown if view_points is None else as_array(view_points, "view_points", (None, 3)))
     ax.view_init(elev=elev, azim=azim)
-    eye = _view_dir(elev, azim)
+    e, a = np.radians(elev), np.radians(azim)  # eye: towards the viewer
+    eye = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
     box = np.array([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()]).T
     span = float(box[1, 0] - box[0, 0])
 
@@ -340,7 +337,7 @@ def draw_frame_walk(ax: Any, walk: FrameWalk, upto: int | None = None, *, points
             line(a, b, color="tab:orange", lw=3, alpha=0.3, solid_capstyle="round")
     labels = []
     for st, (lo, hi) in zip(walk.steps, segs, strict=True):
-        strong = upto is not None and st.i in (k, k + 1)
+        strong = not upto or st.i in (k, k + 1)
         style = dict(lw=1.8 if strong else 1.0, color="0.15" if strong else "0.55")
         end = line(lo, hi, ls="--", **style)
         if end is not None and inside(hi):
@@ -353,11 +350,11 @@ def draw_frame_walk(ax: Any, walk: FrameWalk, upto: int | None = None, *, points
         for c in range(3):
             line(st.origin, st.origin + L * st.frame[:3, c], color=AXIS_COLORS[c], alpha=1.0 if bold else 0.3,
                  lw=2.5 if bold else 1.5)  # fmt: skip
+        both = st.i == 1 and np.allclose(walk.base, st.frame)  # {0} = {1} at q = 0
         if bold:
-            labels.append(Label(st.origin, f"$\\{{{st.i}\\}}$", "black", prefer=200))
-    st = walk.steps[k - 1]
-    if upto is not None:
-        cn = st.normal
+            labels.append(Label(st.origin, "$\\{0\\}, \\{1\\}$" if both else f"$\\{{{st.i}\\}}$", "black", prefer=200))
+    if upto:
+        st, cn = walk.steps[k - 1], walk.steps[k - 1].normal
         if cn is not None and st.a > 0:
             line(cn.foot1, cn.foot2, color=NORMAL_COLOR, lw=4)
             labels.append(Label((cn.foot1 + cn.foot2) / 2, f"$a_{{{st.i}}}$", NORMAL_COLOR, prefer=-90))
@@ -402,7 +399,7 @@ def draw_piston_joint(ax: Any, theta: float, b: float, c: float, gamma0: float =
     ax.plot(*np.stack([pa, barrel]).T, color="tab:blue", lw=11, solid_capstyle="butt")  # the cylinder ...
     ax.plot(*np.stack([pa, pb]).T, color="tab:blue", lw=3.5)  # ... and its rod
     ax.plot(*np.stack([[0, 0], pa, pb]).T, "o", color="black", ms=7, zorder=5)
-    t, rg = np.linspace(0, g, 30), 0.3 * min(b, c)
+    t, rg = np.linspace(0, g, 30), 0.6 * b * c * abs(np.sin(g)) / s  # inside the triangle: 0.6 of the lever arm
     ax.plot(rg * np.cos(t), rg * np.sin(t), color=JOINT_COLOR, lw=1.8)
     ends = np.array([[-0.15 * L, 0], [L, 0], L * e, [0, 0]])
     lo, hi = ends.min(axis=0) - 0.12 * L, ends.max(axis=0) + 0.12 * L
@@ -416,5 +413,6 @@ def draw_piston_joint(ax: Any, theta: float, b: float, c: float, gamma0: float =
                       Label((pa + pb) / 2, "$s$", "tab:blue", prefer=float(out)),
                       Label(rg * np.array([np.cos(g / 2), np.sin(g / 2)]), "$\\gamma$", JOINT_COLOR,
                             prefer=float(np.degrees(g / 2)))],
-                 avoid=[[0, 0], pa, pb], fontsize=12)  # fmt: skip
+                 avoid=np.vstack([np.linspace(p0, p1, 40) for p0, p1 in ((pa, pb), ([0, 0], L * e), ([0, 0], [L, 0]))]),
+                 fontsize=12)  # fmt: skip
     return s

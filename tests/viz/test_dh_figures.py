@@ -93,17 +93,20 @@ def _puma_walk():
     return frame_steps(P, U)
 
 
-@pytest.mark.parametrize("k", [1, 2, 3, 4, 5, 6, None])
+@pytest.mark.parametrize("k", [0, 1, 2, 3, 4, 5, 6, None])
 def test_frame_walk_highlights_the_step_and_keeps_labels_apart(k):
     walk = _puma_walk()
     fig, ax = new_axes(figsize=(6.4, 5.2))
     texts = D.draw_frame_walk(ax, walk, k, points=PUMA.points(np.zeros(6)), units="m")
     names = [t.get_text() for t in texts]
-    if k is None:
-        assert all(f"$\\{{{i}\\}}$" in names for i in range(1, 7))
+    first = "$\\{0\\}, \\{1\\}$"  # {0} = {1} at q = 0: one label for both
+    if k == 0:  # the axes alone: their numbers, no frame
+        assert sorted(names) == [str(i) for i in range(1, 7)]
+    elif k is None:
+        assert first in names and all(f"$\\{{{i}\\}}$" in names for i in range(2, 7))
     else:
-        nxt = k % 6 + 1
-        assert f"$\\{{{k}\\}}$" in names and f"$\\{{{nxt}\\}}$" not in names
+        mine, nxt = (first if k == 1 else f"$\\{{{k}\\}}$"), f"$\\{{{k % 6 + 1}\\}}$"
+        assert mine in names and nxt not in names
         assert ("$a_{2}$" in names) == (k == 2) and ("$d_{3}$" in names) == (k == 3)
     assert D.overlapping_labels(texts) == []
     assert ax.get_xlabel() == "x [m]"
@@ -118,7 +121,7 @@ def test_frame_walk_clips_what_lies_outside_a_zoomed_view():
     for ln in ax.lines:
         P = np.transpose(ln.get_data_3d())
         assert np.all(P >= lo - 1e-9) and np.all(P <= hi + 1e-9)
-    with pytest.raises(ValueError, match="^upto: expected a step from 1 to 6"):
+    with pytest.raises(ValueError, match="^upto: expected a step from 0 to 6"):
         D.draw_frame_walk(ax, walk, 7)
 
 
