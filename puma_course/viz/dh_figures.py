@@ -106,7 +106,7 @@ def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, fontsiz
             if best_score == 0:
                 break
         assert best is not None
-        ann.set_position(best[:2]), ann.set_ha(best[2]), ann.set_va(best[3])
+        ann.set(position=best[:2], ha=best[2], va=best[3])
         placed.append(ann.get_window_extent(renderer).padded(2.0))
         out.append(ann)
     return out
@@ -370,7 +370,9 @@ def draw_frame_walk(ax: Any, walk: FrameWalk, upto: int | None = None, *, points
             labels.append(Label((st.foot_prev + st.origin) / 2, f"$d_{{{st.i}}}$", JOINT_COLOR, prefer=150))
     ax.locator_params(nbins=4)
     u = f" [{units}]" if units else ""
-    ax.set(xlabel=f"x{u}", ylabel=f"y{u}", zlabel=f"z{u}")
+    for axis, name in zip((ax.xaxis, ax.yaxis, ax.zaxis), "xyz", strict=True):  # room for the tick numbers
+        axis.set_label_text(f"{name}{u}")
+        axis.labelpad = 10
     return place_labels(ax, [lb for lb in labels if inside(np.asarray(lb.point, float))], fontsize=11)
 
 
