@@ -27,6 +27,7 @@ from puma_course import euler, transforms
 from puma_course.kinematics import MK3, DHChain, Link, Porter, Puma560, ThreeStepArm, dh, ik, spaces
 from puma_course.kinematics import frame_assignment as fa
 from puma_course.kinematics import jacobian as jac
+from puma_course.kinematics import standard_dh as sdh
 from puma_course.kinematics import three_step as ts
 from puma_course.kinematics import trajectories as tr
 from puma_course.kinematics.porter import angle
@@ -85,6 +86,7 @@ BAD: dict[str, list[Any]] = {
     "path3": [*_REAL, [[0.0, 0.0]], [[np.nan, 0, 0], [0, 0, 1]], [[1j, 0, 0], [0, 0, 1]], [0.0, 0.0, 1.0]],
     "kinds": [["R"], ["R", "X"], "RX", None],
     "stroke": [*_REAL, 8.0, 0.5, -1.0],
+    "rows": [[], "abc", None, [(0.0, 0.0, 1.0)], [(0.0, 0.0, 1.0, 0.0, "X")], [(np.nan, 0.0, 1.0, 0.0, "R")]],
 }
 
 PUMA, MK3_, PORTER, TS = Puma560(), MK3(), Porter(1.0, 0.5, 0.3), ThreeStepArm(1.5, 1.0)
@@ -306,6 +308,42 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
         ],
     ),  # fmt: skip
     (
+        "frame_assignment.frame_steps",
+        fa.frame_steps,
+        [
+            ("points", "path3", [[0.0, 0, 0], [0, 0, 0.5]]),
+            ("directions", "path3", [[0, 0, 1.0], [0, 1.0, 0]]),
+            ("kinds", "kinds", ["R", "R"]),
+            ("x0", "direction", [1.0, 0, 0]),
+        ],
+    ),  # fmt: skip
+    (
+        "frame_assignment.d_theta",
+        fa.d_theta,
+        [
+            ("z", "direction", [0, 0, 1.0]),
+            ("foot_prev", "vec3", [0, 0, 1.0]),
+            ("x_prev", "direction", [1.0, 0, 0]),
+            ("origin", "vec3", [0, 0, 3.0]),
+            ("x", "direction", [0, 1.0, 0]),
+        ],
+    ),  # fmt: skip
+    (
+        "standard_dh.standard_dh",
+        sdh.standard_dh,
+        [("theta", "angle_any", 0.1), ("d", "length_any", 0.5), ("a", "length_any", 1.0), ("alpha", "angle_any", 0.0)],
+    ),
+    (
+        "standard_dh.standard_from_modified",
+        sdh.standard_from_modified,
+        [("links", "links", [Link(0.0, 0.0), Link(-np.pi / 2, 0.0, 0.1)])],
+    ),
+    (
+        "standard_dh.standard_fk",
+        sdh.standard_fk,
+        [("rows", "rows", [(0.0, 0.0, 1.0, 0.0, "R"), (0.0, 0.0, 1.0, 0.0, "R")]), ("q", "q2", [0.1, 0.2])],
+    ),
+    (
         "spaces.actuator_from_joint",
         spaces.actuator_from_joint,
         [("theta", "angle_any", 0.3), ("b", "positive", 3.0), ("c", "positive", 4.0), ("gamma0", "angle", 0.0)],
@@ -344,6 +382,8 @@ EXEMPT = {
     "trajectories.TimeScaling": "a result type built by time_scaling()",
     "frame_assignment.CommonNormal": "a result type built by common_normal()",
     "frame_assignment.DerivedTable": "a result type built by dh_from_axes()",
+    "frame_assignment.FrameStep": "a result type built by frame_steps()",
+    "frame_assignment.FrameWalk": "a result type built by frame_steps()",
     "three_step.ThreeStepSolution": "a result type built by three_step()",
     "three_step.Motion": "a result type built by motion()",
 }
@@ -426,6 +466,7 @@ def test_every_public_function_is_swept():
     public = (
         _public(transforms, "transforms") | _public(euler, "euler") | _public(dh, "dh") | _public(ik, "ik")
         | _public(fa, "frame_assignment") | _public(jac, "jacobian") | _public(spaces, "spaces")
+        | _public(sdh, "standard_dh")
         | _public(ts, "three_step") | _public(tr, "trajectories")
         | {f"porter.{n}" for n in ("angle",)}
     )  # fmt: skip

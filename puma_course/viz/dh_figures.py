@@ -16,9 +16,9 @@ from typing import Any
 import numpy as np
 
 from .._validate import as_array, as_length
-from ..kinematics.frame_assignment import CommonNormal, common_normal
-from ..kinematics.frame_steps import FrameWalk, _pose, d_theta
+from ..kinematics.frame_assignment import CommonNormal, FrameWalk, common_normal, d_theta
 from ..kinematics.spaces import actuator_from_joint
+from ..transforms import homogeneous
 from .frames import AXIS_COLORS
 
 __all__ = ["Label", "place_labels", "overlapping_labels", "frame_tightly", "draw_common_normal", "DHPicture",
@@ -39,6 +39,11 @@ class Label:
     color: str = "black"
     prefer: float | None = None
     size: float | None = None
+
+
+def _frame(x: np.ndarray, z: np.ndarray, o: np.ndarray) -> np.ndarray:
+    """The frame with axes X = x, Z = z (unit, normal to each other) at origin o."""
+    return homogeneous(np.column_stack([x, np.cross(z, x), z]), o)
 
 
 def _screen(ax: Any, P: np.ndarray) -> np.ndarray:
@@ -244,7 +249,7 @@ def draw_dh_picture(ax: Any, points: Any, directions: Any, *, i: str = "i", elev
     _seg(ax, c2.foot1, c2.foot1 + 0.7 * L * c1.direction, ls=":", lw=1.5, color="0.35")  # X_{i-1}, copied
     r = 0.45 * L
     _arc(ax, c2.foot1, c1.direction, z, theta, r, JOINT_COLOR)
-    F0, F1 = _pose(c1.direction, U[0] / np.linalg.norm(U[0]), c1.foot1), _pose(c2.direction, z, c2.foot1)
+    F0, F1 = _frame(c1.direction, U[0] / np.linalg.norm(U[0]), c1.foot1), _frame(c2.direction, z, c2.foot1)
     tl = 0.4 * L
     for F in (F0, F1):  # X and Z only, as in the textbooks' picture (Y completes the right-handed frame)
         _seg(ax, F[:3, 3], F[:3, 3] + tl * F[:3, 0], color=AXIS_COLORS[0], lw=3)

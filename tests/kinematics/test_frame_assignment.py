@@ -64,14 +64,25 @@ def test_derived_frames_sit_on_the_robots_joint_axes_at_every_configuration(seed
     """Any valid table puts Z_i on joint axis i for every q: a property independent of the choices made."""
     rng = np.random.default_rng(seed)
     robots = [Puma560(), MK3()]
-    kinds = ["R", "R", "P", "R", "R"]
-    links = [Link(rng.uniform(-3, 3), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), k) for k in kinds]
-    robots.append(DHChain(links))
+    for kinds in (["R", "R", "P", "R", "R"], ["P", "R", "R", "P"]):  # a prismatic joint inside, and first
+        links = [Link(rng.uniform(-3, 3), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), k) for k in kinds]
+        robots.append(DHChain(links))
     q = rng.uniform(-2, 2, (20, 6))
     for robot in robots:
         F = robot.frames(np.zeros(robot.n))
         derived = dh_from_axes(F[1 : robot.n + 1, :3, 3], F[1 : robot.n + 1, :3, 2], [lk.kind for lk in robot.links])
         _on_the_same_axes(robot, derived, q[:, : robot.n])
+
+
+def test_a_prismatic_first_joint_keeps_frame_1_on_its_axis():
+    """Found by lecture 02's frame_steps: with X_0 taken from ``x0`` but θ1 = atan2(...) kept, frame {2}
+    left its axis. By hand: slider along z_0, then a revolute axis along x through (0, 1, 0.5)."""
+    t = dh_from_axes([[0, 0, 0], [0, 1, 0.5]], [[0, 0, 1], [1, 0, 0]], ["P", "R"])
+    assert t.chain.links[0].theta == 0.0
+    F = t.base @ t.chain.frames(np.zeros(2))
+    o2, z2 = F[2, :3, 3], F[2, :3, 2]
+    assert np.allclose(np.abs(z2), [1, 0, 0])
+    assert np.allclose(o2[1:], [1.0, 0.5])  # on the axis x = t, y = 1, z = 0.5
 
 
 def test_the_mk3_table_moves_d1_into_the_base():

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from puma_course.kinematics import Puma560, mdh
-from puma_course.kinematics.frame_steps import frame_steps
+from puma_course.kinematics.frame_assignment import frame_steps
 from puma_course.viz import dh_figures as D
 from puma_course.viz.frames import new_axes
 

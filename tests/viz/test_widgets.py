@@ -249,5 +249,5 @@ def test_display_bundle_has_a_png_of_the_first_pose():
     png = base64.b64decode(data["image/png"])
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
-    assert 400 <= width <= 800 and 300 <= height <= 800  # about 620 x 500 at 110 dpi (the course style): readable, still small
+    assert 400 <= width <= 800 and 300 <= height <= 800  # about 620 x 480 at 110 dpi
     assert len(png) < 150_000

@@ -16,14 +16,8 @@ import sympy as sp
 
 from puma_course import symbolic as S
 from puma_course.kinematics import MK3, DHChain, Link, Puma560, mdh
-from puma_course.kinematics.frame_assignment import dh_from_axes
-from puma_course.kinematics.frame_steps import (
-    d_theta,
-    frame_steps,
-    standard_dh,
-    standard_fk,
-    standard_from_modified,
-)
+from puma_course.kinematics.frame_assignment import d_theta, dh_from_axes, frame_steps
+from puma_course.kinematics.standard_dh import standard_dh, standard_fk, standard_from_modified
 
 H = math.pi / 2
 
