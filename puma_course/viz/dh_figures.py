@@ -41,11 +41,6 @@ class Label:
     size: float | None = None
 
 
-def _frame(x: np.ndarray, z: np.ndarray, o: np.ndarray) -> np.ndarray:
-    """The frame with axes X = x, Z = z (unit, normal to each other) at origin o."""
-    return homogeneous(np.column_stack([x, np.cross(z, x), z]), o)
-
-
 def _screen(ax: Any, P: np.ndarray) -> np.ndarray:
     """Points (k, 3) or (k, 2) in the axes' 2-D data coordinates (projected for a 3-D axes)."""
     P = np.atleast_2d(P)
@@ -118,8 +113,7 @@ def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, fontsiz
 
 
 def _area(a: Any, b: Any) -> float:
-    w = min(a.x1, b.x1) - max(a.x0, b.x0)
-    h = min(a.y1, b.y1) - max(a.y0, b.y0)
+    w, h = min(a.x1, b.x1) - max(a.x0, b.x0), min(a.y1, b.y1) - max(a.y0, b.y0)
     return float(w * h) if w > 0 and h > 0 else 0.0
 
 
@@ -135,7 +129,6 @@ def overlapping_labels(texts: Sequence[Any]) -> list[tuple[str, str]]:
             if _area(boxes[i], boxes[j]) > 0]  # fmt: skip
 
 
-# ------------------------------------------------------------------------------------- 3-D pieces
 def frame_tightly(ax: Any, points: Any, margin: float = 0.05, zoom: float = 1.0) -> None:
     """Equal scale on a 3-D axes whose box fits ``points`` (k, 3) (no cube: less white space than ``set_equal``)."""
     P = as_array(points, "points", (None, 3), what="points to frame, shape (k, 3)")
@@ -249,7 +242,9 @@ def draw_dh_picture(ax: Any, points: Any, directions: Any, *, i: str = "i", elev
     _seg(ax, c2.foot1, c2.foot1 + 0.7 * L * c1.direction, ls=":", lw=1.5, color="0.35")  # X_{i-1}, copied
     r = 0.45 * L
     _arc(ax, c2.foot1, c1.direction, z, theta, r, JOINT_COLOR)
-    F0, F1 = _frame(c1.direction, U[0] / np.linalg.norm(U[0]), c1.foot1), _frame(c2.direction, z, c2.foot1)
+    z0 = U[0] / np.linalg.norm(U[0])
+    F0 = homogeneous(np.column_stack([c1.direction, np.cross(z0, c1.direction), z0]), c1.foot1)
+    F1 = homogeneous(np.column_stack([c2.direction, np.cross(z, c2.direction), z]), c2.foot1)
     tl = 0.4 * L
     for F in (F0, F1):  # X and Z only, as in the textbooks' picture (Y completes the right-handed frame)
         _seg(ax, F[:3, 3], F[:3, 3] + tl * F[:3, 0], color=AXIS_COLORS[0], lw=3)
