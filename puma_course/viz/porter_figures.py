@@ -1,28 +1,13 @@
-"""The figures of lectures 05-07 (Porter's chain): readable 3-D axes, labels that do not collide.
+"""The figures of lectures 05-07 (Porter's chain): readable 3-D axes and labels that do not collide.
 
-* :func:`tidy_axes` - a 3-D axes readable on a projector: few ticks, axis labels with room, the
-  z label inside the figure;
-* :func:`fit_ticks` - as many ticks per axis as fit the view without their numbers colliding;
-* :func:`label_points` - text labels next to 3-D points, placed on the screen so that they overlap
-  neither each other nor the labelled points (nor, where it can, the drawn links);
-* :func:`joint_points` - Porter's points :math:`p_0 = p_1, p_2, \\dots, p_5` of a configuration,
-  with their names;
-* :func:`ver2_points` - the points and vectors of the geometric construction (Ver.2) for a pose,
-  read from the robot API (``arm.ik(T, method="geometric")``, ``arm.points``);
-* :func:`parallel_circle` - the circle of possible :math:`p_3` when the two planes are parallel;
-* :func:`plot_frames`, :func:`plot_solutions`, :func:`plot_construction`,
-  :func:`plot_parallel_planes` - the lectures' figures.
-
-Nothing here computes kinematics of its own: every point comes from ``arm.points``/``arm.frames``
-of a :class:`~puma_course.kinematics.porter.Porter` and its ``ik``.
-
->>> import matplotlib
->>> matplotlib.use("Agg")
->>> from puma_course import Porter
->>> fig = plot_frames(Porter(1.0, 0.5, 0.3), [[0.0, 0.0, 0.8, 0.0, 0.0, 0.0]])
->>> len(fig.axes), fig.axes[0].get_zlabel()
-(1, 'z')
->>> import matplotlib.pyplot as plt; plt.close(fig)
+* :func:`tidy_axes`, :func:`fit_ticks`, :func:`tick_label_boxes` - a 3-D axes readable on a
+  projector: axis labels with room, as many tick numbers as fit the view without colliding;
+* :func:`label_points` - labels next to 3-D points, placed on the screen so that they overlap
+  neither each other nor the labelled points (nor, where they can, the drawn links);
+* :func:`ver2_points`, :func:`parallel_circle` - the points of the geometric construction (Ver.2)
+  and the circle of possible p3 when the planes are parallel, read from the robot API;
+* :func:`plot_frames`, :func:`plot_solutions`, :func:`plot_construction`, :func:`plot_parallel_planes`:
+  the lectures' figures. No kinematics of its own: every point comes from ``Porter``'s API.
 """
 
 from __future__ import annotations
@@ -43,25 +28,12 @@ from ..kinematics.porter import Porter
 from .arms import draw_chain
 from .frames import draw_points, set_equal
 
-__all__ = [
-    "POINT_NAMES",
-    "FRAME_NAMES",
-    "tidy_axes",
-    "fit_ticks",
-    "tick_label_boxes",
-    "label_points",
-    "joint_points",
-    "ver2_points",
-    "parallel_circle",
-    "plot_frames",
-    "plot_solutions",
-    "plot_construction",
-    "plot_parallel_planes",
-]
+__all__ = ["POINT_NAMES", "FRAME_NAMES", "tidy_axes", "fit_ticks", "tick_label_boxes", "label_points", "ver2_points",
+           "parallel_circle", "plot_frames", "plot_solutions", "plot_construction", "plot_parallel_planes"]  # fmt: skip
 
-#: Names of Porter's points as drawn (mathtext): p0 and p1 coincide, so they share one label.
+#: Names of Porter's points as drawn (mathtext): p0 and p1 coincide.
 POINT_NAMES = ("$p_0 = p_1$", "$p_2$", "$p_3$", "$p_4$", "$p_5$")
-#: Names of Porter's frames as drawn: F0 and F1 share their origin (F1 is F0 turned by α1).
+#: Names of Porter's frames as drawn: F1 (F0 turned by α1) shares F0's origin.
 FRAME_NAMES = ("$F_0, F_1$", "", "$F_2$", "$F_3$", "$F_4$", "$F_5$")
 
 # offsets tried for a label, in points: 8 directions at three distances, the nearest first
@@ -75,14 +47,28 @@ def _check_porter(arm: Any) -> Porter:
     return arm
 
 
+def _check_3d(ax: Any) -> None:
+    if getattr(ax, "name", "") != "3d":
+        raise ValueError(f"ax: expected a 3-D axes (projection='3d'), got {type(ax).__name__}")
+
+
+def _axes(fig: Figure, pos: tuple[int, int, int], elev: float, azim: float) -> Any:
+    ax = tidy_axes(fig.add_subplot(*pos, projection="3d"))
+    ax.view_init(elev=elev, azim=azim)
+    return ax
+
+
+def _frame(ax: Any, pts: np.ndarray, margin: float) -> None:
+    set_equal(ax, pts, margin=margin)
+    fit_ticks(ax)
+
+
 def tidy_axes(ax: Any, *, nbins: int = 4, units: str = "", pad: float = 2.0) -> Any:
     """Make a 3-D axes readable: at most ``nbins`` + 1 ticks per axis, labels x, y, z (with ``units``).
 
-    The tick numbers sit close to their axis (``pad`` points) and the box is drawn slightly smaller
-    than the axes (zoom 0.9), which leaves room for the z label inside the figure.
+    Tick numbers sit ``pad`` points from their axis; the box is drawn at zoom 0.9, which leaves room
+    for the z label inside the figure.
 
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> fig = plt.figure()
     >>> ax = tidy_axes(fig.add_subplot(projection="3d"), units="m")
     >>> fig.canvas.draw()
@@ -90,8 +76,7 @@ def tidy_axes(ax: Any, *, nbins: int = 4, units: str = "", pad: float = 2.0) -> 
     ('x [m]', True)
     >>> plt.close(fig)
     """
-    if getattr(ax, "name", "") != "3d":
-        raise ValueError(f"ax: expected a 3-D axes (projection='3d'), got {type(ax).__name__}")
+    _check_3d(ax)
     nbins = as_count(nbins, "nbins", minimum=2)
     unit = f" [{units}]" if units else ""
     for axis, name in ((ax.xaxis, "x"), (ax.yaxis, "y"), (ax.zaxis, "z")):
@@ -104,18 +89,12 @@ def tidy_axes(ax: Any, *, nbins: int = 4, units: str = "", pad: float = 2.0) -> 
 
 
 def tick_label_boxes(ax: Any) -> dict[str, list[Any]]:
-    """The window extents of the tick numbers drawn on each axis of a 3-D axes, as last drawn.
-
-    Only ticks inside the axis' view interval count (those are the ones drawn). Draw the figure
-    first (``fig.canvas.draw()``).
-    """
+    """The window extents of the tick numbers drawn (inside the view) on each axis of a drawn 3-D axes."""
     renderer = ax.figure.canvas.get_renderer()
     out: dict[str, list[Any]] = {}
     for name, axis in (("x", ax.xaxis), ("y", ax.yaxis), ("z", ax.zaxis)):
-        lo, hi = sorted(axis.get_view_interval())
-        eps = 1e-9 * max(1.0, abs(hi - lo))
-        locs = axis.get_majorticklocs()
-        ticks = axis.get_major_ticks(len(locs))
+        (lo, hi), locs = sorted(axis.get_view_interval()), axis.get_majorticklocs()
+        eps, ticks = 1e-9 * max(1.0, abs(hi - lo)), axis.get_major_ticks(len(locs))
         out[name] = [t.label1.get_window_extent(renderer) for loc, t in zip(locs, ticks, strict=True)
                      if lo - eps <= loc <= hi + eps and t.label1.get_visible() and t.label1.get_text()]  # fmt: skip
     return out
@@ -136,8 +115,6 @@ def fit_ticks(ax: Any, max_bins: int = 4) -> Any:
     axes' numbers; the first count that collides with nothing is kept. An axis seen nearly end on
     gets fewer ticks (down to its first and last one); one seen across its whole length keeps them all.
 
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> fig = plt.figure(figsize=(4.0, 3.6))
     >>> ax = fig.add_subplot(projection="3d")
     >>> ax.view_init(elev=5, azim=-2)  # the x axis is seen almost end on
@@ -148,11 +125,9 @@ def fit_ticks(ax: Any, max_bins: int = 4) -> Any:
     (2, 3)
     >>> plt.close(fig)
     """
-    if getattr(ax, "name", "") != "3d":
-        raise ValueError(f"ax: expected a 3-D axes (projection='3d'), got {type(ax).__name__}")
+    _check_3d(ax)
     max_bins = as_count(max_bins, "max_bins", minimum=2)
-    axes = {"x": ax.xaxis, "y": ax.yaxis, "z": ax.zaxis}
-    for name, axis in axes.items():
+    for name, axis in {"x": ax.xaxis, "y": ax.yaxis, "z": ax.zaxis}.items():
         for nb in range(max_bins, 1, -1):
             axis.set_major_locator(MaxNLocator(nbins=nb, steps=[1, 2, 2.5, 5, 10]))
             ax.figure.canvas.draw()
@@ -175,49 +150,27 @@ def _display(ax: Any, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _seg_hits_box(a: np.ndarray, b: np.ndarray, box: Any) -> bool:
-    """Does the 2-D segment a-b cross the rectangle ``box`` (a matplotlib Bbox, display units)?"""
-    x0, y0, x1, y1 = box.x0, box.y0, box.x1, box.y1
-    t0, t1 = 0.0, 1.0
-    d = b - a
-    for p, q in ((-d[0], a[0] - x0), (d[0], x1 - a[0]), (-d[1], a[1] - y0), (d[1], y1 - a[1])):
-        if p == 0.0:
-            if q < 0.0:
-                return False
-            continue
-        t = q / p
-        if p < 0.0:
-            t0 = max(t0, t)
-        else:
-            t1 = min(t1, t)
-        if t0 > t1:
-            return False
-    return True
+    """Does the 2-D segment a-b (display units) pass through the Bbox ``box``? (sampled every few pixels)"""
+    n = int(min(200, 2 + math.hypot(*(b - a)) / 3.0))
+    return any(box.contains(*(a + t * (b - a))) for t in np.linspace(0.0, 1.0, n))
 
 
-def label_points(
-    ax: Any,
-    points: Any,
-    names: Sequence[str],
-    *,
-    avoid: Sequence[Any] = (),
-    fontsize: float = 10.0,
-    color: str | Sequence[str] = "k",
-) -> list[Any]:
+def _place(ann: Any, offset: tuple[float, float], ha: str, va: str) -> None:
+    ann.xyann = offset
+    ann.set(horizontalalignment=ha, verticalalignment=va)
+
+
+def label_points(ax: Any, points: Any, names: Sequence[str], *, avoid: Sequence[Any] = (), fontsize: float = 10.0,
+                 color: str | Sequence[str] = "k") -> list[Any]:  # fmt: skip
     """Label 3-D points (k, 3) with ``names`` so that no two labels overlap and no label hides a point.
 
-    Call it last, after the view and the limits are set (:func:`~.frames.set_equal`): the labels
-    are placed for that view. Each label is an annotation anchored at its point and shifted on the
-    screen by a few points in the direction that collides least: with other labels (never, when
-    any direction avoids it), with the labelled points, with the polylines in ``avoid`` (each
-    (m, 3), e.g. the links) and with the axes' edge. Empty names are skipped. Returns the
-    annotations (in the order of the non-empty names).
+    Call it last, when view and limits are set: each label is an annotation anchored at its point,
+    shifted on the screen in the direction that collides least with other labels (never, when a
+    direction avoids it), the points, the polylines in ``avoid`` (each (m, 3), e.g. the links) and
+    the axes' edge. Empty names are skipped. Returns the annotations.
 
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
-    >>> from puma_course.viz import new_axes
-    >>> fig, ax = new_axes()
-    >>> P = np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [1.0, 1.0, 1.0]])
-    >>> set_equal(ax, P)
+    >>> fig, ax = plt.figure(), plt.axes(projection="3d")
+    >>> P = np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [1.0, 1.0, 1.0]]); set_equal(ax, P)
     >>> [a.get_text() for a in label_points(ax, P, ["a", "b", ""])]
     ['a', 'b']
     >>> plt.close(fig)
@@ -233,12 +186,9 @@ def label_points(
     fig.canvas.draw()  # the layout is final: the view and the axes' place on the figure are known
     renderer = fig.canvas.get_renderer()
     xy, disp = _display(ax, P)
-    segs = []
-    for L in lines:
-        _, d = _display(ax, L)
-        segs += list(zip(d[:-1], d[1:], strict=True))
-    frame = ax.get_window_extent(renderer)
-    r = 3.0 * fig.dpi / 72.0  # a point's marker: about 3 pt around it
+    ds = [_display(ax, L)[1] for L in lines]
+    segs = [(d[k], d[k + 1]) for d in ds for k in range(len(d) - 1)]
+    frame, r = ax.get_window_extent(renderer), 3.0 * fig.dpi / 72.0  # a point's marker: about 3 pt around it
     placed: list[Any] = []
     out = []
     for i, name in enumerate(names):
@@ -252,54 +202,30 @@ def label_points(
             for cx, cy in _DIRECTIONS:
                 ha = "left" if cx > 0.3 else "right" if cx < -0.3 else "center"
                 va = "bottom" if cy > 0.3 else "top" if cy < -0.3 else "center"
-                ann.set_horizontalalignment(ha)
-                ann.set_verticalalignment(va)
-                ann.xyann = (radius * cx, radius * cy)
+                _place(ann, (radius * cx, radius * cy), ha, va)
                 box = ann.get_window_extent(renderer).padded(1.0)
-                cost = radius / 10.0
-                cost += 1000.0 * sum(box.overlaps(b) for b in placed)
+                cost = radius / 10.0 + 1000.0 * sum(box.overlaps(b) for b in placed)
                 cost += 100.0 * sum(box.x0 - r < x < box.x1 + r and box.y0 - r < y < box.y1 + r for x, y in disp)
                 cost += 10.0 * sum(_seg_hits_box(a, b, box) for a, b in segs)
                 cost += 50.0 * (not (frame.contains(box.x0, box.y0) and frame.contains(box.x1, box.y1)))
                 if best is None or cost < best[0]:
                     best = (cost, (radius * cx, radius * cy), ha, va)
         assert best is not None
-        _, off, ha, va = best
-        ann.xyann = off
-        ann.set_horizontalalignment(ha)
-        ann.set_verticalalignment(va)
+        _place(ann, *best[1:])
         placed.append(ann.get_window_extent(renderer))
         out.append(ann)
     return out
 
 
-def joint_points(arm: Porter, q: Any) -> tuple[np.ndarray, tuple[str, ...]]:
-    """Porter's points p0 = p1, p2, p3, p4, p5 of ``q`` (5, 3) and their names (:data:`POINT_NAMES`).
-
-    >>> from puma_course import Porter
-    >>> P, names = joint_points(Porter(1.0, 0.5, 0.3), [0.0, 0.0, 0.8, 0.0, 0.0, 0.0])
-    >>> P[[1, 4]].tolist(), names[4]
-    ([[0.0, 0.0, 1.0], [1.1, 0.0, 0.5]], '$p_5$')
-    """
-    arm = _check_porter(arm)
-    P = arm.points(arm.check_q(q))
-    if P.ndim != 2:
-        raise ValueError(f"q: expected one configuration (6,), got shape {np.shape(q)}")
-    return P[[0, 2, 3, 4, 5]], POINT_NAMES
-
-
 def ver2_points(arm: Porter, T: Any, near: Any = None) -> dict[str, np.ndarray]:
     """The geometric construction (Ver.2) for the pose T, read from the robot API.
 
-    Keys: ``p0``, ``p2``, ``p4``, ``p5`` (points), ``x5`` (the hand's x axis), ``n`` (the unit
-    normal of the arm plane P, (p2 - p0) x (p4 - p0) normalised: the joint axis y1 of α2 and α3),
-    ``p3`` (the candidate elbow points, one per configuration of ``arm.ik(T, method="geometric")``,
-    (k, 3)), ``q`` (those configurations, (k, 6), the one nearest ``near`` first when given). The
-    arm plane must be defined (p4 off the z0 axis); a singular pose's warning is not repeated here.
+    Keys: ``p0``, ``p2``, ``p4``, ``p5``, ``x5`` (the hand's x axis), ``n`` (the unit normal
+    (p2 - p0) x (p4 - p0) of the arm plane P: the axis y1 of α2 and α3), ``p3`` (the elbow point of
+    each configuration of ``arm.ik(T, near=near, method="geometric")``, (k, 3)) and ``q`` (those
+    configurations). P must be defined (p4 off the z0 axis); the ik's warning is not repeated.
 
-    >>> from puma_course import Porter
-    >>> arm = Porter(1.0, 0.5, 0.3)
-    >>> V = ver2_points(arm, arm.fk([0.6, -0.5, 1.2, 0.8, 0.7, -0.4]))
+    >>> arm = Porter(1.0, 0.5, 0.3); V = ver2_points(arm, arm.fk([0.6, -0.5, 1.2, 0.8, 0.7, -0.4]))
     >>> V["p3"].shape, round(float(np.linalg.norm(V["p3"][0] - V["p4"])), 12)
     ((2, 3), 0.5)
     """
@@ -325,9 +251,7 @@ def parallel_circle(arm: Porter, T: Any, samples: int = 121) -> np.ndarray:
     Centre p4, radius l3, in the arm plane P (whose normal is x5 here). Raises ``ValueError`` if
     the pose is not a parallel-planes pose.
 
-    >>> from puma_course import Porter
-    >>> arm = Porter(1.0, 0.5, 0.3)
-    >>> C = parallel_circle(arm, arm.fk([0.7, 0.3, 1.2, 0.4, np.pi / 2, 0.5]), samples=5)
+    >>> arm = Porter(1.0, 0.5, 0.3); C = parallel_circle(arm, arm.fk([0.7, 0.3, 1.2, 0.4, np.pi / 2, 0.5]), samples=5)
     >>> np.round(np.linalg.norm(C - (C[0] + C[2]) / 2, axis=1), 12).tolist()
     [0.5, 0.5, 0.5, 0.5, 0.5]
     """
@@ -336,12 +260,9 @@ def parallel_circle(arm: Porter, T: Any, samples: int = 121) -> np.ndarray:
     samples = as_count(samples, "samples", minimum=3)
     if "planes_parallel" not in arm.classify(T):
         raise ValueError("T: expected a pose with parallel planes (x5 normal to the arm plane, c4 = 0)")
-    l4, l3 = arm.lengths["l4"], arm.lengths["l3"]
-    x5, p4 = T[:3, 0], T[:3, 3] - l4 * T[:3, 0]
-    up = np.array([0.0, 0.0, 1.0])
-    u = np.cross(x5, up)  # the horizontal direction of P (x5 is horizontal and normal to P)
-    u /= math.hypot(*u)
-    t = np.linspace(0.0, 2.0 * math.pi, samples)
+    x5, p4, up = T[:3, 0], T[:3, 3] - arm.lengths["l4"] * T[:3, 0], np.array([0.0, 0.0, 1.0])
+    u = np.cross(x5, up) / math.hypot(*np.cross(x5, up))  # the horizontal direction of P (x5 is normal to P)
+    l3, t = arm.lengths["l3"], np.linspace(0.0, 2.0 * math.pi, samples)
     return p4 + l3 * (np.outer(np.cos(t), up) + np.outer(np.sin(t), u))
 
 
@@ -358,24 +279,13 @@ def _plane_patch(ax: Any, a1: float, pts: np.ndarray, color: str = "0.5", alpha:
     return corners
 
 
-def plot_frames(
-    arm: Porter,
-    Q: Any,
-    titles: Sequence[str] | None = None,
-    *,
-    figsize: tuple[float, float] | None = None,
-    elev: float = 22.0,
-    azim: float = -60.0,
-) -> Figure:
+def plot_frames(arm: Porter, Q: Any, titles: Sequence[str] | None = None, *, figsize: tuple[float, float] | None = None,
+                elev: float = 22.0, azim: float = -60.0) -> Figure:  # fmt: skip
     """One 3-D panel per configuration in ``Q`` (k, 6): links, frames F0..F5 with their triads and names.
 
     All panels share one cube of limits (so they compare at a glance) filled by the arms.
 
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
-    >>> from puma_course import Porter
-    >>> fig = plot_frames(Porter(1.0, 0.5, 0.3), np.zeros((2, 6)), ["a", "b"])
-    >>> [ax.get_title() for ax in fig.axes]
+    >>> fig = plot_frames(Porter(1.0, 0.5, 0.3), np.zeros((2, 6)), ["a", "b"]); [ax.get_title() for ax in fig.axes]
     ['a', 'b']
     >>> plt.close(fig)
     """
@@ -385,17 +295,14 @@ def plot_frames(
     if titles is not None and (isinstance(titles, str) or len(titles) != k):
         raise ValueError(f"titles: expected one title per configuration ({k}), got {titles!r}")
     F = arm.frames(Q)
-    span = float(np.ptp(F[:, :, :3, 3].reshape(-1, 3), axis=0).max())
-    L = 0.14 * max(span, 1e-9)
+    L = 0.14 * max(float(np.ptp(F[:, :, :3, 3].reshape(-1, 3), axis=0).max()), 1e-9)
     tips = F[:, :, :3, 3][..., None, :] + L * np.swapaxes(F[:, :, :3, :3], -1, -2)
     box = np.vstack([F[:, :, :3, 3].reshape(-1, 3), tips.reshape(-1, 3)])
     fig = plt.figure(figsize=figsize or (5.2 * k, 5.0))
     for j in range(k):
-        ax = tidy_axes(fig.add_subplot(1, k, j + 1, projection="3d"))
-        ax.view_init(elev=elev, azim=azim)
+        ax = _axes(fig, (1, k, j + 1), elev, azim)
         draw_chain(ax, F[j], labels=[""] * 6, length=L)
-        set_equal(ax, box, margin=0.02)
-        fit_ticks(ax)
+        _frame(ax, box, 0.02)
         if titles is not None:
             ax.set_title(titles[j])
     for j, ax in enumerate(fig.axes):
@@ -404,19 +311,14 @@ def plot_frames(
     return fig
 
 
-def plot_solutions(
-    arm: Porter, solutions: Any, *, figsize: tuple[float, float] = (10.5, 5.0), elev: float = 18.0, azim: float = -50.0
-) -> Figure:
+def plot_solutions(arm: Porter, solutions: Any, *, figsize: tuple[float, float] = (10.5, 5.0), elev: float = 18.0,
+                   azim: float = -50.0) -> Figure:  # fmt: skip
     """The solutions of one pose, one panel per arm plane (α1): the first solid, the others faded.
 
     ``solutions`` is an :class:`~puma_course.kinematics.ik.IKSolutions` (or (k, 6) rows) for one
     pose. Each panel labels p0 ... p5 and, for every configuration, its elbow point p3.
 
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
-    >>> from puma_course import Porter
-    >>> arm = Porter(1.0, 0.5, 0.3)
-    >>> fig = plot_solutions(arm, arm.ik(arm.fk([0.6, -0.5, 1.2, 0.8, 0.7, -0.4])))
+    >>> arm = Porter(1.0, 0.5, 0.3); fig = plot_solutions(arm, arm.ik(arm.fk([0.6, -0.5, 1.2, 0.8, 0.7, -0.4])))
     >>> len(fig.axes)
     2
     >>> plt.close(fig)
@@ -425,30 +327,20 @@ def plot_solutions(
     S = as_array(np.asarray(solutions, dtype=float), "solutions", (6,), batch=True).reshape(-1, 6)
     if len(S) == 0:
         raise ValueError("solutions: expected at least one configuration, got none")
-    planes: list[list[int]] = []
-    for i, s in enumerate(S):
-        for g in planes:
-            if math.cos(s[0] - S[g[0]][0]) > 0.5:
-                g.append(i)
-                break
-        else:
-            planes.append([i])
+    firsts = [i for i in range(len(S)) if all(math.cos(S[i, 0] - S[j, 0]) <= 0.5 for j in range(i))]
+    planes = [[i for i in range(len(S)) if math.cos(S[i, 0] - S[f, 0]) > 0.5] for f in firsts]  # one per arm plane
     P = arm.points(S)
     fig = plt.figure(figsize=figsize if len(planes) > 1 else (figsize[0] / 2 + 0.5, figsize[1]))
     colors = ["0.15", "tab:orange", "tab:purple", "tab:cyan"]
     for k, g in enumerate(planes):
-        ax = tidy_axes(fig.add_subplot(1, len(planes), k + 1, projection="3d"))
-        ax.view_init(elev=elev, azim=azim)
+        ax = _axes(fig, (1, len(planes), k + 1), elev, azim)
         for j, i in enumerate(g):
             draw_chain(ax, arm.frames(S[i]), labels=[""] * 6, alpha=1.0 if j == 0 else 0.5, color=colors[j % 4],
                        length=0.08 * float(np.ptp(P.reshape(-1, 3), axis=0).max()))  # fmt: skip
-        set_equal(ax, P.reshape(-1, 3), margin=0.05)
-        fit_ticks(ax)
+        _frame(ax, P.reshape(-1, 3), 0.05)
         count = {1: "one configuration", 2: "two configurations"}.get(len(g), f"{len(g)} configurations")
         ax.set_title(f"α1 = {math.degrees(S[g[0]][0]):.1f}°: {count}")
-        names = [POINT_NAMES[0], POINT_NAMES[1], POINT_NAMES[3], POINT_NAMES[4]]
-        pts = [P[g[0], 0], P[g[0], 2], P[g[0], 4], P[g[0], 5]]
-        cols = ["k"] * 4
+        names, pts, cols = [POINT_NAMES[i] for i in (0, 1, 3, 4)], [P[g[0], i] for i in (0, 2, 4, 5)], ["k"] * 4
         for j, i in enumerate(g):
             pts.append(P[i, 3])
             names.append(f"$p_3$ ({j + 1})" if len(g) > 1 else "$p_3$")
@@ -459,41 +351,32 @@ def plot_solutions(
 
 def plot_construction(arm: Porter, T: Any, near: Any = None, *, figsize: tuple[float, float] = (7.0, 6.0),
                       elev: float = 16.0, azim: float | None = None) -> Figure:  # fmt: skip
-    """Ver.2 drawn: the plane P, its normal n, the points p0, p2, p4, p5, the candidates for p3, the arms.
+    """Ver.2 drawn: the plane P, its normal n (from p0), the points p0, p2, p4, p5, the candidates for p3.
 
-    The configurations of ``arm.ik(T, near=near, method="geometric")`` are drawn, the first solid
-    and the second faded, each elbow point labelled with its number; the dotted line through p4
-    carries both candidates p3 = p4 ± l3 z4; the normal n (green) starts at p0. ``azim`` defaults
-    to a view 40° off the plane, so that both the plane and its normal show.
+    The configurations of ``arm.ik(T, near=near, method="geometric")`` are drawn (the first solid),
+    each elbow point numbered; the dotted line through p4 carries both p3 = p4 ± l3 z4. ``azim``
+    defaults to a view 40° off the plane, so that both the plane and its normal show.
 
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
-    >>> from puma_course import Porter
-    >>> arm = Porter(1.0, 0.5, 0.3)
-    >>> fig = plot_construction(arm, arm.fk([0.6, -0.5, 1.2, 0.8, 0.7, -0.4]))
+    >>> arm = Porter(1.0, 0.5, 0.3); fig = plot_construction(arm, arm.fk([0.6, -0.5, 1.2, 0.8, 0.7, -0.4]))
     >>> fig.axes[0].get_title()
     'Ver.2: the plane P and the two candidates for $p_3$'
     >>> plt.close(fig)
     """
     V = ver2_points(arm, T, near)
-    a1 = float(V["q"][0, 0])
-    fig = plt.figure(figsize=figsize)
-    ax = tidy_axes(fig.add_subplot(projection="3d"))
-    ax.view_init(elev=elev, azim=math.degrees(a1) - 40.0 if azim is None else azim)
+    a1, fig = float(V["q"][0, 0]), plt.figure(figsize=figsize)
+    ax = _axes(fig, (1, 1, 1), elev, math.degrees(a1) - 40.0 if azim is None else azim)
     arms = arm.points(V["q"])
-    scale = float(np.ptp(arms.reshape(-1, 3), axis=0).max())
-    n_tip = V["p0"] + 0.35 * scale * V["n"]
+    n_tip = V["p0"] + 0.35 * float(np.ptp(arms.reshape(-1, 3), axis=0).max()) * V["n"]
     corners = _plane_patch(ax, a1, arms.reshape(-1, 3))
     for k, pts in enumerate(arms):
         draw_points(ax, pts, color=["0.15", "tab:orange"][k % 2], alpha=1.0 if k == 0 else 0.6, lw=3.5,
                     label=f"configuration {k + 1}")  # fmt: skip
-    ax.plot(*V["p3"].T, ls=":", lw=1.5, color="tab:red")
+    ax.plot(*V["p3"].T, ls=":", lw=1.5, color="tab:red")  # the line p4 ± l3 z4
     ax.scatter(*V["p3"].T, s=40, color="tab:red", depthshade=False, zorder=5)
     ax.quiver(*V["p0"], *(n_tip - V["p0"]), color="tab:green", lw=2.5, arrow_length_ratio=0.2)
     ax.set_title("Ver.2: the plane P and the two candidates for $p_3$")
     ax.legend(loc="upper left")
-    set_equal(ax, np.vstack([arms.reshape(-1, 3), n_tip[None], corners]), margin=0.0)
-    fit_ticks(ax)
+    _frame(ax, np.vstack([arms.reshape(-1, 3), n_tip[None], corners]), 0.0)
     names = ["$p_0$", "$p_2$", "$p_4$", "$p_5$", *[f"$p_3$ ({k + 1})" for k in range(len(V["p3"]))], "$n$", "plane $P$"]
     pts = np.vstack([V["p0"], V["p2"], V["p4"], V["p5"], V["p3"], n_tip, corners[3]])
     cols = ["k"] * 4 + ["tab:red"] * len(V["p3"]) + ["tab:green", "0.35"]
@@ -505,14 +388,9 @@ def plot_parallel_planes(arm: Porter, T: Any, q_ref: Any = None, *, figsize: tup
                          elev: float = 12.0) -> Figure:  # fmt: skip
     """Parallel planes drawn: the circle of possible p3, Porter's minimal-q2 arm, and (faded) ``q_ref``.
 
-    ``q_ref`` is any other configuration reaching T (e.g. the one that made it); a legend names
-    the three.
+    ``q_ref`` is any other configuration reaching T (e.g. the one that made it); a legend names the three.
 
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
-    >>> from puma_course import Porter
-    >>> arm = Porter(1.0, 0.5, 0.3)
-    >>> fig = plot_parallel_planes(arm, arm.fk([0.7, 0.3, 1.2, 0.4, np.pi / 2, 0.5]))
+    >>> arm = Porter(1.0, 0.5, 0.3); fig = plot_parallel_planes(arm, arm.fk([0.7, 0.3, 1.2, 0.4, np.pi / 2, 0.5]))
     >>> fig.axes[0].get_title()
     'parallel planes: $p_3$ on a circle, the smallest $q_2$ chosen'
     >>> plt.close(fig)
@@ -522,12 +400,9 @@ def plot_parallel_planes(arm: Porter, T: Any, q_ref: Any = None, *, figsize: tup
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SingularityWarning)
         G = arm.ik(T, method="geometric")
-    best = arm.points(G[0])
-    shown = [best, C]
-    fig = plt.figure(figsize=figsize)
-    ax = tidy_axes(fig.add_subplot(projection="3d"))
-    a1 = float(G[0][0])
-    ax.view_init(elev=elev, azim=math.degrees(a1) - 60.0)
+    best, shown = arm.points(G[0]), [arm.points(G[0]), C]
+    fig, a1 = plt.figure(figsize=figsize), float(G[0][0])
+    ax = _axes(fig, (1, 1, 1), elev, math.degrees(a1) - 60.0)
     draw_points(ax, best, color="0.15", lw=3.5, label="Porter's choice: the smallest $q_2$")
     if q_ref is not None:
         ref = arm.points(arm.check_q(q_ref))
@@ -539,8 +414,6 @@ def plot_parallel_planes(arm: Porter, T: Any, q_ref: Any = None, *, figsize: tup
     ax.plot(*C.T, color="tab:red", lw=1.5, label="every possible $p_3$")
     ax.set_title("parallel planes: $p_3$ on a circle, the smallest $q_2$ chosen")
     ax.legend(loc="upper left")
-    set_equal(ax, np.vstack(shown + [corners]), margin=0.0)
-    fit_ticks(ax)
-    names = ["$p_0$", "$p_2$", "$p_3$", "$p_4$", "$p_5$"]
-    label_points(ax, best[[0, 2, 3, 4, 5]], names, avoid=[best, C, *shown[2:]])
+    _frame(ax, np.vstack(shown + [corners]), 0.0)
+    label_points(ax, best[[0, 2, 3, 4, 5]], ["$p_0$", "$p_2$", "$p_3$", "$p_4$", "$p_5$"], avoid=[best, C, *shown[2:]])
     return fig

@@ -162,15 +162,16 @@ def test_label_points_skips_empty_names_and_checks_its_input():
 # ---- the points ----------------------------------------------------------------------------------
 
 
-def test_joint_points_of_a_straight_configuration_by_hand():
+def test_plot_frames_labels_the_frames_where_they_are_by_hand():
     # angles 0, stroke 0.8: up l1 = 1, out 0.8, down l3 = 0.5, out l4 = 0.3
-    P, names = PF.joint_points(ARM, [0.0, 0.0, 0.8, 0.0, 0.0, 0.0])
-    np.testing.assert_allclose(P, [[0, 0, 0], [0, 0, 1], [0.8, 0, 1], [0.8, 0, 0.5], [1.1, 0, 0.5]], atol=1e-15)
-    assert names == PF.POINT_NAMES and names[0] == "$p_0 = p_1$"
-    with pytest.raises(ValueError, match="^q"):
-        PF.joint_points(ARM, np.zeros((2, 6)))
+    fig = PF.plot_frames(ARM, [[0.0, 0.0, 0.8, 0.0, 0.0, 0.0]])
+    ax = fig.axes[0]
+    hand = np.array([[0, 0, 0], [0, 0, 1], [0.8, 0, 1], [0.8, 0, 0.5], [1.1, 0, 0.5]], dtype=float)
+    anchors = {t.get_text(): t.xy for t in _labels(ax)}
+    assert list(anchors) == [n for n in PF.FRAME_NAMES if n]
+    np.testing.assert_allclose(list(anchors.values()), PF._display(ax, hand)[0], atol=1e-12)
     with pytest.raises(ValueError, match="^arm"):
-        PF.joint_points(Puma560(), np.zeros(6))
+        PF.plot_frames(Puma560(), np.zeros(6))
 
 
 @pytest.mark.parametrize("seed", range(5))
