@@ -39,6 +39,7 @@ FRAME_NAMES = ("$F_0, F_1$", "", "$F_2$", "$F_3$", "$F_4$", "$F_5$")
 # offsets tried for a label, in points: 8 directions at three distances, the nearest first
 _DIRECTIONS = [(math.cos(t), math.sin(t)) for t in np.radians([45, 135, -45, -135, 0, 180, 90, -90])]
 _RADII = (7.0, 14.0, 24.0)
+_STEPS = [1, 2, 2.5, 5, 10]  # nice tick steps
 
 
 def _check_porter(arm: Any) -> Porter:
@@ -80,7 +81,7 @@ def tidy_axes(ax: Any, *, nbins: int = 4, units: str = "", pad: float = 2.0) -> 
     nbins = as_count(nbins, "nbins", minimum=2)
     unit = f" [{units}]" if units else ""
     for axis, name in ((ax.xaxis, "x"), (ax.yaxis, "y"), (ax.zaxis, "z")):
-        axis.set_major_locator(MaxNLocator(nbins=nbins, steps=[1, 2, 2.5, 5, 10]))
+        axis.set_major_locator(MaxNLocator(nbins=nbins, steps=_STEPS))
         axis.set_tick_params(pad=pad)
         axis.set_label_text(name + unit)
         axis.labelpad = 4.0
@@ -110,10 +111,9 @@ def _collide(boxes: Sequence[Any], others: Sequence[Any] = (), pad: float = 4.0)
 def fit_ticks(ax: Any, max_bins: int = 4) -> Any:
     """Give each axis of a 3-D axes as many ticks (at most ``max_bins`` + 1) as fit without collisions.
 
-    Call it after the view and the limits are set. For each axis, from ``max_bins`` down to 2, the
-    figure is drawn and the tick numbers' boxes are compared, with each other and with the other
-    axes' numbers; the first count that collides with nothing is kept. An axis seen nearly end on
-    gets fewer ticks (down to its first and last one); one seen across its whole length keeps them all.
+    Call it after the view and the limits are set. The figure is drawn and each axis' tick numbers
+    are compared, with each other and with the other axes' numbers; an axis whose numbers collide
+    gets fewer ticks (down to its first and last one) and the figure is drawn again, until nothing collides.
 
     >>> fig = plt.figure(figsize=(4.0, 3.6))
     >>> ax = fig.add_subplot(projection="3d")
@@ -127,18 +127,23 @@ def fit_ticks(ax: Any, max_bins: int = 4) -> Any:
     """
     _check_3d(ax)
     max_bins = as_count(max_bins, "max_bins", minimum=2)
-    for name, axis in {"x": ax.xaxis, "y": ax.yaxis, "z": ax.zaxis}.items():
-        for nb in range(max_bins, 1, -1):
-            axis.set_major_locator(MaxNLocator(nbins=nb, steps=[1, 2, 2.5, 5, 10]))
-            ax.figure.canvas.draw()
-            boxes = tick_label_boxes(ax)
-            if not _collide(boxes[name], [b for k, v in boxes.items() if k != name for b in v]):
-                break
-        else:  # even three numbers collide: keep the first and the last tick only
-            lo, hi = sorted(axis.get_view_interval())
-            locs = [v for v in axis.get_majorticklocs() if lo <= v <= hi]
-            if len(locs) > 2:
-                axis.set_major_locator(FixedLocator([locs[0], locs[-1]]))
+    axes, bins = {"x": ax.xaxis, "y": ax.yaxis, "z": ax.zaxis}, dict.fromkeys("xyz", max_bins)
+    for axis in axes.values():
+        axis.set_major_locator(MaxNLocator(nbins=max_bins, steps=_STEPS))
+    while True:  # one drawing per round: every axis whose numbers collide loses a tick
+        ax.figure.canvas.draw()
+        boxes = tick_label_boxes(ax)
+        bad = [k for k in axes if _collide(boxes[k], [b for j, v in boxes.items() if j != k for b in v])]
+        if not bad or all(bins[k] == 1 for k in bad):
+            break
+        for k in bad:
+            bins[k] -= 1
+            if bins[k] >= 2:
+                axes[k].set_major_locator(MaxNLocator(nbins=bins[k], steps=_STEPS))
+            else:  # even three numbers collide: keep the first and the last tick only
+                lo, hi = sorted(axes[k].get_view_interval())
+                locs = [v for v in axes[k].get_majorticklocs() if lo <= v <= hi]
+                axes[k].set_major_locator(FixedLocator([locs[0], locs[-1]] if len(locs) > 2 else locs))
     return ax
 
 
@@ -153,11 +158,6 @@ def _seg_hits_box(a: np.ndarray, b: np.ndarray, box: Any) -> bool:
     """Does the 2-D segment a-b (display units) pass through the Bbox ``box``? (sampled every few pixels)"""
     n = int(min(200, 2 + math.hypot(*(b - a)) / 3.0))
     return any(box.contains(*(a + t * (b - a))) for t in np.linspace(0.0, 1.0, n))
-
-
-def _place(ann: Any, offset: tuple[float, float], ha: str, va: str) -> None:
-    ann.xyann = offset
-    ann.set(horizontalalignment=ha, verticalalignment=va)
 
 
 def label_points(ax: Any, points: Any, names: Sequence[str], *, avoid: Sequence[Any] = (), fontsize: float = 10.0,
@@ -197,21 +197,22 @@ def label_points(ax: Any, points: Any, names: Sequence[str], *, avoid: Sequence[
         ann = ax.annotate(name, xy=tuple(xy[i]), xycoords="data", xytext=(0.0, 0.0), textcoords="offset points",
                           fontsize=fontsize, color=colors[i], annotation_clip=False)  # fmt: skip
         ann.set_in_layout(False)
-        best: tuple[float, tuple[float, float], str, str] | None = None
+        best: tuple[float, tuple[float, float], str, str] = (math.inf, (0.0, 0.0), "center", "center")
         for radius in _RADII:
             for cx, cy in _DIRECTIONS:
                 ha = "left" if cx > 0.3 else "right" if cx < -0.3 else "center"
                 va = "bottom" if cy > 0.3 else "top" if cy < -0.3 else "center"
-                _place(ann, (radius * cx, radius * cy), ha, va)
+                ann.xyann = (radius * cx, radius * cy)
+                ann.set(horizontalalignment=ha, verticalalignment=va)
                 box = ann.get_window_extent(renderer).padded(1.0)
                 cost = radius / 10.0 + 1000.0 * sum(box.overlaps(b) for b in placed)
                 cost += 100.0 * sum(box.x0 - r < x < box.x1 + r and box.y0 - r < y < box.y1 + r for x, y in disp)
                 cost += 10.0 * sum(_seg_hits_box(a, b, box) for a, b in segs)
                 cost += 50.0 * (not (frame.contains(box.x0, box.y0) and frame.contains(box.x1, box.y1)))
-                if best is None or cost < best[0]:
+                if cost < best[0]:
                     best = (cost, (radius * cx, radius * cy), ha, va)
-        assert best is not None
-        _place(ann, *best[1:])
+        ann.xyann = best[1]
+        ann.set(horizontalalignment=best[2], verticalalignment=best[3])
         placed.append(ann.get_window_extent(renderer))
         out.append(ann)
     return out
@@ -339,7 +340,7 @@ def plot_solutions(arm: Porter, solutions: Any, *, figsize: tuple[float, float] 
                        length=0.08 * float(np.ptp(P.reshape(-1, 3), axis=0).max()))  # fmt: skip
         _frame(ax, P.reshape(-1, 3), 0.05)
         count = {1: "one configuration", 2: "two configurations"}.get(len(g), f"{len(g)} configurations")
-        ax.set_title(f"α1 = {math.degrees(S[g[0]][0]):.1f}°: {count}")
+        ax.set_title(f"$\\alpha_1 = {math.degrees(S[g[0]][0]):.1f}^\\circ$: {count}")
         names, pts, cols = [POINT_NAMES[i] for i in (0, 1, 3, 4)], [P[g[0], i] for i in (0, 2, 4, 5)], ["k"] * 4
         for j, i in enumerate(g):
             pts.append(P[i, 3])
@@ -408,7 +409,7 @@ def plot_parallel_planes(arm: Porter, T: Any, q_ref: Any = None, *, figsize: tup
         ref = arm.points(arm.check_q(q_ref))
         if ref.ndim != 2:
             raise ValueError(f"q_ref: expected one configuration (6,), got shape {np.shape(q_ref)}")
-        draw_points(ax, ref, color="tab:orange", alpha=0.6, lw=3.0, label="another configuration reaching T")
+        draw_points(ax, ref, color="tab:orange", alpha=0.6, lw=3.0, label="another configuration reaching $T$")
         shown.append(ref)
     corners = _plane_patch(ax, a1, np.vstack(shown))
     ax.plot(*C.T, color="tab:red", lw=1.5, label="every possible $p_3$")
