@@ -1,0 +1,264 @@
+"""The figures of lectures 05-07 (puma_course.viz.porter_figures) on the Agg backend.
+
+Truths used here: matplotlib's own projection of a drawn 3-D line at draw time (where a label's
+anchor must be), the rendered window extents of labels and tick numbers (nothing overlaps), Porter's
+points at a straight configuration worked out by hand, and the geometric properties the
+construction must have whatever computes it (|p3 - p4| = l3, p3 - p4 normal to x5, p3 in the
+plane through z0 and p4, the two candidates symmetric about p4; the circle of the parallel planes
+at distance l3 from p4 in the plane normal to x5, through the elbow point of every configuration
+reaching the pose).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import matplotlib as mpl
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+from puma_course import Porter, Puma560, SingularityWarning
+from puma_course.viz import porter_figures as PF
+from puma_course.viz import use_course_style
+from puma_course.viz.frames import new_axes, set_equal
+
+ARM = Porter(1.0, 0.5, 0.3)
+Q_GENERAL = np.array([0.6, -0.5, 1.2, 0.8, 0.7, -0.4])
+Q_PARALLEL = np.array([0.7, 0.3, 1.2, 0.4, math.pi / 2, 0.5])
+Q_AXIS = np.array([0.7, -0.5, 0.5 / math.cos(0.5), math.pi / 2 + 0.5, 0.4, 0.5])
+
+
+@pytest.fixture(autouse=True)
+def _style():
+    """The lectures' style (110 dpi, 10-11 pt) for every test here, restored afterwards for the other tests."""
+    with mpl.rc_context():
+        use_course_style()
+        yield
+
+
+def _no_overlap(boxes, pad=0.0):
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1 :]:
+            assert not a.padded(pad).overlaps(b.padded(pad)), f"{a} overlaps {b}"
+
+
+def _labels(ax):
+    return [t for t in ax.texts if t.get_text()]
+
+
+def _check_readable(fig):
+    """No tick numbers collide, no two labels overlap, every axis label and label lies inside the figure."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    inside = fig.bbox.padded(1.0)
+    for ax in fig.axes:
+        boxes = PF.tick_label_boxes(ax)
+        for name, bs in boxes.items():
+            assert bs, f"the {name} axis has no tick numbers"
+        _no_overlap([b for bs in boxes.values() for b in bs])
+        label_boxes = [t.get_window_extent(renderer) for t in _labels(ax)]
+        _no_overlap(label_boxes)
+        for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+            box = axis.label.get_window_extent(renderer)
+            assert inside.contains(box.x0, box.y0) and inside.contains(box.x1, box.y1), axis.label.get_text()
+        for box in label_boxes:
+            assert inside.contains(box.x0, box.y0) and inside.contains(box.x1, box.y1)
+        legend = ax.get_legend()
+        if legend is not None:
+            assert min(t.get_fontsize() for t in legend.get_texts()) >= 9
+    assert fig.dpi >= 100
+
+
+# ---- tidy_axes, fit_ticks ------------------------------------------------------------------------
+
+
+def test_tidy_axes_labels_units_and_few_ticks():
+    fig = plt.figure()
+    ax = PF.tidy_axes(fig.add_subplot(projection="3d"), units="mm")
+    ax.set_xlim3d(-1000, 1000)
+    fig.canvas.draw()
+    assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()) == ("x [mm]", "y [mm]", "z [mm]")
+    assert len(PF.tick_label_boxes(ax)["x"]) <= 5
+
+
+def test_tidy_axes_and_fit_ticks_refuse_a_2d_axes():
+    fig, ax = plt.subplots()
+    with pytest.raises(ValueError, match="^ax: expected a 3-D axes"):
+        PF.tidy_axes(ax)
+    with pytest.raises(ValueError, match="^ax: expected a 3-D axes"):
+        PF.fit_ticks(ax)
+    with pytest.raises(ValueError, match="^max_bins"):
+        PF.fit_ticks(plt.figure().add_subplot(projection="3d"), max_bins=1)
+
+
+@pytest.mark.parametrize("azim", [-90.0, -60.0, -30.0, -3.0, 20.0, 87.0])
+def test_fit_ticks_leaves_no_colliding_tick_numbers(azim):
+    fig = plt.figure(figsize=(4.0, 3.6))
+    ax = PF.tidy_axes(fig.add_subplot(projection="3d"))
+    ax.view_init(elev=12, azim=azim)
+    set_equal(ax, [[-0.6, -0.6, -0.2], [1.4, 1.4, 1.8]])
+    PF.fit_ticks(ax)
+    fig.canvas.draw()
+    boxes = PF.tick_label_boxes(ax)
+    _no_overlap([b for bs in boxes.values() for b in bs], pad=1.0)
+    assert all(len(bs) >= 2 for bs in boxes.values())
+
+
+def test_fit_ticks_thins_an_axis_seen_end_on():
+    fig = plt.figure(figsize=(4.0, 3.6))
+    ax = PF.tidy_axes(fig.add_subplot(projection="3d"))
+    ax.view_init(elev=5, azim=-2)  # x points almost at the viewer
+    set_equal(ax, [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]])
+    PF.fit_ticks(ax)
+    fig.canvas.draw()
+    boxes = PF.tick_label_boxes(ax)
+    assert len(boxes["x"]) < len(boxes["y"])
+
+
+# ---- label_points --------------------------------------------------------------------------------
+
+
+def test_labels_are_anchored_where_matplotlib_draws_the_points():
+    fig, ax = new_axes()
+    P = np.array([[0.0, 0.0, 0.0], [1.0, 0.2, 0.5], [0.3, 1.0, 1.0]])
+    (line,) = ax.plot(*P.T, "o")
+    set_equal(ax, P)
+    anns = PF.label_points(ax, P, ["a", "b", "c"])
+    fig.canvas.draw()  # Line3D projects its points at draw time: its 2-D data is the truth
+    np.testing.assert_allclose([a.xy for a in anns], line.get_xydata(), atol=1e-12)
+
+
+def test_labels_of_crowded_points_do_not_overlap_and_leave_the_points_free():
+    fig, ax = new_axes(figsize=(4.0, 4.0))
+    rng = np.random.default_rng(3)
+    P = np.vstack([rng.normal(0.0, 0.03, (5, 3)), [[1.0, 1.0, 1.0], [-1.0, -1.0, -1.0]]])
+    ax.plot(*P.T, "o", ms=4)
+    set_equal(ax, P)
+    anns = PF.label_points(ax, P, [f"$p_{i}$" for i in range(len(P))])
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    boxes = [a.get_window_extent(renderer) for a in anns]
+    _no_overlap(boxes)
+    _, disp = PF._display(ax, P)
+    for box in boxes:  # no label covers the centre of any labelled point
+        assert not any(box.contains(x, y) for x, y in disp)
+
+
+def test_label_points_skips_empty_names_and_checks_its_input():
+    fig, ax = new_axes()
+    P = np.zeros((3, 3)) + [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
+    set_equal(ax, P)
+    assert [a.get_text() for a in PF.label_points(ax, P, ["", "b", ""])] == ["b"]
+    with pytest.raises(ValueError, match="^names: expected one text per point"):
+        PF.label_points(ax, P, ["a", "b"])
+    with pytest.raises(ValueError, match="^names"):
+        PF.label_points(ax, P, "abc")
+    with pytest.raises(ValueError, match="^points"):
+        PF.label_points(ax, np.zeros((3, 2)), ["a", "b", "c"])
+    with pytest.raises(ValueError, match="^color"):
+        PF.label_points(ax, P, ["a", "b", "c"], color=["k", "r"])
+    with pytest.raises(ValueError, match="^avoid"):
+        PF.label_points(ax, P, ["a", "b", "c"], avoid=[np.zeros((2, 2))])
+
+
+# ---- the points ----------------------------------------------------------------------------------
+
+
+def test_plot_frames_labels_the_frames_where_they_are_by_hand():
+    # angles 0, stroke 0.8: up l1 = 1, out 0.8, down l3 = 0.5, out l4 = 0.3
+    fig = PF.plot_frames(ARM, [[0.0, 0.0, 0.8, 0.0, 0.0, 0.0]])
+    ax = fig.axes[0]
+    hand = np.array([[0, 0, 0], [0, 0, 1], [0.8, 0, 1], [0.8, 0, 0.5], [1.1, 0, 0.5]], dtype=float)
+    anchors = {t.get_text(): t.xy for t in _labels(ax)}
+    assert list(anchors) == [n for n in PF.FRAME_NAMES if n]
+    np.testing.assert_allclose(list(anchors.values()), PF._display(ax, hand)[0], atol=1e-12)
+    with pytest.raises(ValueError, match="^arm"):
+        PF.plot_frames(Puma560(), np.zeros(6))
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_ver2_points_have_the_properties_of_the_construction(seed):
+    rng = np.random.default_rng(seed)
+    q = np.r_[rng.uniform(-3, 3, 2), rng.uniform(0.2, 2.0), rng.uniform(-3, 3, 3)]
+    T = ARM.fk(q)
+    V = PF.ver2_points(ARM, T, near=q)
+    l1, l3, l4 = 1.0, 0.5, 0.3
+    np.testing.assert_allclose(V["p4"], T[:3, 3] - l4 * T[:3, 0], atol=1e-12)  # eq. 17
+    np.testing.assert_allclose(V["p2"], [0, 0, l1], atol=1e-15)
+    assert np.linalg.norm(V["n"]) == pytest.approx(1.0)
+    assert abs(V["n"] @ [0, 0, 1]) < 1e-12 and abs(V["n"] @ V["p4"]) < 1e-12  # normal to z0 and to p4
+    assert len(V["p3"]) == 2
+    for p3 in V["p3"]:
+        assert np.linalg.norm(p3 - V["p4"]) == pytest.approx(l3, abs=1e-12)
+        assert abs((p3 - V["p4"]) @ V["x5"]) < 1e-12
+        assert abs((p3 - V["p0"]) @ V["n"]) < 1e-12
+    np.testing.assert_allclose(V["p3"].sum(axis=0), 2 * V["p4"], atol=1e-12)  # ± l3 z4
+    # the arm that made T has one of the two elbow points (both arm planes share the points)
+    assert np.linalg.norm(V["p3"] - ARM.points(q)[3], axis=1).min() < 1e-9
+
+
+def test_ver2_points_refuse_a_free_plane_and_bad_input():
+    with pytest.raises(ValueError, match="^T: expected a pose whose wrist point p4 is off the z0 axis"):
+        PF.ver2_points(ARM, ARM.fk(Q_AXIS))
+    with pytest.raises(ValueError, match="^T"):
+        PF.ver2_points(ARM, np.eye(3))
+    with pytest.raises(ValueError, match="^T: expected a pose the arm reaches"):
+        PF.ver2_points(Porter(1.0, 0.5, 0.3, q2_max=1.0), ARM.fk([0.3, 0.2, 5.0, 0.4, 0.5, 0.6]))
+
+
+def test_parallel_circle_is_every_elbow_point_of_the_family():
+    T = ARM.fk(Q_PARALLEL)
+    C = PF.parallel_circle(ARM, T, samples=73)
+    p4, x5 = T[:3, 3] - 0.3 * T[:3, 0], T[:3, 0]
+    np.testing.assert_allclose(np.linalg.norm(C - p4, axis=1), 0.5, atol=1e-12)
+    np.testing.assert_allclose((C - p4) @ x5, 0.0, atol=1e-12)
+    np.testing.assert_allclose(C[0], C[-1], atol=1e-12)  # closed
+    # members of the family (found with near= at different α3) have their p3 on the circle
+    for a3 in (0.0, 0.4, 1.5):
+        ref = Q_PARALLEL.copy()
+        ref[3] = a3
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SingularityWarning)
+            s = ARM.ik(T, near=ref)[0]
+        p3 = ARM.points(s)[3]
+        assert np.linalg.norm(p3 - p4) == pytest.approx(0.5) and abs((p3 - p4) @ x5) < 1e-9
+    with pytest.raises(ValueError, match="^T: expected a pose with parallel planes"):
+        PF.parallel_circle(ARM, ARM.fk(Q_GENERAL))
+    with pytest.raises(ValueError, match="^samples"):
+        PF.parallel_circle(ARM, T, samples=2)
+
+
+# ---- the figures ---------------------------------------------------------------------------------
+
+
+def test_plot_frames_is_readable_and_shows_every_frame():
+    fig = PF.plot_frames(ARM, [[0, 0, 0.8, 0, 0, 0], Q_GENERAL], ["straight", "general"])
+    _check_readable(fig)
+    for ax in fig.axes:
+        assert sorted(t.get_text() for t in _labels(ax)) == sorted(n for n in PF.FRAME_NAMES if n)
+    with pytest.raises(ValueError, match="^titles"):
+        PF.plot_frames(ARM, np.zeros((2, 6)), ["one"])
+    with pytest.raises(ValueError, match="^Q"):
+        PF.plot_frames(ARM, np.zeros((2, 5)))
+
+
+def test_plot_solutions_groups_the_four_by_arm_plane():
+    sol = ARM.ik(ARM.fk(Q_GENERAL), near=Q_GENERAL)
+    fig = PF.plot_solutions(ARM, sol)
+    _check_readable(fig)
+    assert len(fig.axes) == 2
+    for ax in fig.axes:
+        assert sum(t.get_text().startswith("$p_3$") for t in _labels(ax)) == 2
+    with pytest.raises(ValueError, match="^solutions"):
+        PF.plot_solutions(ARM, np.zeros((0, 6)))
+
+
+def test_plot_construction_and_parallel_planes_are_readable():
+    _check_readable(PF.plot_construction(ARM, ARM.fk(Q_GENERAL), near=Q_GENERAL))
+    fig = PF.plot_parallel_planes(ARM, ARM.fk(Q_PARALLEL), Q_PARALLEL)
+    _check_readable(fig)
+    assert len(fig.axes[0].get_legend().get_texts()) == 3
+    with pytest.raises(ValueError, match="^q_ref"):
+        PF.plot_parallel_planes(ARM, ARM.fk(Q_PARALLEL), np.zeros((2, 6)))
