@@ -29,6 +29,7 @@ import matplotlib as mpl
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from .._validate import as_array, as_mask
 from ..kinematics.trajectories import unwrap
@@ -102,7 +103,8 @@ def joint_path_figure(
     path (e.g. the times of a time scaling; ``xlabel`` then defaults to "time t [s]"), else the pose
     index. ``joints`` picks the joints drawn (default all); ``names`` has one text per joint
     (default θ1, θ2, ...). ``axes`` is a 2-D array, rows (angles, then lengths, those present) by
-    columns (paths). One legend, outside the axes on the right, at least :data:`MIN_LEGEND_SIZE` pt.
+    columns (paths). One legend, outside the axes on the right (centred, clear of the title), at least
+    :data:`MIN_LEGEND_SIZE` pt.
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
@@ -156,12 +158,14 @@ def joint_path_figure(
                 ax.set_ylabel(label)
             ax.margins(x=0.02, y=0.08)
         axes[-1, c].set_xlabel(xlabel or ("pose index along the path" if x is None else "time t [s]"))
+        if x is None:
+            axes[-1, c].xaxis.set_major_locator(MaxNLocator(integer=True))  # pose indices: whole numbers
         if titles is not None:
             axes[0, c].set_title(titles[c])
     size = max(MIN_LEGEND_SIZE, float(mpl.font_manager.FontProperties(size=mpl.rcParams["legend.fontsize"])
                                       .get_size_in_points()))  # fmt: skip
     order = [j for j in sel if j in handles]
-    fig.legend([handles[j] for j in order], [names[j] for j in order], loc="outside right upper", fontsize=size,
+    fig.legend([handles[j] for j in order], [names[j] for j in order], loc="outside right center", fontsize=size,
                handlelength=1.6)  # fmt: skip
     if suptitle:
         fig.suptitle(suptitle)

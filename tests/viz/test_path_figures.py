@@ -69,22 +69,24 @@ def test_joints_selects_curves_and_drops_an_empty_row():
     assert [line.get_color() for line in axes[0, 0].lines] == [JOINT_COLORS[3], JOINT_COLORS[5]]
 
 
-@pytest.mark.parametrize("legend_size", [7.0, 10.0])
-def test_legend_is_large_enough_and_never_covers_a_curve(legend_size):
-    """The legend is at least 9 pt (even if the style asks for less) and lies outside every axes."""
+@pytest.mark.parametrize(("legend_size", "columns"), [(7.0, 1), (10.0, 1), (10.0, 2)])
+def test_legend_is_large_enough_and_never_covers_a_curve(legend_size, columns):
+    """The legend is at least 9 pt (even if the style asks for less) and lies outside every axes and the title."""
     use_course_style()
     with mpl.rc_context({"legend.fontsize": legend_size}):
         arm = Puma560()
         q0 = arm.q("qn")
         path = tr.line_path(arm.fk(q0), arm.fk(q0)[:3, 3] + [0.0, 0.1, -0.1], 30)
         jp = tr.follow(arm, path, q0)
-        fig, axes = joint_path_figure([jp.q, jp.q], titles=["a", "b"])
+        title = "PUMA-560 on the circle, nearest solution at every step"  # wider than one column's axes
+        fig, axes = joint_path_figure([jp.q] * columns, suptitle=title)
         fig.canvas.draw()
         leg = fig.legends[0]
         assert min(t.get_fontsize() for t in leg.get_texts()) >= max(MIN_LEGEND_SIZE, legend_size) - 1e-9
         box = leg.get_window_extent()
         for ax in axes.ravel():
             assert not _overlap(box, ax.get_window_extent())
+        assert not _overlap(box, fig._suptitle.get_window_extent())  # nor the title above the panels
         # nothing is clipped: the legend sits inside the figure
         fbox = fig.bbox
         assert box.x1 <= fbox.x1 + 1 and box.y0 >= fbox.y0 - 1
@@ -102,6 +104,12 @@ def test_tick_labels_do_not_overlap():
         assert len(boxes) >= 2
         for a, b in zip(boxes, boxes[1:], strict=False):
             assert not _overlap(a, b)
+
+
+def test_pose_indices_get_whole_number_ticks():
+    fig, axes = joint_path_figure(np.zeros((19, 2)))
+    ticks = [v for v in axes[0, 0].get_xticks() if 0 <= v <= 18]
+    assert len(ticks) >= 3 and all(float(v).is_integer() for v in ticks)
 
 
 def test_axis_labels_with_units():
