@@ -12,6 +12,14 @@ from puma_course.viz import use_course_style
 from puma_course.viz.path_figures import JOINT_COLORS, MIN_LEGEND_SIZE, joint_axis_labels, joint_path_figure
 
 
+@pytest.fixture
+def course_style():
+    """The course's figure style for one test, undone afterwards (other tests check their own dpi)."""
+    with mpl.rc_context():
+        use_course_style()
+        yield
+
+
 def _ydata(ax) -> list[np.ndarray]:
     return [np.asarray(line.get_ydata(), dtype=float) for line in ax.lines]
 
@@ -70,9 +78,8 @@ def test_joints_selects_curves_and_drops_an_empty_row():
 
 
 @pytest.mark.parametrize(("legend_size", "columns"), [(7.0, 1), (10.0, 1), (10.0, 2)])
-def test_legend_is_large_enough_and_never_covers_a_curve(legend_size, columns):
+def test_legend_is_large_enough_and_never_covers_a_curve(course_style, legend_size, columns):
     """The legend is at least 9 pt (even if the style asks for less) and lies outside every axes and the title."""
-    use_course_style()
     with mpl.rc_context({"legend.fontsize": legend_size}):
         arm = Puma560()
         q0 = arm.q("qn")
@@ -92,9 +99,8 @@ def test_legend_is_large_enough_and_never_covers_a_curve(legend_size, columns):
         assert box.x1 <= fbox.x1 + 1 and box.y0 >= fbox.y0 - 1
 
 
-def test_tick_labels_do_not_overlap():
+def test_tick_labels_do_not_overlap(course_style):
     """The y tick labels of a figure with both rows, drawn at the course style, do not collide."""
-    use_course_style()
     q = np.column_stack([np.linspace(-3, 3, 50), np.linspace(0, 2, 50), np.linspace(1, -1, 50)])
     fig, axes = joint_path_figure(q, revolute=[True, False, True], units="m")
     fig.canvas.draw()
