@@ -22,9 +22,7 @@ import nbformat
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-#: TEMPORARY while issue 14's rewrites are merged one by one: lectures not yet rewritten (removed at the last merge)
-_PENDING = {"08", "10"}
-LECTURES = [p for p in sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb")) if p.name[:2] not in _PENDING]
+LECTURES = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
 
 _MATH_OR_CODE = re.compile(
     r"\$\$.*?\$\$"  # display math

@@ -113,7 +113,7 @@ def _copy_mathjax(dest: Path) -> None:
 _CONF = """
 project = "puma-course"
 author = "the puma-course authors"
-extensions = ["myst_nb"]
+extensions = ["myst_nb", "puma_course.site.math"]
 exclude_patterns = ["_build", "**/.ipynb_checkpoints"]
 html_theme = "sphinx_book_theme"
 html_title = "puma-course"

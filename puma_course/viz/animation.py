@@ -65,4 +65,8 @@ def jshtml(anim: Any) -> Any:
 
     if not hasattr(anim, "to_jshtml"):
         raise ValueError(f"anim: expected a matplotlib animation (FuncAnimation), got {type(anim).__name__}")
-    return HTML(offline_player(anim.to_jshtml()))
+    import matplotlib as mpl
+
+    # the frames at the figure's own dpi (the animation's), not the course style's savefig.dpi
+    with mpl.rc_context({"savefig.dpi": "figure"}):
+        return HTML(offline_player(anim.to_jshtml()))

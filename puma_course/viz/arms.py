@@ -4,7 +4,7 @@
 its links are the polyline ``robot.points(q)`` (the PUMA-560's shows the shoulder offset d3),
 its triads the frames ``robot.frames(q)``. :func:`draw_chain` draws any chain given only its
 frames (links through the frame origins). Animations are ``FuncAnimation`` objects to show with
-``HTML(anim.to_jshtml())``, which plays in JupyterLab with nothing to install.
+``viz.jshtml(anim)``, which plays in JupyterLab and on the course's website with nothing fetched.
 """
 
 from __future__ import annotations
@@ -244,13 +244,13 @@ def animate_frames(
     title: str | None = None,
     interval: int = 80,
     figsize: tuple[float, float] = (5.0, 4.5),
-    dpi: int = 72,
+    dpi: int = 110,
     **kw: Any,
 ) -> FuncAnimation:
     """An animation of a chain whose frames over time are ``frames_seq`` (T, k, 4, 4).
 
     ``extra(ax, t)`` may draw more on each frame (a target, a path) and return its artists.
-    Show it with ``HTML(anim.to_jshtml())``. Keep T and ``dpi`` modest (the figure is created
+    Show it with :func:`~puma_course.viz.animation.jshtml`. Keep T and ``dpi`` modest (the figure is created
     with its ``dpi``, so closing it does not reset it). Other keywords go to :func:`draw_chain`
     (e.g. ``triads=False``, ``color``).
 
@@ -278,7 +278,7 @@ def animate_robot(
     title: str | None = None,
     interval: int = 80,
     figsize: tuple[float, float] = (5.0, 4.5),
-    dpi: int = 72,
+    dpi: int = 110,
     **kw: Any,
 ) -> FuncAnimation:
     """An animation of ``robot`` moving through the joint vectors ``q_seq`` (T, n), drawn by :func:`draw_robot`.

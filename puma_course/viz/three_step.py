@@ -150,7 +150,7 @@ def animate(
     """The source's Figure 3: the arm moves through the three steps to the red target frame.
 
     3 * steps_per_phase + 1 frames (see :func:`~puma_course.kinematics.three_step.motion`).
-    Show it with ``HTML(anim.to_jshtml())``: it plays in JupyterLab with
+    Show it with :func:`~puma_course.viz.animation.jshtml`: it plays in JupyterLab with
     nothing to install. The figure is created with its ``dpi`` (set at creation
     so that closing the figure does not reset it).
 

@@ -262,6 +262,11 @@ class Viewer(anywidget.AnyWidget):
             plt.close(fig)
         return buf.getvalue()
 
+    def __repr__(self) -> str:
+        """What a text-only front end shows: the title and the number of frames, never a memory address."""
+        title = self.scene.get("title") or "frames"
+        return f"{type(self).__name__}({title!r}, {len(self._last[0])} frames)"
+
     def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[Any, Any], dict[Any, Any]] | None:
         data = super()._repr_mimebundle_(**kwargs)
         return _with_picture(data, self)

@@ -84,3 +84,13 @@ def test_the_site_of_a_folder_that_is_not_a_course_is_refused(tmp_path):
 
     with pytest.raises(CourseNotFoundError):
         build_site(tmp_path, tmp_path / "out")
+
+
+def test_a_tagged_display_with_a_matrix_is_not_wrapped_in_split(built):
+    """MathJax refuses \\tag inside split; lecture 08's eq. (1) has a bmatrix (line breaks) and a \\tag."""
+    out, _ = built
+    page = html.unescape((out / "notebooks" / "08_three_step_wrist_frame.html").read_text(encoding="utf-8"))
+    blocks = re.findall(r'<div class="math notranslate nohighlight">(.*?)</div>', page, re.S)
+    tagged = [b for b in blocks if "\\tag{" in b and "\\\\" in b]
+    assert tagged, "lecture 08 lost its tagged matrix display"
+    assert not [b for b in tagged if "\\begin{split}" in b]

@@ -39,3 +39,19 @@ def test_bad_input():
         offline_player(None)
     with pytest.raises(ValueError, match="^anim: expected a matplotlib animation"):
         jshtml("not an animation")
+
+
+def test_frames_are_drawn_at_the_figures_dpi_even_under_the_course_style():
+    """The course style sets savefig.dpi = 110; an animation's frames keep the size its figure asks for."""
+    import base64
+
+    from puma_course.viz.style import COURSE_STYLE
+
+    with matplotlib.rc_context(COURSE_STYLE):
+        fig, ax = plt.subplots(figsize=(4, 3), dpi=50)
+        anim = FuncAnimation(fig, lambda i: [], frames=2)
+        html = jshtml(anim).data
+        plt.close(fig)
+    frame = re.search(r"data:image/png;base64,([^\"']+)", html).group(1).replace("\\n", "")
+    png = base64.b64decode(frame)
+    assert (int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")) == (200, 150)  # 4 x 3 in at 50 dpi

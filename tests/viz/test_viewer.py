@@ -114,3 +114,11 @@ def test_static_png_shows_the_pose_and_closes_its_figure():
     data = v._repr_mimebundle_()
     data = data[0] if isinstance(data, tuple) else data
     assert "image/png" in data and "application/vnd.jupyter.widget-view+json" in data
+
+
+def test_the_text_repr_names_the_viewer_and_holds_no_memory_address():
+    v = RobotViewer(MK3(), "qr")
+    data = v._repr_mimebundle_()
+    data = data[0] if isinstance(data, tuple) else data
+    assert data["text/plain"] == repr(v) == "RobotViewer('Motoman MK3', 6 frames)"
+    assert "0x" not in data["text/plain"]
