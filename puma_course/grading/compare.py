@@ -41,20 +41,29 @@ def compare_close(got: Any, ref: np.ndarray, tol: float = 1e-6) -> str | None:
     >>> compare_close([1.0], np.array([1.0, 2.0]))
     'returned shape (1,), expected shape (2,)'
     """
-    arr = _as_float_array(got)
-    if arr is None:
-        return "did not return numbers"
+    shaped, problem = _numbers_like(got, ref)
+    if problem:
+        return problem
     ref = np.asarray(ref, dtype=float)
-    shaped = _match_shape(arr, ref)
-    if shaped is None:
-        return f"returned shape {arr.shape}, expected shape {ref.shape}"
-    if not np.all(np.isfinite(shaped)):
-        return "returned NaN or infinity"
     scale = max(1.0, float(np.max(np.abs(ref)))) if ref.size else 1.0
     err = float(np.max(np.abs(shaped - ref))) if ref.size else 0.0
     if err > tol * scale:
         return f"values differ from the reference by up to {err:.3g}{_where(np.abs(shaped - ref))}"
     return None
+
+
+def _numbers_like(got: Any, ref: Any) -> tuple[np.ndarray, str | None]:
+    """``got`` as finite floats in the shape of ``ref``, or the problem in words (and an empty array)."""
+    arr = _as_float_array(got)
+    if arr is None:
+        return np.zeros(0), "did not return numbers"
+    ref = np.asarray(ref, dtype=float)
+    shaped = _match_shape(arr, ref)
+    if shaped is None:
+        return np.zeros(0), f"returned shape {arr.shape}, expected shape {ref.shape}"
+    if not np.all(np.isfinite(shaped)):
+        return np.zeros(0), "returned NaN or infinity"
+    return shaped, None
 
 
 def _where(diff: np.ndarray) -> str:
@@ -75,15 +84,10 @@ def compare_angles(got: Any, ref: np.ndarray, tol: float = 1e-6) -> str | None:
     >>> compare_angles([2 * np.pi + 0.5], np.array([0.5])) is None
     True
     """
-    arr = _as_float_array(got)
-    if arr is None:
-        return "did not return numbers"
+    shaped, problem = _numbers_like(got, ref)
+    if problem:
+        return problem
     ref = np.asarray(ref, dtype=float)
-    shaped = _match_shape(arr, ref)
-    if shaped is None:
-        return f"returned shape {arr.shape}, expected shape {ref.shape}"
-    if not np.all(np.isfinite(shaped)):
-        return "returned NaN or infinity"
     diff = np.angle(np.exp(1j * (shaped - ref)))
     err = float(np.max(np.abs(diff))) if ref.size else 0.0
     if err > tol:

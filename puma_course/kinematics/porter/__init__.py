@@ -124,6 +124,11 @@ class Porter(Robot):
         bits = int(np.bitwise_or.reduce(b.flags[0]))
         return tuple(k for i, k in enumerate(FLAG_KEYS) if bits >> i & 1)
 
+    def _none(self, why: str, method: str) -> IKSolutions:
+        """No configuration: ``success`` False and ``why`` as the reason."""
+        return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, why, self.name, method, REVOLUTE,
+                           joints=self.joint_symbols)  # fmt: skip
+
     def ik(self, T: Any, near: Any = None, *, method: str = "explicit", tol: float = TOL) -> IKSolutions:
         """Every configuration reaching T, by Ver.1 (``"explicit"``) or Ver.2 (``"geometric"``).
 
@@ -155,21 +160,8 @@ class Porter(Robot):
             err = np.abs(self.fk(Q) - Tm[0]).max(axis=(-2, -1)) / max(1.0, float(np.abs(Tm[0, :3, 3]).max()))
             keep = np.flatnonzero(err < 1e-8)
             if len(keep) == 0:  # never silently "success" with nothing: say the solver failed
-                why = (
-                    f"the {method} solver found no configuration reaching T (pose error {err.min():.3g}): please report"
-                )
-                return IKSolutions(
-                    np.zeros((0, 6)),
-                    (),
-                    (),
-                    MESSAGES,
-                    False,
-                    why,
-                    self.name,
-                    method,
-                    REVOLUTE,
-                    joints=self.joint_symbols,
-                )
+                why = f"the {method} solver found no configuration reaching T (pose error {err.min():.3g})"
+                return self._none(why + ": please report", method)
             keep = keep[dedupe_mask(Q[keep], REVOLUTE)]
             Q, keys, labels = Q[keep], [keys[i] for i in keep], [labels[i] for i in keep]
         present = {k for f in keys for k in f}
@@ -179,18 +171,7 @@ class Porter(Robot):
                 need = float(Q[:, 2].min())
                 why = (f"unreachable: every configuration needs q2 > q2_max = {self.q2_max:g} "
                        f"(the smallest is {need:.6g})")  # fmt: skip
-                return IKSolutions(
-                    np.zeros((0, 6)),
-                    (),
-                    (),
-                    MESSAGES,
-                    False,
-                    why,
-                    self.name,
-                    method,
-                    REVOLUTE,
-                    joints=self.joint_symbols,
-                )
+                return self._none(why, method)
             Q, keys, labels = Q[~over], [k for k, o in zip(keys, over, strict=True) if not o], \
                 [lab for lab, o in zip(labels, over, strict=True) if not o]  # fmt: skip
         sol = IKSolutions(Q, tuple(labels), tuple(keys), {k: MESSAGES[k] for k in present}, True, "", self.name,
