@@ -125,6 +125,7 @@ html_theme_options = {{
     "launch_buttons": {{}},
     "show_toc_level": 2,
 }}
+html_css_files = ["puma.css"]
 html_show_sourcelink = False
 html_copy_source = True
 myst_enable_extensions = ["dollarmath", "amsmath", "html_image", "html_admonition"]
@@ -146,6 +147,14 @@ mathjax3_config = {{
 html_context = {{"default_mode": "light"}}
 myst_update_mathjax = False  # the configuration above is complete
 suppress_warnings = ["myst.header", "mystnb.unknown_mime_type"]
+"""
+
+
+#: the site's own style: on a wide screen the sidebar holds the search field, so the theme's top bar
+#: (a second search field and nothing else) is hidden; below 960 px it stays (it opens the sidebar)
+_CSS = """@media (min-width: 960px) {
+  #pst-header { display: none !important; }
+}
 """
 
 
@@ -179,6 +188,7 @@ def build_site(course: str | Path | None = None, out: str | Path | None = None) 
         (src / "conventions.md").write_text(_conventions_page(root), encoding="utf-8")
         (src / "conf.py").write_text(_CONF.format(mathjax=MATHJAX_FILE), encoding="utf-8")
         _copy_mathjax(base / "assets" / "mathjax")
+        (base / "assets" / "puma.css").write_text(_CSS, encoding="utf-8")
         if out_dir.exists():
             shutil.rmtree(out_dir)
         warnings = io.StringIO()
