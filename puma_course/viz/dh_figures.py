@@ -2,9 +2,8 @@
 with a, α, d, θ labelled, frames placed one step at a time, and a piston driving a revolute joint.
 
 Everything drawn is computed by the kinematics layer (``common_normal``, ``frame_steps``, ``d_theta``). Labels go
-through :func:`place_labels` (each beside its point where it overlaps no label placed before and covers no other
-labelled point); :func:`overlapping_labels` checks a finished figure. Static figures: 3-D labels are placed for
-the view they were drawn in, so the functions here set the view (equal scale, framed tightly) before placing them.
+through :func:`~puma_course.viz.labels.place_labels`. Static figures: 3-D labels are placed for the view they were
+drawn in, so the functions here set the view (equal scale, :func:`~puma_course.viz.frames.frame_tightly`) first.
 """
 
 from __future__ import annotations
@@ -19,125 +18,15 @@ from .._validate import as_array, as_length
 from ..kinematics.frame_assignment import CommonNormal, FrameWalk, common_normal, d_theta
 from ..kinematics.spaces import actuator_from_joint
 from ..transforms import homogeneous
-from .frames import AXIS_COLORS
+from .frames import AXIS_COLORS, frame_tightly
+from .labels import Label, place_labels
 
-__all__ = ["Label", "place_labels", "overlapping_labels", "frame_tightly", "draw_common_normal", "DHPicture",
-           "draw_dh_picture", "draw_frame_walk", "draw_piston_joint", "NORMAL_COLOR", "JOINT_COLOR"]  # fmt: skip
+__all__ = ["draw_common_normal", "DHPicture", "draw_dh_picture", "draw_frame_walk", "draw_piston_joint",
+           "NORMAL_COLOR", "JOINT_COLOR"]  # fmt: skip
 
 #: Colour of a common normal, a and α (link parameters); of d and θ (joint parameters).
 NORMAL_COLOR, JOINT_COLOR = "tab:purple", "tab:brown"
 _AXIS_LINE = dict(ls="--", lw=1.2, color="0.35")
-_BOX = dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8)
-
-
-@dataclass
-class Label:
-    """A text to place beside a 3-D (or 2-D) ``point``; ``prefer`` is the side tried first (degrees, 0 = right)."""
-
-    point: Any
-    text: str
-    color: str = "black"
-    prefer: float | None = None
-    size: float | None = None
-
-
-def _screen(ax: Any, P: np.ndarray) -> np.ndarray:
-    """Points (k, 3) or (k, 2) in the axes' 2-D data coordinates (projected for a 3-D axes)."""
-    P = np.atleast_2d(P)
-    if P.shape[1] == 2:
-        return P
-    V = np.column_stack([P, np.ones(len(P))]) @ np.asarray(ax.get_proj()).T  # homogeneous, as mplot3d projects
-    return V[:, :2] / V[:, 3:4]
-
-
-def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, fontsize: float = 11,
-                 draw: bool = True) -> list[Any]:  # fmt: skip
-    """Put each label beside its point where it overlaps no label placed before; returns the annotations.
-
-    Sides are tried nearest first (the preferred one, then the others around it) at growing
-    distances; a side is taken when the text stays inside the axes, overlaps no earlier label and
-    covers no other label's point or ``avoid`` point ((k, 3) or (k, 2)). Call it after the view
-    and limits are final; ``draw=False`` skips the first drawing of the figure (it settles the layout)
-    when it was just drawn, e.g. labelling several axes of one figure in turn. The texts are
-    annotations at the projected points (left out of the layout).
-
-    >>> import matplotlib; matplotlib.use("Agg")
-    >>> import matplotlib.pyplot as plt
-    >>> fig, ax = plt.subplots()
-    >>> ax.set(xlim=(0, 1), ylim=(0, 1))
-    [(0.0, 1.0), (0.0, 1.0)]
-    >>> texts = place_labels(ax, [Label([0.5, 0.5], "first"), Label([0.52, 0.5], "second")])
-    >>> overlapping_labels(texts)
-    []
-    >>> plt.close(fig)
-    """
-    fig = ax.figure
-    if draw:
-        fig.canvas.draw()  # settle the layout and the projection before measuring
-    renderer = fig.canvas.get_renderer()
-    anchors = _screen(ax, np.array([np.asarray(lb.point, float) for lb in labels])) if labels else np.zeros((0, 2))
-    keep_out = list(ax.transData.transform(anchors) if len(anchors) else anchors)
-    if avoid is not None:
-        keep_out += list(ax.transData.transform(_screen(ax, np.asarray(avoid, float))))
-    frame = ax.get_window_extent(renderer)
-    placed: list[Any] = []
-    out = []
-    for k, lb in enumerate(labels):
-        start = 45.0 if lb.prefer is None else lb.prefer
-        sides = sorted(range(0, 360, 30), key=lambda a: min(abs(a - start) % 360, 360 - abs(a - start) % 360))
-        best, best_score = None, np.inf
-        ann = ax.annotate(lb.text, xy=anchors[k], xytext=(0, 0), textcoords="offset points", color=lb.color,
-                          fontsize=lb.size or fontsize, bbox=_BOX, zorder=20, annotation_clip=False)  # fmt: skip
-        ann.set_in_layout(False)
-        for r in (9.0, 16.0, 25.0, 36.0, 50.0, 66.0):
-            for a in sides:
-                c, s = np.cos(np.radians(a)), np.sin(np.radians(a))
-                ann.set_position((r * c, r * s))
-                ann.set_ha("left" if c > 0.35 else "right" if c < -0.35 else "center")
-                ann.set_va("bottom" if s > 0.35 else "top" if s < -0.35 else "center")
-                bb = ann.get_window_extent(renderer).expanded(1.0, 1.0).padded(2.0)
-                score = sum(_area(bb, p) for p in placed)
-                score += 1e4 * sum(bool(bb.contains(*q)) for j, q in enumerate(keep_out) if j != k)
-                score += 1e5 * (bb.x0 < frame.x0 or bb.x1 > frame.x1 or bb.y0 < frame.y0 or bb.y1 > frame.y1)
-                if score < best_score:
-                    best, best_score = (r * c, r * s, ann.get_ha(), ann.get_va()), score
-                if score == 0:  # the first free side at this distance
-                    break
-            if best_score == 0:
-                break
-        assert best is not None
-        ann.set(position=best[:2], ha=best[2], va=best[3])
-        placed.append(ann.get_window_extent(renderer).padded(2.0))
-        out.append(ann)
-    return out
-
-
-def _area(a: Any, b: Any) -> float:
-    w, h = min(a.x1, b.x1) - max(a.x0, b.x0), min(a.y1, b.y1) - max(a.y0, b.y0)
-    return float(w * h) if w > 0 and h > 0 else 0.0
-
-
-def overlapping_labels(texts: Sequence[Any]) -> list[tuple[str, str]]:
-    """The pairs of texts (matplotlib Text or annotations) whose boxes on the drawn figure overlap."""
-    if not texts:
-        return []
-    fig = texts[0].figure
-    fig.canvas.draw()
-    r = fig.canvas.get_renderer()
-    boxes = [t.get_window_extent(r) for t in texts]
-    return [(texts[i].get_text(), texts[j].get_text()) for i in range(len(texts)) for j in range(i + 1, len(texts))
-            if _area(boxes[i], boxes[j]) > 0]  # fmt: skip
-
-
-def frame_tightly(ax: Any, points: Any, margin: float = 0.05, zoom: float = 1.0) -> None:
-    """Equal scale on a 3-D axes whose box fits ``points`` (k, 3) (no cube: less white space than ``set_equal``)."""
-    P = as_array(points, "points", (None, 3), what="points to frame, shape (k, 3)")
-    lo, hi = P.min(axis=0), P.max(axis=0)
-    half = np.maximum(hi - lo, 0.3 * float(np.max(hi - lo)) + 1e-12) * (0.5 + margin)
-    mid = (lo + hi) / 2
-    ax.set(xlim3d=(mid[0] - half[0], mid[0] + half[0]), ylim3d=(mid[1] - half[1], mid[1] + half[1]),
-           zlim3d=(mid[2] - half[2], mid[2] + half[2]))  # fmt: skip
-    ax.set_box_aspect(tuple(half), zoom=zoom)
 
 
 def _seg(ax: Any, a: Any, b: Any, **kw: Any) -> list[Any]:

@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 
 from .._validate import as_array
 
-__all__ = ["AXIS_COLORS", "new_axes", "set_equal", "draw_frame", "draw_frames", "draw_points"]
+__all__ = ["AXIS_COLORS", "new_axes", "set_equal", "frame_tightly", "draw_frame", "draw_frames", "draw_points"]
 
 #: Colours of a triad's x, y and z axes.
 AXIS_COLORS = ("tab:red", "tab:green", "tab:blue")
@@ -80,6 +80,17 @@ def set_equal(ax: Any, points: Any | None = None, margin: float = 0.1) -> None:
     ax.set_ylim3d(centre[1] - half, centre[1] + half)
     ax.set_zlim3d(centre[2] - half, centre[2] + half)
     ax.set_box_aspect((1, 1, 1))
+
+
+def frame_tightly(ax: Any, points: Any, margin: float = 0.05, zoom: float = 1.0) -> None:
+    """Equal scale on a 3-D axes whose box fits ``points`` (k, 3) (no cube: less white space than ``set_equal``)."""
+    P = as_array(points, "points", (None, 3), what="points to frame, shape (k, 3)")
+    lo, hi = P.min(axis=0), P.max(axis=0)
+    half = np.maximum(hi - lo, 0.3 * float(np.max(hi - lo)) + 1e-12) * (0.5 + margin)
+    mid = (lo + hi) / 2
+    ax.set(xlim3d=(mid[0] - half[0], mid[0] + half[0]), ylim3d=(mid[1] - half[1], mid[1] + half[1]),
+           zlim3d=(mid[2] - half[2], mid[2] + half[2]))  # fmt: skip
+    ax.set_box_aspect(tuple(half), zoom=zoom)
 
 
 def draw_frame(

@@ -1,9 +1,8 @@
 """The figures of lectures 05-07 (Porter's chain): readable 3-D axes and labels that do not collide.
 
-* :func:`tidy_axes`, :func:`fit_ticks`, :func:`tick_label_boxes` - a 3-D axes readable on a
-  projector: axis labels with room, as many tick numbers as fit the view without colliding;
-* :func:`label_points` - labels next to 3-D points, placed on the screen so that they overlap
-  neither each other nor the labelled points (nor, where they can, the drawn links);
+* readable 3-D axes and labels come from :mod:`~puma_course.viz.labels` (``tidy_axes``, ``fit_ticks``,
+  ``label_points``): as many tick numbers as fit, labels that overlap neither each other, the points
+  nor, where they can, the drawn links;
 * :func:`ver2_points`, :func:`parallel_circle` - the points of the geometric construction (Ver.2)
   and the circle of possible p3 when the planes are parallel, read from the robot API;
 * :func:`plot_frames`, :func:`plot_solutions`, :func:`plot_construction`, :func:`plot_parallel_planes`:
@@ -20,37 +19,27 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
-from matplotlib.ticker import FixedLocator, MaxNLocator
 
 from .._validate import as_array, as_count, as_transform
 from ..kinematics.ik import SingularityWarning
 from ..kinematics.porter import Porter
 from .arms import draw_chain
 from .frames import draw_points, set_equal
+from .labels import fit_ticks, label_points, tidy_axes
 
-__all__ = ["POINT_NAMES", "FRAME_NAMES", "tidy_axes", "fit_ticks", "tick_label_boxes", "label_points", "ver2_points",
-           "parallel_circle", "plot_frames", "plot_solutions", "plot_construction", "plot_parallel_planes"]  # fmt: skip
+__all__ = ["POINT_NAMES", "FRAME_NAMES", "ver2_points", "parallel_circle", "plot_frames", "plot_solutions",
+           "plot_construction", "plot_parallel_planes"]  # fmt: skip
 
 #: Names of Porter's points as drawn (mathtext): p0 and p1 coincide.
 POINT_NAMES = ("$p_0 = p_1$", "$p_2$", "$p_3$", "$p_4$", "$p_5$")
 #: Names of Porter's frames as drawn: F1 (F0 turned by α1) shares F0's origin.
 FRAME_NAMES = ("$F_0, F_1$", "", "$F_2$", "$F_3$", "$F_4$", "$F_5$")
 
-# offsets tried for a label, in points: 8 directions at three distances, the nearest first
-_DIRECTIONS = [(math.cos(t), math.sin(t)) for t in np.radians([45, 135, -45, -135, 0, 180, 90, -90])]
-_RADII = (7.0, 14.0, 24.0)
-_STEPS = [1, 2, 2.5, 5, 10]  # nice tick steps
-
 
 def _check_porter(arm: Any) -> Porter:
     if not isinstance(arm, Porter):
         raise ValueError(f"arm: expected Porter(l1, l3, l4), got {type(arm).__name__}")
     return arm
-
-
-def _check_3d(ax: Any) -> None:
-    if getattr(ax, "name", "") != "3d":
-        raise ValueError(f"ax: expected a 3-D axes (projection='3d'), got {type(ax).__name__}")
 
 
 def _axes(fig: Figure, pos: tuple[int, int, int], elev: float, azim: float) -> Any:
@@ -62,160 +51,6 @@ def _axes(fig: Figure, pos: tuple[int, int, int], elev: float, azim: float) -> A
 def _frame(ax: Any, pts: np.ndarray, margin: float) -> None:
     set_equal(ax, pts, margin=margin)
     fit_ticks(ax)
-
-
-def tidy_axes(ax: Any, *, nbins: int = 4, units: str = "", pad: float = 2.0) -> Any:
-    """Make a 3-D axes readable: at most ``nbins`` + 1 ticks per axis, labels x, y, z (with ``units``).
-
-    Tick numbers sit ``pad`` points from their axis; the box is drawn at zoom 0.9, which leaves room
-    for the z label inside the figure.
-
-    >>> fig = plt.figure()
-    >>> ax = tidy_axes(fig.add_subplot(projection="3d"), units="m")
-    >>> fig.canvas.draw()
-    >>> ax.get_xlabel(), len(tick_label_boxes(ax)["z"]) <= 5
-    ('x [m]', True)
-    >>> plt.close(fig)
-    """
-    _check_3d(ax)
-    nbins = as_count(nbins, "nbins", minimum=2)
-    unit = f" [{units}]" if units else ""
-    for axis, name in ((ax.xaxis, "x"), (ax.yaxis, "y"), (ax.zaxis, "z")):
-        axis.set_major_locator(MaxNLocator(nbins=nbins, steps=_STEPS))
-        axis.set_tick_params(pad=pad)
-        axis.set_label_text(name + unit)
-        axis.labelpad = 4.0
-    ax.set_box_aspect((1, 1, 1), zoom=0.9)
-    return ax
-
-
-def tick_label_boxes(ax: Any) -> dict[str, list[Any]]:
-    """The window extents of the tick numbers drawn (inside the view) on each axis of a drawn 3-D axes."""
-    renderer = ax.figure.canvas.get_renderer()
-    out: dict[str, list[Any]] = {}
-    for name, axis in (("x", ax.xaxis), ("y", ax.yaxis), ("z", ax.zaxis)):
-        (lo, hi), locs = sorted(axis.get_view_interval()), axis.get_majorticklocs()
-        eps, ticks = 1e-9 * max(1.0, abs(hi - lo)), axis.get_major_ticks(len(locs))
-        out[name] = [t.label1.get_window_extent(renderer) for loc, t in zip(locs, ticks, strict=True)
-                     if lo - eps <= loc <= hi + eps and t.label1.get_visible() and t.label1.get_text()]  # fmt: skip
-    return out
-
-
-def _collide(boxes: Sequence[Any], others: Sequence[Any] = (), pad: float = 4.0) -> bool:
-    padded = [b.padded(pad) for b in boxes]
-    if any(a.overlaps(b) for i, a in enumerate(padded) for b in padded[i + 1 :]):
-        return True
-    return any(a.overlaps(b.padded(pad)) for a in padded for b in others)
-
-
-def fit_ticks(ax: Any, max_bins: int = 4) -> Any:
-    """Give each axis of a 3-D axes as many ticks (at most ``max_bins`` + 1) as fit without collisions.
-
-    Call it after the view and the limits are set. The figure is drawn and each axis' tick numbers
-    are compared, with each other and with the other axes' numbers; an axis whose numbers collide
-    gets fewer ticks (down to its first and last one) and the figure is drawn again, until nothing collides.
-
-    >>> fig = plt.figure(figsize=(4.0, 3.6))
-    >>> ax = fig.add_subplot(projection="3d")
-    >>> ax.view_init(elev=5, azim=-2)  # the x axis is seen almost end on
-    >>> set_equal(ax, [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]])
-    >>> ax = fit_ticks(ax)
-    >>> fig.canvas.draw()
-    >>> len(tick_label_boxes(ax)["x"]), len(tick_label_boxes(ax)["y"])
-    (2, 3)
-    >>> plt.close(fig)
-    """
-    _check_3d(ax)
-    max_bins = as_count(max_bins, "max_bins", minimum=2)
-    axes, bins = {"x": ax.xaxis, "y": ax.yaxis, "z": ax.zaxis}, dict.fromkeys("xyz", max_bins)
-    for axis in axes.values():
-        axis.set_major_locator(MaxNLocator(nbins=max_bins, steps=_STEPS))
-    while True:  # one drawing per round: every axis whose numbers collide loses a tick
-        ax.figure.canvas.draw()
-        boxes = tick_label_boxes(ax)
-        bad = [k for k in axes if _collide(boxes[k], [b for j, v in boxes.items() if j != k for b in v])]
-        if not bad or all(bins[k] == 1 for k in bad):
-            break
-        for k in bad:
-            bins[k] -= 1
-            if bins[k] >= 2:
-                axes[k].set_major_locator(MaxNLocator(nbins=bins[k], steps=_STEPS))
-            else:  # even three numbers collide: keep the first and the last tick only
-                lo, hi = sorted(axes[k].get_view_interval())
-                locs = [v for v in axes[k].get_majorticklocs() if lo <= v <= hi]
-                axes[k].set_major_locator(FixedLocator([locs[0], locs[-1]] if len(locs) > 2 else locs))
-    return ax
-
-
-def _display(ax: Any, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """3-D points (k, 3) -> (projected data coordinates (k, 2), display coordinates (k, 2)) for the current view."""
-    v = np.column_stack([P, np.ones(len(P))]) @ np.asarray(ax.get_proj()).T  # homogeneous projection
-    xy = v[:, :2] / v[:, 3:4]
-    return xy, ax.transData.transform(xy)
-
-
-def _seg_hits_box(a: np.ndarray, b: np.ndarray, box: Any) -> bool:
-    """Does the 2-D segment a-b (display units) pass through the Bbox ``box``? (sampled every few pixels)"""
-    n = int(min(200, 2 + math.hypot(*(b - a)) / 3.0))
-    return any(box.contains(*(a + t * (b - a))) for t in np.linspace(0.0, 1.0, n))
-
-
-def label_points(ax: Any, points: Any, names: Sequence[str], *, avoid: Sequence[Any] = (), fontsize: float = 10.0,
-                 color: str | Sequence[str] = "k") -> list[Any]:  # fmt: skip
-    """Label 3-D points (k, 3) with ``names`` so that no two labels overlap and no label hides a point.
-
-    Call it last, when view and limits are set: each label is an annotation anchored at its point,
-    shifted on the screen in the direction that collides least with other labels (never, when a
-    direction avoids it), the points, the polylines in ``avoid`` (each (m, 3), e.g. the links) and
-    the axes' edge. Empty names are skipped. Returns the annotations.
-
-    >>> fig, ax = plt.figure(), plt.axes(projection="3d")
-    >>> P = np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [1.0, 1.0, 1.0]]); set_equal(ax, P)
-    >>> [a.get_text() for a in label_points(ax, P, ["a", "b", ""])]
-    ['a', 'b']
-    >>> plt.close(fig)
-    """
-    P = as_array(points, "points", (3,), batch=True, what="points of shape (k, 3)").reshape(-1, 3)
-    if isinstance(names, str) or len(names) != len(P):
-        raise ValueError(f"names: expected one text per point ({len(P)}), got {names!r}")
-    colors = [color] * len(P) if isinstance(color, str) else [str(c) for c in color]
-    if len(colors) != len(P):
-        raise ValueError(f"color: expected one colour or one per point ({len(P)}), got {len(colors)}")
-    lines = [as_array(a, "avoid", (3,), batch=True, what="polylines of shape (m, 3)").reshape(-1, 3) for a in avoid]
-    fig = ax.figure
-    fig.canvas.draw()  # the layout is final: the view and the axes' place on the figure are known
-    renderer = fig.canvas.get_renderer()
-    xy, disp = _display(ax, P)
-    ds = [_display(ax, L)[1] for L in lines]
-    segs = [(d[k], d[k + 1]) for d in ds for k in range(len(d) - 1)]
-    frame, r = ax.get_window_extent(renderer), 3.0 * fig.dpi / 72.0  # a point's marker: about 3 pt around it
-    placed: list[Any] = []
-    out = []
-    for i, name in enumerate(names):
-        if not name:
-            continue
-        ann = ax.annotate(name, xy=tuple(xy[i]), xycoords="data", xytext=(0.0, 0.0), textcoords="offset points",
-                          fontsize=fontsize, color=colors[i], annotation_clip=False)  # fmt: skip
-        ann.set_in_layout(False)
-        best: tuple[float, tuple[float, float], str, str] = (math.inf, (0.0, 0.0), "center", "center")
-        for radius in _RADII:
-            for cx, cy in _DIRECTIONS:
-                ha = "left" if cx > 0.3 else "right" if cx < -0.3 else "center"
-                va = "bottom" if cy > 0.3 else "top" if cy < -0.3 else "center"
-                ann.xyann = (radius * cx, radius * cy)
-                ann.set(horizontalalignment=ha, verticalalignment=va)
-                box = ann.get_window_extent(renderer).padded(1.0)
-                cost = radius / 10.0 + 1000.0 * sum(box.overlaps(b) for b in placed)
-                cost += 100.0 * sum(box.x0 - r < x < box.x1 + r and box.y0 - r < y < box.y1 + r for x, y in disp)
-                cost += 10.0 * sum(_seg_hits_box(a, b, box) for a, b in segs)
-                cost += 50.0 * (not (frame.contains(box.x0, box.y0) and frame.contains(box.x1, box.y1)))
-                if cost < best[0]:
-                    best = (cost, (radius * cx, radius * cy), ha, va)
-        ann.xyann = best[1]
-        ann.set(horizontalalignment=best[2], verticalalignment=best[3])
-        placed.append(ann.get_window_extent(renderer))
-        out.append(ann)
-    return out
 
 
 def ver2_points(arm: Porter, T: Any, near: Any = None) -> dict[str, np.ndarray]:

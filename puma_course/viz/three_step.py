@@ -17,12 +17,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import FuncAnimation
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from .._validate import as_array
-from ..kinematics.three_step import Motion, ThreeStepSolution, motion
+from ..kinematics.three_step import Motion, ThreeStepArm, ThreeStepSolution, motion
+from ..transforms import wrap_angle
 from .frames import AXIS_COLORS, draw_points, set_equal
+from .labels import Label, place_labels
 
-__all__ = ["PHASE_TITLES", "draw_triad", "draw_state", "plot_steps", "animate"]
+__all__ = ["PHASE_TITLES", "draw_triad", "draw_state", "plot_steps", "plot_triangle", "animate"]
 
 #: The title of each phase of :func:`~puma_course.kinematics.three_step.motion` (0 is the start).
 PHASE_TITLES = (
@@ -136,6 +139,70 @@ def plot_steps(
     if title:
         fig.suptitle(title)
     fig.tight_layout()
+    return fig
+
+
+def _arc(ax: Any, centre: np.ndarray, start: float, sweep: float, r: float, color: str) -> np.ndarray:
+    """An arc of radius r about a 2-D centre from the direction ``start`` through ``sweep`` (radians); its middle."""
+    t = np.linspace(start, start + sweep, 40)
+    ax.plot(centre[0] + r * np.cos(t), centre[1] + r * np.sin(t), color=color, lw=1.6)
+    mid = start + sweep / 2
+    return centre + r * np.array([np.cos(mid), np.sin(mid)])
+
+
+def plot_triangle(arm: ThreeStepArm, w: Any, figsize: tuple[float, float] = (6.4, 5.6)) -> Figure:
+    """Step 2 in the arm's plane: shoulder s, elbow e and wrist centre w, both elbow branches, and the angles
+    γ (elevation of the line s-w), θ (between the upper arm and s-w, eq. 5) and β (at the elbow).
+
+    Drawn from ``arm.three_step(w, I, elbow)`` for ``"up"`` and ``"down"``: the points are ``arm.joint_points`` of
+    each solution, seen in the vertical plane through the base axis and w (horizontal: distance from the axis).
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig = plot_triangle(ThreeStepArm(1.5, 1.0), [0.5, 0.5, 2.0])
+    >>> fig.axes[0].get_title()
+    'step 2 in the arm plane: the triangle s, e, w'
+    >>> plt.close(fig)
+    """
+    if not isinstance(arm, ThreeStepArm):
+        raise ValueError(f"arm: expected ThreeStepArm(l1, l2), got {type(arm).__name__}")
+    up, down = (arm.three_step(w, np.eye(3), elbow=e) for e in ("up", "down"))
+    r_hat = np.array([np.cos(up.theta0), np.sin(up.theta0), 0.0])
+
+    def plane(sol: ThreeStepSolution) -> np.ndarray:  # rows s, e, w as (horizontal distance, height)
+        P = arm.joint_points(sol.theta0, sol.theta1, sol.theta2)
+        return np.column_stack([P @ r_hat, P[:, 2]])
+
+    (s_, e_up, w_), e_dn = plane(up), plane(down)[1]
+    fig, ax = plt.subplots(figsize=figsize)
+    l3 = float(np.hypot(*(w_ - s_)))
+    ax.axhline(0.0, color="0.6", lw=1, ls=":")
+    ax.plot(*np.transpose([s_, w_]), color="0.45", lw=1.2, ls="--")
+    ax.plot(*np.transpose([s_, e_up, w_]), "o-", color="tab:blue", lw=3, ms=6, label="elbow up")
+    ax.plot(*np.transpose([s_, e_dn, w_]), "o--", color="tab:orange", lw=2, ms=5, label="elbow down")
+    g_mid = _arc(ax, s_, 0.0, up.phi, 0.22 * l3, "tab:green")
+    t_mid = _arc(ax, s_, up.phi, up.theta, 0.36 * l3, "tab:purple")
+    a_s, a_w = (float(np.arctan2(*(p - e_up)[::-1])) for p in (s_, w_))
+    b_mid = _arc(ax, e_up, a_s, float(wrap_angle(a_w - a_s)), 0.16 * l3, "tab:red")
+    labels = [
+        Label(s_, "$s$", prefer=225), Label(w_, "$w$", prefer=0), Label(e_up, "$e$ (up)", "tab:blue", prefer=135),
+        Label(e_dn, "$e$ (down)", "tab:orange", prefer=-45),
+        Label(g_mid, "$\\gamma$", "tab:green", prefer=0), Label(t_mid, "$\\theta$", "tab:purple", prefer=0),
+        Label(b_mid, "$\\beta$", "tab:red", prefer=-90),
+        Label((s_ + e_up) / 2, "$\\ell_1$", "tab:blue", prefer=135), Label((e_up + w_) / 2, "$\\ell_2$", "tab:blue",
+                                                                             prefer=45),
+        Label(0.8 * s_ + 0.2 * w_ + 0.0, "$\\ell_3$", "0.35", prefer=-45),
+    ]  # fmt: skip
+    ax.set_aspect("equal", adjustable="datalim")  # the axes fill the figure; the wider limits show more plane
+    ax.margins(0.12)
+    ax.set(
+        xlabel="distance from the base axis", ylabel="height z", title="step 2 in the arm plane: the triangle s, e, w"
+    )
+    ax.xaxis.set_major_locator(MaxNLocator(nbins=5, steps=[1, 2, 5, 10]))  # round steps, few numbers
+    ax.legend(loc="lower right")
+    place_labels(
+        ax, labels, lines=[np.array([s_, e_up, w_]), np.array([s_, e_dn, w_]), np.array([s_, w_])], fontsize=12
+    )
     return fig
 
 

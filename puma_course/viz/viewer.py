@@ -235,8 +235,11 @@ class Viewer(anywidget.AnyWidget):
         L = np.array([f["length"] for f in self.scene["frames"]])[:, None]
         return [L * F[:, :3, k] for k in range(3)]
 
-    def static_png(self, dpi: int = 110) -> bytes:
+    def static_png(self, dpi: int = 110, note: str | None = None) -> bytes:
         """A PNG of the pose shown (matplotlib, the same view as the live one): the picture left in the notebook.
+
+        ``note`` is written small under the picture; the picture a saved notebook keeps for the live widget
+        carries :data:`STILL_NOTE`, so a reader knows the view turns once the cell runs.
 
         >>> import numpy as np
         >>> Viewer(np.eye(4)[None]).static_png()[:8]
@@ -256,6 +259,8 @@ class Viewer(anywidget.AnyWidget):
             ax.locator_params(nbins=4)  # few tick numbers: more overlap on a small 3-D axes
             if sc["units"]:
                 ax.set(xlabel=f"x [{sc['units']}]", ylabel=f"y [{sc['units']}]", zlabel=f"z [{sc['units']}]")
+            if note:
+                fig.text(0.01, 0.01, note, fontsize=9, color="0.35", style="italic", ha="left", va="bottom")
             buf = io.BytesIO()
             fig.savefig(buf, format="png", dpi=dpi)
         finally:
@@ -272,13 +277,17 @@ class Viewer(anywidget.AnyWidget):
         return _with_picture(data, self)
 
 
+#: Written under the still picture a saved notebook (or the website) shows in place of a live viewer.
+STILL_NOTE = "A still picture: run the cell in JupyterLab to turn the view and move the arm."
+
+
 def _with_picture(data: Any, viewer: Viewer) -> Any:
     """Add the viewer's static PNG to a widget's display bundle (frontends without the live model show it)."""
     if isinstance(data, tuple):  # (data, metadata)
         return (_with_picture(data[0], viewer), data[1])
     if isinstance(data, dict):
         data = dict(data)
-        data["image/png"] = base64.b64encode(viewer.static_png()).decode("ascii")
+        data["image/png"] = base64.b64encode(viewer.static_png(note=STILL_NOTE)).decode("ascii")
     return data
 
 

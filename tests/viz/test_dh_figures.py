@@ -14,6 +14,7 @@ import pytest
 from puma_course.kinematics import Puma560, mdh
 from puma_course.kinematics.frame_assignment import frame_steps
 from puma_course.viz import dh_figures as D
+from puma_course.viz import labels as L
 from puma_course.viz.frames import new_axes
 
 
@@ -41,7 +42,7 @@ def test_the_dh_picture_reads_back_the_parameters_the_axes_were_built_from(seed)
     got = [pic.params[k] for k in ("alpha_prev", "a_prev", "theta", "d", "alpha", "a")]
     assert np.allclose(got, [al0, a0, th, d, al1, a1])
     assert np.allclose(pic.frames[1], Fi)  # frame {i} where Craig's link matrix puts it
-    assert D.overlapping_labels(pic.labels) == []
+    assert L.overlapping_labels(pic.labels) == []
     assert _texts(pic.labels) == sorted(
         ["axis $i-1$", "axis $i$", "axis $i+1$", "$a_{i-1}$", r"$\alpha_{i-1}$", "$a_{i}$", "$d_{i}$",
          r"$\theta_{i}$", "$X_{i-1}$", "$X_{i}$", "$Z_{i-1}$", "$Z_{i}$"]
@@ -59,7 +60,7 @@ def test_the_lectures_picture_has_its_labels_inside_the_axes_and_apart():
     for t in pic.labels:
         bb = t.get_window_extent(r)
         assert frame.x0 <= bb.x0 and bb.x1 <= frame.x1 and frame.y0 <= bb.y0 and bb.y1 <= frame.y1, t.get_text()
-    assert D.overlapping_labels(pic.labels) == []
+    assert L.overlapping_labels(pic.labels) == []
 
 
 def test_draw_common_normal_draws_the_normal_between_its_feet():
@@ -69,17 +70,8 @@ def test_draw_common_normal_draws_the_normal_between_its_feet():
     normal = [ln for ln in ax.lines if ln.get_color() == D.NORMAL_COLOR and ln.get_linewidth() == 3.5]
     assert len(normal) == 1 and np.allclose(np.transpose(normal[0].get_data_3d()), [[0, 0, 5], [1, 0, 5]])
     assert [lb.text for lb in labels] == ["axis $i-1$", "axis $i$", "$a_{i-1}$", r"$\alpha_{i-1}$"]
-    set_ax = D.place_labels(ax, labels)
-    assert D.overlapping_labels(set_ax) == []
-
-
-def test_place_labels_separates_labels_on_one_point_and_the_check_is_not_vacuous():
-    fig, ax = new_axes()
-    texts = D.place_labels(ax, [D.Label([0.0, 0.0, 0.0], f"label {k}") for k in range(8)])
-    assert len(texts) == 8 and D.overlapping_labels(texts) == []
-    same = [ax.text2D(0.5, 0.5, "one", transform=ax.transAxes), ax.text2D(0.5, 0.5, "two", transform=ax.transAxes)]
-    assert D.overlapping_labels(same) == [("one", "two")]
-    assert D.overlapping_labels([]) == []
+    set_ax = L.place_labels(ax, labels)
+    assert L.overlapping_labels(set_ax) == []
 
 
 PUMA = Puma560()
@@ -108,7 +100,7 @@ def test_frame_walk_highlights_the_step_and_keeps_labels_apart(k):
         mine, nxt = (first if k == 1 else f"$\\{{{k}\\}}$"), f"$\\{{{k % 6 + 1}\\}}$"
         assert mine in names and nxt not in names
         assert ("$a_{2}$" in names) == (k == 2) and ("$d_{3}$" in names) == (k == 3)
-    assert D.overlapping_labels(texts) == []
+    assert L.overlapping_labels(texts) == []
     assert ax.get_xlabel() == "x [m]"
 
 
@@ -143,7 +135,7 @@ def test_piston_by_hand():
     assert np.allclose(np.transpose(rod.get_data()), [[3, 0], [0, 4]], atol=1e-12)
     texts = [c for c in ax.texts]
     assert sorted(t.get_text() for t in texts) == ["$\\gamma$", "$b$", "$c$", "$s$"]
-    assert D.overlapping_labels(texts) == []
+    assert L.overlapping_labels(texts) == []
 
 
 def test_bad_input():

@@ -15,14 +15,14 @@ import math
 import warnings
 
 import matplotlib as mpl
-import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
 from puma_course import Porter, Puma560, SingularityWarning
+from puma_course.viz import labels as L
 from puma_course.viz import porter_figures as PF
 from puma_course.viz import use_course_style
-from puma_course.viz.frames import new_axes, set_equal
+from puma_course.viz.labels import tick_label_boxes
 
 ARM = Porter(1.0, 0.5, 0.3)
 Q_GENERAL = np.array([0.6, -0.5, 1.2, 0.8, 0.7, -0.4])
@@ -54,7 +54,7 @@ def _check_readable(fig):
     renderer = fig.canvas.get_renderer()
     inside = fig.bbox.padded(1.0)
     for ax in fig.axes:
-        boxes = PF.tick_label_boxes(ax)
+        boxes = tick_label_boxes(ax)
         for name, bs in boxes.items():
             assert bs, f"the {name} axis has no tick numbers"
         _no_overlap([b for bs in boxes.values() for b in bs])
@@ -71,98 +71,6 @@ def _check_readable(fig):
     assert fig.dpi >= 100
 
 
-# ---- tidy_axes, fit_ticks ------------------------------------------------------------------------
-
-
-def test_tidy_axes_labels_units_and_few_ticks():
-    fig = plt.figure()
-    ax = PF.tidy_axes(fig.add_subplot(projection="3d"), units="mm")
-    ax.set_xlim3d(-1000, 1000)
-    fig.canvas.draw()
-    assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()) == ("x [mm]", "y [mm]", "z [mm]")
-    assert len(PF.tick_label_boxes(ax)["x"]) <= 5
-
-
-def test_tidy_axes_and_fit_ticks_refuse_a_2d_axes():
-    fig, ax = plt.subplots()
-    with pytest.raises(ValueError, match="^ax: expected a 3-D axes"):
-        PF.tidy_axes(ax)
-    with pytest.raises(ValueError, match="^ax: expected a 3-D axes"):
-        PF.fit_ticks(ax)
-    with pytest.raises(ValueError, match="^max_bins"):
-        PF.fit_ticks(plt.figure().add_subplot(projection="3d"), max_bins=1)
-
-
-@pytest.mark.parametrize("azim", [-90.0, -60.0, -30.0, -3.0, 20.0, 87.0])
-def test_fit_ticks_leaves_no_colliding_tick_numbers(azim):
-    fig = plt.figure(figsize=(4.0, 3.6))
-    ax = PF.tidy_axes(fig.add_subplot(projection="3d"))
-    ax.view_init(elev=12, azim=azim)
-    set_equal(ax, [[-0.6, -0.6, -0.2], [1.4, 1.4, 1.8]])
-    PF.fit_ticks(ax)
-    fig.canvas.draw()
-    boxes = PF.tick_label_boxes(ax)
-    _no_overlap([b for bs in boxes.values() for b in bs], pad=1.0)
-    assert all(len(bs) >= 2 for bs in boxes.values())
-
-
-def test_fit_ticks_thins_an_axis_seen_end_on():
-    fig = plt.figure(figsize=(4.0, 3.6))
-    ax = PF.tidy_axes(fig.add_subplot(projection="3d"))
-    ax.view_init(elev=5, azim=-2)  # x points almost at the viewer
-    set_equal(ax, [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]])
-    PF.fit_ticks(ax)
-    fig.canvas.draw()
-    boxes = PF.tick_label_boxes(ax)
-    assert len(boxes["x"]) < len(boxes["y"])
-
-
-# ---- label_points --------------------------------------------------------------------------------
-
-
-def test_labels_are_anchored_where_matplotlib_draws_the_points():
-    fig, ax = new_axes()
-    P = np.array([[0.0, 0.0, 0.0], [1.0, 0.2, 0.5], [0.3, 1.0, 1.0]])
-    (line,) = ax.plot(*P.T, "o")
-    set_equal(ax, P)
-    anns = PF.label_points(ax, P, ["a", "b", "c"])
-    fig.canvas.draw()  # Line3D projects its points at draw time: its 2-D data is the truth
-    np.testing.assert_allclose([a.xy for a in anns], line.get_xydata(), atol=1e-12)
-
-
-def test_labels_of_crowded_points_do_not_overlap_and_leave_the_points_free():
-    fig, ax = new_axes(figsize=(4.0, 4.0))
-    rng = np.random.default_rng(3)
-    P = np.vstack([rng.normal(0.0, 0.03, (5, 3)), [[1.0, 1.0, 1.0], [-1.0, -1.0, -1.0]]])
-    ax.plot(*P.T, "o", ms=4)
-    set_equal(ax, P)
-    anns = PF.label_points(ax, P, [f"$p_{i}$" for i in range(len(P))])
-    fig.canvas.draw()
-    renderer = fig.canvas.get_renderer()
-    boxes = [a.get_window_extent(renderer) for a in anns]
-    _no_overlap(boxes)
-    _, disp = PF._display(ax, P)
-    for box in boxes:  # no label covers the centre of any labelled point
-        assert not any(box.contains(x, y) for x, y in disp)
-
-
-def test_label_points_skips_empty_names_and_checks_its_input():
-    fig, ax = new_axes()
-    P = np.zeros((3, 3)) + [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
-    set_equal(ax, P)
-    assert [a.get_text() for a in PF.label_points(ax, P, ["", "b", ""])] == ["b"]
-    with pytest.raises(ValueError, match="^names: expected one text per point"):
-        PF.label_points(ax, P, ["a", "b"])
-    with pytest.raises(ValueError, match="^names"):
-        PF.label_points(ax, P, "abc")
-    with pytest.raises(ValueError, match="^points"):
-        PF.label_points(ax, np.zeros((3, 2)), ["a", "b", "c"])
-    with pytest.raises(ValueError, match="^color"):
-        PF.label_points(ax, P, ["a", "b", "c"], color=["k", "r"])
-    with pytest.raises(ValueError, match="^avoid"):
-        PF.label_points(ax, P, ["a", "b", "c"], avoid=[np.zeros((2, 2))])
-
-
 # ---- the points ----------------------------------------------------------------------------------
 
 
@@ -173,7 +81,7 @@ def test_plot_frames_labels_the_frames_where_they_are_by_hand():
     hand = np.array([[0, 0, 0], [0, 0, 1], [0.8, 0, 1], [0.8, 0, 0.5], [1.1, 0, 0.5]], dtype=float)
     anchors = {t.get_text(): t.xy for t in _labels(ax)}
     assert list(anchors) == [n for n in PF.FRAME_NAMES if n]
-    np.testing.assert_allclose(list(anchors.values()), PF._display(ax, hand)[0], atol=1e-12)
+    np.testing.assert_allclose(list(anchors.values()), L._screen(ax, hand), atol=1e-12)
     with pytest.raises(ValueError, match="^arm"):
         PF.plot_frames(Puma560(), np.zeros(6))
 

@@ -52,3 +52,35 @@ def test_draw_triad_and_state():
     arts = tsp.draw_state(ax, [[0, 0, 0], [0, 0, 1.5], [1.0, 0, 1.5]], np.eye(3), length=0.5)
     np.testing.assert_allclose(np.transpose(arts[0].get_data_3d())[-1], [1.0, 0.0, 1.5])
     assert len(arts) == 7
+
+
+def test_plot_triangle_draws_the_law_of_cosines_triangle_in_the_arm_plane():
+    import math
+
+    import pytest
+
+    from puma_course.viz.labels import overlapping_labels
+
+    fig = tsp.plot_triangle(ThreeStepArm(L1, L2), W_EX)
+    ax = fig.axes[0]
+    up = next(ln for ln in ax.lines if ln.get_label() == "elbow up").get_xydata()
+    down = next(ln for ln in ax.lines if ln.get_label() == "elbow down").get_xydata()
+    # truth by hand: w lies at horizontal distance |(0.5, 0.5)| and height 2 from the shoulder
+    r, z = math.hypot(0.5, 0.5), 2.0
+    for s, e, w in (up, down):
+        assert np.allclose(s, 0.0) and np.allclose(w, [r, z])
+        assert math.dist(s, e) == pytest.approx(L1) and math.dist(e, w) == pytest.approx(L2)
+    cross = [(w - s)[0] * (e - s)[1] - (w - s)[1] * (e - s)[0] for s, e, w in (up, down)]  # 2-D cross product
+    assert cross[0] > 0 > cross[1]  # the up elbow lies above the line s-w, the down elbow below it
+    # the β arc: its radius from the up elbow, its angle the law of cosines' angle at the elbow
+    l3 = math.hypot(r, z)
+    beta = math.acos((L1**2 + L2**2 - l3**2) / (2 * L1 * L2))
+    arc = next(ln for ln in ax.lines if ln.get_color() == "tab:red").get_xydata() - up[1]
+    a0, a1 = (math.atan2(p[1], p[0]) for p in (arc[0], arc[-1]))
+    assert abs((a1 - a0 + math.pi) % (2 * math.pi) - math.pi) == pytest.approx(beta)
+    texts = [t for t in ax.texts if t.get_text()]
+    assert {t.get_text() for t in texts} >= {"$s$", "$w$", "$\\beta$", "$\\gamma$", "$\\theta$"}
+    assert overlapping_labels(texts) == []
+    plt.close(fig)
+    with pytest.raises(ValueError, match="^arm: expected ThreeStepArm"):
+        tsp.plot_triangle(object(), W_EX)

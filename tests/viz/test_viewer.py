@@ -116,6 +116,24 @@ def test_static_png_shows_the_pose_and_closes_its_figure():
     assert "image/png" in data and "application/vnd.jupyter.widget-view+json" in data
 
 
+def test_the_picture_kept_for_a_live_viewer_says_it_is_still(monkeypatch):
+    from matplotlib.figure import Figure
+
+    from puma_course.viz.viewer import STILL_NOTE
+
+    seen, savefig = [], Figure.savefig
+
+    def spy(fig, *args, **kwargs):
+        seen.append([t.get_text() for t in fig.texts])
+        return savefig(fig, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", spy)
+    v = RobotViewer(MK3(), "qr")
+    v.static_png()  # asked for directly: no note
+    v._repr_mimebundle_()  # the picture a saved notebook keeps in place of the widget
+    assert seen == [[], [STILL_NOTE]]
+
+
 def test_the_text_repr_names_the_viewer_and_holds_no_memory_address():
     v = RobotViewer(MK3(), "qr")
     data = v._repr_mimebundle_()
