@@ -113,6 +113,25 @@ def sdh(theta, d, a, alpha):
     return np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0, sa, ca, d], [0, 0, 0, 1]])
 
 
+def test_the_pan_tilt_camera_head_frame_fixed_axes_and_degrees():
+    # crafted by hand: the head's frame (x forward, z up) at the camera, never turned to the camera's axes
+    pan, tilt = 0.6, 0.35
+    R_head = rot("z", pan) @ rot("y", tilt)
+    head = homogeneous(R_head, [0.0, 0.0, 0.12] + 0.05 * R_head[:, 0])
+    camera = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])  # columns: x_c, y_c, z_c in the head
+    right_answer = homogeneous(R_head @ camera, head[:3, 3])
+    assert judge("ex01_rotations", "q5", right_answer, pan, tilt).passed
+    assert_named(judge("ex01_rotations", "q5", head, pan, tilt), "tool_frame", "head's frame")
+    # the tilt about the base's fixed y0 (Ry Rz instead of Rz Ry): fixed axes where the axes move
+    R_fixed = rot("y", tilt) @ rot("z", pan)
+    fixed = homogeneous(R_fixed @ camera, [0.0, 0.0, 0.12] + 0.05 * R_fixed[:, 0])
+    assert_named(judge("ex01_rotations", "q5", fixed, pan, tilt), "order", "moving axes")
+    # the angles read as degrees
+    R_deg = rot("z", np.radians(pan)) @ rot("y", np.radians(tilt))
+    deg = homogeneous(R_deg @ camera, [0.0, 0.0, 0.12] + 0.05 * R_deg[:, 0])
+    assert_named(judge("ex01_rotations", "q5", deg, pan, tilt), "degrees", "degrees")
+
+
 def test_the_standard_dh_link_matrix_instead_of_the_modified_one():
     params = (np.pi / 2, 0.4, -1.0, 0.15)
     assert_named(judge("ex02_dh_frames", "q2", sdh(-1.0, 0.15, 0.4, np.pi / 2), *params), "standard_dh", "Craig")

@@ -26,7 +26,7 @@ EX = "ex01_rotations"
 
 # student -> (score, status, {question: points})
 EXPECTED = {
-    "good": (10, "ok", {}),
+    "good": (13, "ok", {}),
     "malformed_json": (0, "malformed", {}),
     "not_a_notebook": (0, "malformed", {}),
     "raises": (7, "cell-error", {"q3": 0}),
@@ -40,7 +40,7 @@ EXPECTED = {
     "exit_os": (0, "crashed", {}),
     "answer_key": (2, "cell-error", {"q4": 2}),  # the package's answers are not there to import
     "read_expected": (2, "ok", {"q1": 0, "q4": 2}),
-    "tamper_files": (10, "ok", {}),
+    "tamper_files": (13, "ok", {}),  # the good notebook plus a cell that tampers
     "memory_hog": (10, "cell-error", {}),
     "evil_values": (5, "ok", {"q1": 0, "q2": 0}),
     "memorizer": (2.4, "ok", {"q1": 2, "q4": 0.4}),
@@ -129,7 +129,7 @@ def test_the_tamperer_damaged_no_grade_and_in_the_sandbox_no_file(graded):
         # without the sandbox the tamperer overwrites what it can reach on disk ...
         assert changed <= {f"good/{EX}.ipynb", f"tamper_files/{EX}.ipynb"}
     # ... but every notebook was read before any student code ran, so "good" still has full marks
-    assert float(graded["rows"]["good"]["score"]) == 10
+    assert float(graded["rows"]["good"]["score"]) == 13
 
 
 def test_the_csv_records_the_sandbox_and_the_seed(graded):
@@ -152,7 +152,7 @@ def test_feedback_explains_what_passed_and_failed(graded):
     assert sorted(p.stem for p in fb.glob("*.md")) == sorted(EXPECTED)
     text = (fb / "missing_function.md").read_text(encoding="utf-8")
     assert "no function named rodrigues_formula() was defined" in text
-    assert "7 / 10" in text
+    assert "7 / 13" in text  # q5 is not answered either (these submissions predate it)
     text = (fb / "answer_key.md").read_text(encoding="utf-8")
     assert "puma_course.rodrigues is not available in this exercise" in text
     text = (fb / "endless_loop.md").read_text(encoding="utf-8")
@@ -160,7 +160,7 @@ def test_feedback_explains_what_passed_and_failed(graded):
     text = (fb / "malformed_json.md").read_text(encoding="utf-8")
     assert "not a readable notebook" in text
     text = (fb / "huge_print.md").read_text(encoding="utf-8")
-    assert "10 / 10" in text
+    assert "10 / 13" in text
 
 
 def test_timeouts_are_reported_per_notebook(graded):

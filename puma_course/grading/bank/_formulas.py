@@ -93,3 +93,36 @@ def wrapped_nearest(solutions: Any, q_prev: Any, revolute: Any = (True, True, Fa
     S, q = np.atleast_2d(np.asarray(solutions, dtype=float)), np.asarray(q_prev, dtype=float)
     d = np.where(np.asarray(revolute, dtype=bool), wrap_angle(S - q), S - q)
     return S[int(np.argmin(np.sum(d * d, axis=1)))].copy()
+
+
+# ---------------------------------------------------------------- exercise 1: the pan-tilt camera's mistakes
+_H, _C = 0.12, 0.05  # the head of the question (tilt axis height, camera offset) [m]
+_CAMERA = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])  # camera axes in the head's frame
+
+
+def _rz(t: float) -> np.ndarray:
+    c, s = math.cos(t), math.sin(t)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _ry(t: float) -> np.ndarray:
+    c, s = math.cos(t), math.sin(t)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def _pose(R: np.ndarray, p: Any) -> np.ndarray:
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, p
+    return T
+
+
+def camera_head_frame(pan: float, tilt: float) -> np.ndarray:
+    """The mistake: the head's own frame at the camera (x forward, z up), the camera's axes never set."""
+    R = _rz(pan) @ _ry(tilt)
+    return _pose(R, [0.0, 0.0, _H] + _C * R[:, 0])
+
+
+def camera_fixed_axes(pan: float, tilt: float) -> np.ndarray:
+    """The mistake: tilt about the base's fixed y0 after the pan (Ry(tilt) Rz(pan)), not about the turned head's y."""
+    R = _ry(tilt) @ _rz(pan)
+    return _pose(R @ _CAMERA, [0.0, 0.0, _H] + _C * R[:, 0])

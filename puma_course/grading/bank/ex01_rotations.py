@@ -1,7 +1,8 @@
 """Exercise 1 (``solutions/ex01_rotations.ipynb``): rotations and Rodrigues' formula.
 
-Its four questions (names, points, cases) are pinned by the hostile-submission fixtures of the
-grader's tests; what changed with the mistake diagnosis is how a wrong answer is worded.
+Its first four questions (names, points, cases) are pinned by the hostile-submission fixtures of the
+grader's tests; what changed with the mistake diagnosis is how a wrong answer is worded. Question 5
+is the modelling question: the pose of a camera on a pan-tilt head, from a description in words.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import numpy as np
 from ..diagnose import SIGN_FLIP, TRANSPOSED, Mistake, angle_2pi, close, degrees_in, degrees_out, matches, unit_axis_out
 from ..model import Exercise, Question
 from . import _keys as keys
-from ._formulas import rodrigues_unnormalised
+from ._formulas import camera_fixed_axes, camera_head_frame, rodrigues_unnormalised
 from ._reference import chains as ref
 
 
@@ -98,6 +99,37 @@ EXERCISE = Exercise(
             forbidden=keys.KEY_INVERSE,
             mistakes=(Mistake("translation", _translation), TRANSPOSED),
             hint="Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §5).",
+        ),
+        Question(
+            "q5",
+            "camera_pose",
+            3,
+            "modelling: the camera of a pan-tilt head",
+            public=((0.0, 0.0), (np.pi / 2, 0.0), (0.0, np.pi / 6), (0.4, -0.3)),
+            hidden=lambda rng: [
+                (float(a), float(b))
+                for a, b in zip(rng.uniform(-np.pi, np.pi, 5), rng.uniform(-1.2, 1.2, 5), strict=True)
+            ],
+            reference=ref.camera_pose,
+            forbidden=keys.KEY_ROT,
+            mistakes=(
+                matches(
+                    "tool_frame",
+                    "this is the head's frame (x forward, z up), not the camera's: the camera's "
+                    "z looks forward, its x points right and its y down the image",
+                    camera_head_frame,
+                ),
+                matches(
+                    "order",
+                    "the tilt turned about the base's fixed y0 axis: the tilt axis turns with the "
+                    "pan, so the tilt is about the head's own y axis (moving axes multiply on the right)",
+                    camera_fixed_axes,
+                ),
+                TRANSPOSED,
+                degrees_in(0, 1),
+            ),
+            hint="Build it as motions along the chain, each about or along the axes reached so far (lecture 01 §5), "
+            "then name the camera's axes in the head's frame; check pan = tilt = 0 by hand.",
         ),
     ),
     allowed=(),  # the self-check only: rotx ... rodrigues, axis_angle, inverse_transform are the answers

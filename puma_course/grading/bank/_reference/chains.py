@@ -38,6 +38,24 @@ def inverse_transform(T: np.ndarray) -> np.ndarray:
     return transforms.inverse_transform(T)
 
 
+#: The pan-tilt head of exercise 1's modelling question: tilt axis height and camera offset [m].
+PAN_TILT_H, PAN_TILT_C = 0.12, 0.05
+#: Camera axes (x right, y down the image, z forward) in the head's frame (x forward, z up).
+CAMERA_IN_HEAD = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
+
+
+def camera_pose(pan: float, tilt: float) -> np.ndarray:
+    """Pose of the camera of the pan-tilt head: Rz(pan) Trans(0, 0, h) Ry(tilt) Trans(c, 0, 0), camera axes.
+
+    >>> camera_pose(0.0, 0.0).round(12)[:3]  # looking along x0, image right = -y0, image down = -z0
+    array([[ 0.  ,  0.  ,  1.  ,  0.05],
+           [-1.  ,  0.  ,  0.  ,  0.  ],
+           [ 0.  , -1.  ,  0.  ,  0.12]])
+    """
+    camera = transforms.homogeneous(CAMERA_IN_HEAD, [PAN_TILT_C, 0.0, 0.0])
+    return transforms.compose_moving(transforms.trotz(pan), tz(PAN_TILT_H), transforms.troty(tilt), camera)
+
+
 def random_rotations(rng: np.random.Generator, n: int, lo: float = 0.2, hi: float = 3.0) -> list[np.ndarray]:
     """``n`` rotations about random axes by angles drawn from [lo, hi)."""
     return [transforms.rodrigues(a, t) for a, t in zip(unit_vectors(rng, n), rng.uniform(lo, hi, n), strict=True)]
