@@ -106,3 +106,45 @@ def test_figures_readable_on_a_projector_and_notebook_small(path):
             dpi, width = _png_dpi_and_width(b64decode(png))
             assert dpi is None or dpi >= 99.5, f"{path.name} cell {i}: figure at {dpi:.0f} dpi (at least 100)"
             assert width >= 480, f"{path.name} cell {i}: figure {width} px wide (at least 480)"
+
+
+# ---- references into the lectures ---------------------------------------------------------------------
+_SECTION = re.compile(r"^## (\d+) · ", re.M)
+_REFERENCE = re.compile(r"lecture (\d\d) §(\d+(?:\.\d+)?)(?:-(\d+))?")
+
+
+def _sections() -> dict[str, set[str]]:
+    out = {}
+    for path in LECTURES:
+        nb = nbformat.read(path, as_version=4)
+        out[path.stem[:2]] = {m.group(1) for _, src in _markdown(nb) for m in _SECTION.finditer(src)}
+    return out
+
+
+def _references(text: str) -> list[tuple[str, str]]:
+    refs = []
+    for m in _REFERENCE.finditer(text):
+        refs.append((m.group(1), m.group(2)))
+        if m.group(3):  # a range "§2-4" names its last section too
+            refs.append((m.group(1), m.group(3)))
+    return refs
+
+
+def test_the_reference_scanner_reads_sections_and_ranges():
+    assert _references("see lecture 08 §3.3 and lecture 09 §2-4.") == [("08", "3.3"), ("09", "2"), ("09", "4")]
+
+
+def test_every_lecture_section_a_hint_or_an_exercise_names_exists():
+    """Hints, mistake messages and exercises send the student to "lecture NN §N": that section must exist
+    (the lectures' rewrite renumbered them once; a stale number sends a student to the wrong page)."""
+    sections = _sections()
+    files = [*(ROOT / "puma_course" / "grading").rglob("*.py"), *(ROOT / "solutions").glob("*.ipynb"),
+             *(ROOT / "exercises").glob("*.ipynb"), *LECTURES, ROOT / "README.md"]  # fmt: skip
+    bad = [
+        f"{path.relative_to(ROOT)}: lecture {n} §{sec}"
+        for path in files
+        for n, sec in _references(path.read_text(encoding="utf-8"))
+        if sec not in sections.get(n, set())
+    ]
+    assert sections["08"] >= {"1", "2", "3", "4", "5"}  # the scan itself found the sections
+    assert not bad, bad

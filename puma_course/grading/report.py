@@ -76,7 +76,7 @@ def format_question(q: Question, earned: float, notes: Sequence[str], *, markdow
     q4 invert_transform: 2 / 2 points - passed (4/4 cases pass)
     >>> print(format_question(q, 0, ["0/4 cases pass", "public case 1: returned shape (3,)"]))
     q4 invert_transform: 0 / 2 points - FAILED (0/4 cases pass; public case 1: returned shape (3,))
-      Hint: Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §5).
+      Hint: Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §4).
     >>> format_question(q, 2, ["4/4 cases pass"], markdown=True)
     '| q4 `invert_transform` | 2 / 2 | passed: 4/4 cases pass |'
     """

@@ -45,7 +45,7 @@ EXERCISE = Exercise(
             reference=ref.elementary_rotation,
             forbidden=keys.KEY_ROT,
             mistakes=(TRANSPOSED, degrees_in(1), SIGN_FLIP),
-            hint="Each column of R is where the rotation sends e_x, e_y, e_z (lecture 01 §2): check your columns "
+            hint="Each column of R is where the rotation sends e_x, e_y, e_z (lecture 01 §1): check your columns "
             "with a quarter turn, whose images you can draw.",
         ),
         Question(
@@ -69,7 +69,7 @@ EXERCISE = Exercise(
                 degrees_in(1),
                 SIGN_FLIP,
             ),
-            hint="Two checks by hand (lecture 01 §3): the axis does not move, K k = k, and a turn about e_z must "
+            hint="Two checks by hand (lecture 01 §2): the axis does not move, K k = k, and a turn about e_z must "
             "be your rotation about z of question 1.",
         ),
         Question(
@@ -85,7 +85,7 @@ EXERCISE = Exercise(
             reference=ref.axis_angle,
             forbidden=keys.KEY_AXIS_ANGLE,
             mistakes=(degrees_out([3]), angle_2pi([3], "(0, π)"), unit_axis_out(3), Mistake("range", _negated)),
-            hint="The trace gives cos θ and the antisymmetric part R - Rᵀ gives sin θ times the axis (lecture 01 §4); "
+            hint="The trace gives cos θ and the antisymmetric part R - Rᵀ gives sin θ times the axis (lecture 01 §3); "
             "return a unit axis and 0 < θ < π.",
         ),
         Question(
@@ -98,7 +98,7 @@ EXERCISE = Exercise(
             reference=ref.inverse_transform,
             forbidden=keys.KEY_INVERSE,
             mistakes=(Mistake("translation", _translation), TRANSPOSED),
-            hint="Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §5).",
+            hint="Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §4).",
         ),
         Question(
             "q5",

@@ -21,7 +21,7 @@ from ._reference import chains as ref
 
 STANDARD = (
     "this is the standard (distal) DH link matrix Rot(Z, θ) Trans(Z, d) Trans(X, a) Rot(X, α): the four motions "
-    "in the reverse order. Craig's modified DH starts with the twist about X_(i-1) (lecture 02 §2 and §5)"
+    "in the reverse order. Craig's modified DH starts with the twist about X_(i-1) (lecture 02 §3 and §5)"
 )
 
 #: A valid table of the RRP arm (frame {1} with x1 along x0 at q = 0): rows α_{i-1}, a_{i-1}, θ_i, d_i, σ_i.
@@ -61,12 +61,12 @@ EXERCISE = Exercise(
                     "standard_dh",
                     "these are the numbers a standard-DH link matrix shows in those places "
                     "(θ in its first column, α in its third row); Craig's matrix places them differently "
-                    "(lecture 02 §2 and §5)",
+                    "(lecture 02 §3 and §5)",
                     standard_reading,
                 ),
                 sign_flip(("α_(i-1)", "a_(i-1)", "θ_i", "d_i")),
             ),
-            hint="Read each parameter where the matrix shows it (lecture 02 §2, the origin and the z axis of {i} "
+            hint="Read each parameter where the matrix shows it (lecture 02 §5, the origin and the z axis of {i} "
             "written in {i-1}); check your four numbers by rebuilding the matrix from them.",
         ),
         Question(
@@ -110,7 +110,7 @@ EXERCISE = Exercise(
             answer=rrp_table,
             forbidden=keys.KEY_TABLES,
             hint="Draw z_i along each joint axis in its positive sense first, then each x_i along the common normal "
-            "(lecture 02 §1, intersecting axes); evaluate your table at q = 0 and with one joint moved, and compare "
+            "(lecture 02 §3, intersecting axes §4); evaluate your table at q = 0 and with one joint moved, and compare "
             "with the picture.",
         ),
     ),

@@ -72,7 +72,7 @@ EXERCISE = Exercise(
                 ),
             ),
             hint="Which axis of frame {5} does the last row of the table slide along (lecture 04 §1)? At q = 0 "
-            "you know both points by hand (lecture 04 §5).",
+            "you know both points by hand (lecture 04 §4).",
         ),
         Question(
             "q2",
@@ -106,7 +106,7 @@ EXERCISE = Exercise(
                 ),
                 degrees_in(0),
             ),
-            hint="Check q = 0 and the ready pose against the flange positions you work out by hand (lecture 04 §5); "
+            hint="Check q = 0 and the ready pose against the flange positions you work out by hand (lecture 04 §4); "
             "the numbers are millimetres.",
         ),
         Question(
@@ -121,7 +121,7 @@ EXERCISE = Exercise(
             answer=rail_table,
             forbidden=keys.KEY_TABLES,
             hint="The rail's joint comes first: which way must z_1 point, and which twist about x_0 turns z_0 into it "
-            "(lecture 02 §1)? Then find where joint 2's axis meets the rail's. Your q2, shifted by the carriage, is "
+            "(lecture 02 §3)? Then find where joint 2's axis meets the rail's. Your q2, shifted by the carriage, is "
             "the pose to compare with.",
         ),
     ),

@@ -70,7 +70,7 @@ EXERCISE = Exercise(
                 matches(
                     "order",
                     "your nine motions are multiplied in the reverse order: motions about the moving "
-                    "(local) axes multiply on the right (lecture 01 §6, lecture 05 §3)",
+                    "(local) axes multiply on the right (lecture 01 §5, lecture 05 §3)",
                     ref.porter_reversed_fk,
                 ),
                 matches(
@@ -114,7 +114,7 @@ EXERCISE = Exercise(
             answer=porter_table,
             forbidden=keys.KEY_TABLES,
             hint="List the six joint axes with their positive senses at q = 0 (lecture 05 §1): z_i goes along axis i "
-            "whatever letter Porter uses for it; which pairs of axes intersect (lecture 02 §1)? Your q1 is the truth "
+            "whatever letter Porter uses for it; which pairs of axes intersect (lecture 02 §4)? Your q1 is the truth "
             "to compare your table's poses with.",
         ),
     ),

@@ -34,7 +34,7 @@ STRAIGHT = (
     "you started from the straight arm {0, 0, 0, I}; this arm starts at {θ̄0, θ̄1, θ̄2, F̄}: each step turns "
     "the frame it is given by the change of the joint angles"
 )
-BRANCH = "these are the angles of the other elbow branch (lecture 08 §3.3: up means θ2 ≤ 0)"
+BRANCH = "these are the angles of the other elbow branch (lecture 08 §3: up means θ2 ≤ 0)"
 
 
 def _cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
@@ -51,7 +51,7 @@ def _straight(field: str) -> tuple[Any, ...]:
 ORDER = matches(
     "order",
     "your rotation multiplies on the right, as if it turned about the frame's own (moving) axes; "
-    "the base and the arm turn the frame about axes fixed in the scene (lecture 01 §6)",
+    "the base and the arm turn the frame about axes fixed in the scene (lecture 01 §5)",
     ref.moved_wrong_way("frame_step1"),
 )
 
@@ -90,7 +90,7 @@ EXERCISE = Exercise(
                 ),
                 degrees_out(),
             ),
-            hint="Two of the four sign combinations of the law of cosines reach w (lecture 08 §3.3): check yours by "
+            hint="Two of the four sign combinations of the law of cosines reach w (lecture 08 §3): check yours by "
             "putting the angles back into eq. (1).",
         ),
         Question(
@@ -115,8 +115,8 @@ EXERCISE = Exercise(
                 ),
                 TRANSPOSED,
             ),
-            hint="Shoulder and elbow turn about the same horizontal axis a (lecture 08 §3.4): by how much does the "
-            "forearm turn from this start? Check with the straight start, where lecture 08 §4 gives the numbers.",
+            hint="Shoulder and elbow turn about the same horizontal axis a (lecture 08 §3): by how much does the "
+            "forearm turn from this start? Check with the straight start, where lecture 08 §5 gives the numbers.",
         ),
         Question(
             "q4",
@@ -131,7 +131,7 @@ EXERCISE = Exercise(
                 matches(
                     "order",
                     "this is F2ᵀ F, the rotation about the wrist's own (moving) axes; the composite "
-                    "rotation 𝒦 acts from the base side: 𝒦 F2 = F (lecture 08 §3.5)",
+                    "rotation 𝒦 acts from the base side: 𝒦 F2 = F (lecture 08 §4)",
                     ref.moved_wrong_way("K_wrist"),
                 ),
                 TRANSPOSED,
@@ -155,7 +155,7 @@ EXERCISE = Exercise(
             answer=lambda *args: ref.step_field("wrist_zyz")(*args),
             forbidden=keys.KEY_THREE_STEP,
             hint="The wrist turns about its own, moving axes: first about its z, then about its new y, then its new z "
-            "(lecture 01 §6, lecture 08 §3.5). Which rotation, written in the step-2 frame, do the three turns make?",
+            "(lecture 01 §6, lecture 08 §4). Which rotation, written in the step-2 frame, do the three turns make?",
         ),
     ),
     allowed=("puma_course.transforms:rodrigues",),

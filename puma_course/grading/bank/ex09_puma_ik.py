@@ -63,7 +63,7 @@ EXERCISE = Exercise(
             answer=lambda T, *L: _solutions(ref.puma_ik_expected(T, *L)),
             forbidden=keys.KEY_PUMA_IK,
             hint="Near a singularity a square root of a tiny negative number gives NaN and sin θ5 is tiny: check "
-            "your function on poses 1e-5 away from each singularity of lecture 09 §7, with Puma560(...).fk.",
+            "your function on poses 1e-5 away from each singularity of lecture 09 §8, with Puma560(...).fk.",
         ),
         Question(
             "q3",
