@@ -31,3 +31,10 @@ def jshtml_png_sizes(html: str) -> list[tuple[int, int]]:
         png = base64.b64decode(b64.replace("\\\n", ""))
         sizes.append(struct.unpack(">II", png[16:24]))
     return sizes
+
+
+def assert_no_overlap(boxes: list, pad: float = 0.0) -> None:
+    """No two of the matplotlib Bboxes overlap (each grown by ``pad`` pixels)."""
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1 :]:
+            assert not a.padded(pad).overlaps(b.padded(pad)), f"{a} overlaps {b}"

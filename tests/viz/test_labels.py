@@ -8,28 +8,15 @@ moves off it).
 
 from __future__ import annotations
 
-import matplotlib as mpl
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
 from puma_course.viz import labels as L
-from puma_course.viz import use_course_style
 from puma_course.viz.frames import new_axes, set_equal
+from tests.support import assert_no_overlap
 
-
-@pytest.fixture(autouse=True)
-def _style():
-    """The lectures' style (110 dpi, 10-11 pt) for every test here, restored afterwards for the other tests."""
-    with mpl.rc_context():
-        use_course_style()
-        yield
-
-
-def _no_overlap(boxes, pad=0.0):
-    for i, a in enumerate(boxes):
-        for b in boxes[i + 1 :]:
-            assert not a.padded(pad).overlaps(b.padded(pad)), f"{a} overlaps {b}"
+pytestmark = pytest.mark.usefixtures("course_style")  # the lectures' style, restored afterwards
 
 
 # ---- tidy_axes, fit_ticks ------------------------------------------------------------------------
@@ -63,7 +50,7 @@ def test_fit_ticks_leaves_no_colliding_tick_numbers(azim):
     L.fit_ticks(ax)
     fig.canvas.draw()
     boxes = L.tick_label_boxes(ax)
-    _no_overlap([b for bs in boxes.values() for b in bs], pad=1.0)
+    assert_no_overlap([b for bs in boxes.values() for b in bs], pad=1.0)
     assert all(len(bs) >= 2 for bs in boxes.values())
 
 
@@ -101,7 +88,7 @@ def test_labels_of_crowded_points_do_not_overlap_and_leave_the_points_free():
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     boxes = [a.get_window_extent(renderer) for a in anns]
-    _no_overlap(boxes)
+    assert_no_overlap(boxes)
     disp = ax.transData.transform(line.get_xydata())  # where matplotlib drew the points
     for box in boxes:  # no label covers the centre of any labelled point
         assert not any(box.contains(x, y) for x, y in disp)

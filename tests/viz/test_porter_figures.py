@@ -14,15 +14,14 @@ from __future__ import annotations
 import math
 import warnings
 
-import matplotlib as mpl
 import numpy as np
 import pytest
 
 from puma_course import Porter, Puma560, SingularityWarning
 from puma_course.viz import labels as L
 from puma_course.viz import porter_figures as PF
-from puma_course.viz import use_course_style
 from puma_course.viz.labels import tick_label_boxes
+from tests.support import assert_no_overlap
 
 ARM = Porter(1.0, 0.5, 0.3)
 Q_GENERAL = np.array([0.6, -0.5, 1.2, 0.8, 0.7, -0.4])
@@ -30,18 +29,7 @@ Q_PARALLEL = np.array([0.7, 0.3, 1.2, 0.4, math.pi / 2, 0.5])
 Q_AXIS = np.array([0.7, -0.5, 0.5 / math.cos(0.5), math.pi / 2 + 0.5, 0.4, 0.5])
 
 
-@pytest.fixture(autouse=True)
-def _style():
-    """The lectures' style (110 dpi, 10-11 pt) for every test here, restored afterwards for the other tests."""
-    with mpl.rc_context():
-        use_course_style()
-        yield
-
-
-def _no_overlap(boxes, pad=0.0):
-    for i, a in enumerate(boxes):
-        for b in boxes[i + 1 :]:
-            assert not a.padded(pad).overlaps(b.padded(pad)), f"{a} overlaps {b}"
+pytestmark = pytest.mark.usefixtures("course_style")  # the lectures' style, restored afterwards
 
 
 def _labels(ax):
@@ -57,9 +45,9 @@ def _check_readable(fig):
         boxes = tick_label_boxes(ax)
         for name, bs in boxes.items():
             assert bs, f"the {name} axis has no tick numbers"
-        _no_overlap([b for bs in boxes.values() for b in bs])
+        assert_no_overlap([b for bs in boxes.values() for b in bs])
         label_boxes = [t.get_window_extent(renderer) for t in _labels(ax)]
-        _no_overlap(label_boxes)
+        assert_no_overlap(label_boxes)
         for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
             box = axis.label.get_window_extent(renderer)
             assert inside.contains(box.x0, box.y0) and inside.contains(box.x1, box.y1), axis.label.get_text()
