@@ -189,9 +189,9 @@ def plot_construction(arm: Porter, T: Any, near: Any = None, *, figsize: tuple[f
                       elev: float = 16.0, azim: float | None = None) -> Figure:  # fmt: skip
     """Ver.2 drawn: the plane P, its normal n (from p0), the points p0, p2, p4, p5, the candidates for p3.
 
-    The configurations of ``arm.ik(T, near=near, method="geometric")`` are drawn (the first solid),
+    The configurations of ``arm.ik(T, near=near, method="geometric")`` are drawn (the first dark, the other orange),
     each elbow point numbered; the dotted line through p4 carries both p3 = p4 ± l3 z4. ``azim``
-    defaults to a view 40° off the plane, so that both the plane and its normal show.
+    defaults to α1 - 65° (degrees): the plane, its normal and every axis's tick numbers show.
 
     >>> arm = Porter(1.0, 0.5, 0.3); fig = plot_construction(arm, arm.fk([0.6, -0.5, 1.2, 0.8, 0.7, -0.4]))
     >>> fig.axes[0].get_title()
@@ -200,7 +200,7 @@ def plot_construction(arm: Porter, T: Any, near: Any = None, *, figsize: tuple[f
     """
     V = ver2_points(arm, T, near)
     a1, fig = float(V["q"][0, 0]), plt.figure(figsize=figsize)
-    ax = _axes(fig, (1, 1, 1), elev, math.degrees(a1) - 40.0 if azim is None else azim)
+    ax = _axes(fig, (1, 1, 1), elev, math.degrees(a1) - 65.0 if azim is None else azim)
     arms = arm.points(V["q"])
     n_tip = V["p0"] + 0.35 * float(np.ptp(arms.reshape(-1, 3), axis=0).max()) * V["n"]
     corners = _plane_patch(ax, a1, arms.reshape(-1, 3))
