@@ -138,14 +138,19 @@ def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, lines: 
     return out
 
 
+def _tick_boxes(axis: Any, renderer: Any) -> list[Any]:
+    """The window extents of an axis' tick numbers drawn inside the view."""
+    (lo, hi), locs = sorted(axis.get_view_interval()), axis.get_majorticklocs()
+    eps, ticks = 1e-9 * max(1.0, abs(hi - lo)), axis.get_major_ticks(len(locs))
+    return [t.label1.get_window_extent(renderer) for loc, t in zip(locs, ticks, strict=True)
+            if lo - eps <= loc <= hi + eps and t.label1.get_visible() and t.label1.get_text()]  # fmt: skip
+
+
 def _axis_texts(ax: Any, renderer: Any) -> list[Any]:
     """The boxes of the tick numbers (inside the view) and the axis labels drawn on ``ax``."""
     out = []
     for axis in (ax.xaxis, ax.yaxis, *([ax.zaxis] if getattr(ax, "name", "") == "3d" else [])):
-        (lo, hi), locs = sorted(axis.get_view_interval()), axis.get_majorticklocs()
-        eps, ticks = 1e-9 * max(1.0, abs(hi - lo)), axis.get_major_ticks(len(locs))
-        out += [t.label1.get_window_extent(renderer).padded(1.0) for loc, t in zip(locs, ticks, strict=True)
-                if lo - eps <= loc <= hi + eps and t.label1.get_visible() and t.label1.get_text()]  # fmt: skip
+        out += [box.padded(1.0) for box in _tick_boxes(axis, renderer)]
         if axis.label.get_visible() and axis.label.get_text():
             out.append(axis.label.get_window_extent(renderer).padded(1.0))
     return out
@@ -224,13 +229,7 @@ def tidy_axes(ax: Any, *, nbins: int = 4, units: str = "", pad: float = 2.0) -> 
 def tick_label_boxes(ax: Any) -> dict[str, list[Any]]:
     """The window extents of the tick numbers drawn (inside the view) on each axis of a drawn 3-D axes."""
     renderer = ax.figure.canvas.get_renderer()
-    out: dict[str, list[Any]] = {}
-    for name, axis in (("x", ax.xaxis), ("y", ax.yaxis), ("z", ax.zaxis)):
-        (lo, hi), locs = sorted(axis.get_view_interval()), axis.get_majorticklocs()
-        eps, ticks = 1e-9 * max(1.0, abs(hi - lo)), axis.get_major_ticks(len(locs))
-        out[name] = [t.label1.get_window_extent(renderer) for loc, t in zip(locs, ticks, strict=True)
-                     if lo - eps <= loc <= hi + eps and t.label1.get_visible() and t.label1.get_text()]  # fmt: skip
-    return out
+    return {name: _tick_boxes(axis, renderer) for name, axis in (("x", ax.xaxis), ("y", ax.yaxis), ("z", ax.zaxis))}
 
 
 def _collide(boxes: Sequence[Any], others: Sequence[Any] = (), pad: float = 4.0) -> bool:

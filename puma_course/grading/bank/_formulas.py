@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ...transforms import wrap_angle
+from ...transforms import homogeneous, roty, rotz, wrap_angle
 
 
 def link_parameters(T: Any) -> np.ndarray:
@@ -95,34 +95,23 @@ def wrapped_nearest(solutions: Any, q_prev: Any, revolute: Any = (True, True, Fa
     return S[int(np.argmin(np.sum(d * d, axis=1)))].copy()
 
 
-# ---------------------------------------------------------------- exercise 1: the pan-tilt camera's mistakes
-_H, _C = 0.12, 0.05  # the head of the question (tilt axis height, camera offset) [m]
-_CAMERA = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])  # camera axes in the head's frame
+# ---------------------------------------------------------------- exercise 1: the pan-tilt camera
+#: The pan-tilt head of exercise 1's modelling question: tilt axis height and camera offset [m].
+PAN_TILT_H, PAN_TILT_C = 0.12, 0.05
+#: Camera axes (x right, y down the image, z forward) in the head's frame (x forward, z up).
+CAMERA_IN_HEAD = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
 
 
-def _rz(t: float) -> np.ndarray:
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def _ry(t: float) -> np.ndarray:
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def _pose(R: np.ndarray, p: Any) -> np.ndarray:
-    T = np.eye(4)
-    T[:3, :3], T[:3, 3] = R, p
-    return T
+def _camera_at(R_head: np.ndarray, camera_axes: np.ndarray) -> np.ndarray:
+    """The camera's pose for a head turned by R_head: its centre c along the head's x from the tilt axis."""
+    return homogeneous(R_head @ camera_axes, [0.0, 0.0, PAN_TILT_H] + PAN_TILT_C * R_head[:, 0])
 
 
 def camera_head_frame(pan: float, tilt: float) -> np.ndarray:
     """The mistake: the head's own frame at the camera (x forward, z up), the camera's axes never set."""
-    R = _rz(pan) @ _ry(tilt)
-    return _pose(R, [0.0, 0.0, _H] + _C * R[:, 0])
+    return _camera_at(rotz(pan) @ roty(tilt), np.eye(3))
 
 
 def camera_fixed_axes(pan: float, tilt: float) -> np.ndarray:
     """The mistake: tilt about the base's fixed y0 after the pan (Ry(tilt) Rz(pan)), not about the turned head's y."""
-    R = _ry(tilt) @ _rz(pan)
-    return _pose(R @ _CAMERA, [0.0, 0.0, _H] + _C * R[:, 0])
+    return _camera_at(roty(tilt) @ rotz(pan), CAMERA_IN_HEAD)

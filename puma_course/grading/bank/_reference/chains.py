@@ -8,6 +8,7 @@ import numpy as np
 
 from .... import transforms
 from ....kinematics import MK3, DHChain, Link, Puma560, dh
+from .._formulas import CAMERA_IN_HEAD, PAN_TILT_C, PAN_TILT_H
 from .._inputs import unit_vectors
 from ._common import _table_expected, pose, tz
 
@@ -36,12 +37,6 @@ def axis_angle(R: np.ndarray) -> np.ndarray:
 def inverse_transform(T: np.ndarray) -> np.ndarray:
     """The inverse of a rigid 4x4 transform."""
     return transforms.inverse_transform(T)
-
-
-#: The pan-tilt head of exercise 1's modelling question: tilt axis height and camera offset [m].
-PAN_TILT_H, PAN_TILT_C = 0.12, 0.05
-#: Camera axes (x right, y down the image, z forward) in the head's frame (x forward, z up).
-CAMERA_IN_HEAD = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
 
 
 def camera_pose(pan: float, tilt: float) -> np.ndarray:
