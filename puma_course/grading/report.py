@@ -19,7 +19,7 @@ import io
 import os
 import re
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from pathlib import Path
 
 from .model import EXERCISES, Exercise, NotebookResult, Question
@@ -208,7 +208,11 @@ def write_feedback(
 
 
 def csv_rows(
-    results: Sequence[NotebookResult], names: Sequence[str], seed: int | None = None, sandbox: str = ""
+    results: Sequence[NotebookResult],
+    names: Sequence[str],
+    seed: int | None = None,
+    sandbox: str = "",
+    late: Collection[tuple[str, str]] | None = None,
 ) -> list[list[str]]:
     """The CSV's rows, header first (see :func:`write_csv`)."""
     qids: list[str] = []
@@ -217,6 +221,8 @@ def csv_rows(
             if q.qid not in qids:
                 qids.append(q.qid)
     rows = [["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "seed", "notes"]]
+    if late is not None:
+        rows[0].append("late")
     for r in results:
         ex = EXERCISES.get(r.exercise)
         bonus = sum(r.scores.get(q.qid, 0.0) for q in ex.questions if q.bonus) if ex is not None else 0.0
@@ -224,6 +230,8 @@ def csv_rows(
         row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
         row += [r.status, sandbox, "" if seed is None else str(seed)]
         row.append(csv_safe(one_line(" | ".join(r.notes), 500)))
+        if late is not None:
+            row.append("late" if (r.student, r.exercise) in late else "")
         rows.append(row)
     return rows
 
@@ -235,13 +243,15 @@ def write_csv(
     *,
     seed: int | None = None,
     sandbox: str = "",
+    late: Collection[tuple[str, str]] | None = None,
 ) -> None:
     """Write the grades: student, exercise, score, max_score, bonus, one column per question id, status,
     sandbox, seed, notes.
 
     ``bonus`` is the part of the score that bonus questions earned (it counts in ``score``, not in
     ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none") and ``seed`` which
-    hidden inputs they got. A text cell that a spreadsheet would read as a formula starts with
+    hidden inputs they got; with ``late`` (the (student, exercise) pairs a platform marked late), a last
+    column ``late`` says "late" for those. A text cell that a spreadsheet would read as a formula starts with
     ``'``. The file is written under a fresh temporary name and moved into place, so it appears
     whole or not at all.
     """
@@ -249,5 +259,5 @@ def write_csv(
     if out.parent and not out.parent.exists():
         out.parent.mkdir(parents=True, exist_ok=True)
     buffer = io.StringIO()
-    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox))
+    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, late))
     _replace_atomically(out, buffer.getvalue())

@@ -33,11 +33,12 @@ from typing import Any
 import numpy as np
 
 from . import child, events
+from .collect import Collected
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
 from .sandbox import Sandbox, child_env, choose
 from .stage import Stage
-from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, read_path, read_student, scan
+from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
 from .text import quoted
 
 __all__ = [
@@ -300,6 +301,7 @@ def grade(
     sandbox: str | Sandbox = "auto",
     timeout_student: float = 120.0,
     private: Sequence[str | os.PathLike[str]] = (),
+    collected: Collected | None = None,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
@@ -308,7 +310,9 @@ def grade(
     none with a :class:`SandboxWarning`), "bwrap", "none", or a :class:`~.sandbox.Sandbox` chosen
     earlier; ``timeout_student`` caps the time of all of a student's notebooks together;
     ``private`` names more folders the sandbox must hide (the course's ``solutions/``, say).
-    Returns the results (sorted by student, exercise).
+    ``collected`` is a platform's download read by :func:`~.collect.collect` (``submissions`` is then
+    its folder): its students are graded instead of the folder's sub-folders, and the CSV gains a
+    ``late`` column. Returns the results (sorted by student, exercise).
     """
     sub_dir = Path(submissions)
     names = list(exercises) if exercises else list(EXERCISES)
@@ -318,8 +322,12 @@ def grade(
     box = _box(sandbox)
     if box.kind != "bwrap":
         warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
+
+    def read(s: StudentFolder) -> StudentFiles:
+        return read_student(sub_dir, s, names) if collected is None else collected.read(s, names)
+
     try:
-        students = scan(sub_dir)
+        students = scan(sub_dir) if collected is None else collected.folders()
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     plans = {name: make_plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
@@ -334,14 +342,14 @@ def grade(
             # process cannot alter what is graded for a classmate it runs before
             used = 0
             for s in students:
-                files = read_student(sub_dir, s, names)
+                files = read(s)
                 used += sum(len(nb.data or b"") for nb in files.notebooks.values())
                 if used > PRE_READ_BYTES:
                     break
                 pre[s.raw] = files
 
-        def work(s: Any) -> list[NotebookResult]:
-            files = pre.pop(s.raw, None) or read_student(sub_dir, s, names)
+        def work(s: StudentFolder) -> list[NotebookResult]:
+            files = pre.pop(s.raw, None) or read(s)
             end = time.monotonic() + timeout_student
             out = []
             for name in names:
@@ -391,7 +399,8 @@ def grade(
             GradingIntegrityWarning,
             stacklevel=2,
         )
-    write_csv(output, results, names, seed=seed, sandbox=box.label)
+    late = None if collected is None else collected.late()
+    write_csv(output, results, names, seed=seed, sandbox=box.label, late=late)
     if feedback is not None:
         write_feedback(feedback, results, seed, unsandboxed=box.reason if box.kind != "bwrap" else None)
     return results
