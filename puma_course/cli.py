@@ -391,7 +391,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if extra and args.command != "lab":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.jupyter_args = extra
-    handlers = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
+    handlers: dict[str, Any] = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
     handlers["gradescope"] = lambda a: gradescope(a, _course(a))
     try:
         return handlers[args.command](args)

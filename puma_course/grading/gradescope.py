@@ -63,8 +63,8 @@ python3 -m venv /autograder/puma-venv || {{
 }}
 /autograder/puma-venv/bin/python -m pip install --disable-pip-version-check --no-cache-dir ${{PUMA_PIP_OPTIONS:-}} \\
     "./dist/{wheel}"
-/autograder/puma-venv/bin/python -c \
-    "import puma_course; assert puma_course.__version__ == '{version}', puma_course.__version__"
+/autograder/puma-venv/bin/python -c \\
+    "import importlib.metadata as m; v = m.version('puma-course'); assert v == '{version}', v"
 """
 
 RUN_AUTOGRADER = """#!/usr/bin/env bash
@@ -233,12 +233,32 @@ def results_json(
 
 
 def run(root: str | os.PathLike[str] = "/autograder") -> dict[str, Any]:
-    """Grade ``<root>/submission`` as ``<root>/source/autograder.json`` says; write and return results.json."""
+    """Grade ``<root>/submission`` as ``<root>/source/autograder.json`` says; write and return results.json.
+
+    Should the grader itself fail, results.json still appears: score 0 and the error, for the instructor.
+    """
+    try:
+        return _run(Path(root))
+    except Exception as exc:  # noqa: BLE001 - Gradescope must get a results.json whatever happens
+        out = {"score": 0.0, "output": f"the autograder failed ({type(exc).__name__}: {exc}); ask your instructor"}
+        out["tests"] = []
+        _write(Path(root), out)
+        raise
+
+
+def _write(base: Path, out: dict[str, Any]) -> None:
+    results_dir = base / "results"
+    results_dir.mkdir(parents=True, exist_ok=True)
+    tmp = results_dir / ".results.json.tmp"
+    tmp.write_text(json.dumps(out, indent=1) + "\n", encoding="utf-8")
+    os.replace(tmp, results_dir / "results.json")
+
+
+def _run(base: Path) -> dict[str, Any]:
     from .runner import grade
     from .sandbox import choose
 
     start = time.perf_counter()
-    base = Path(root)
     config = json.loads((base / "source" / "autograder.json").read_text(encoding="utf-8"))
     name = config["exercise"]
     exercise = EXERCISES[name]
@@ -253,7 +273,7 @@ def run(root: str | os.PathLike[str] = "/autograder") -> dict[str, Any]:
     box = choose("auto")
     if box.kind != "bwrap":
         notes.append(
-            f"Graded WITHOUT the operating-system sandbox ({box.reason}): Gradescope's container does not allow it. "
+            f"Graded WITHOUT the operating-system sandbox ({box.reason}): this container does not allow it. "
             "Your code ran in its own process, with time and memory limits, against a package without the answer key."
         )
     seed = secrets.randbits(31)
@@ -287,9 +307,7 @@ def run(root: str | os.PathLike[str] = "/autograder") -> dict[str, Any]:
     extra = {"exercise": name, "status": result.status, "version": _version.__version__, "seed": seed}
     extra["sandbox"] = box.kind
     out = results_json(result, exercise, notes, feedback, time.perf_counter() - start, extra)
-    results_dir = base / "results"
-    results_dir.mkdir(parents=True, exist_ok=True)
-    (results_dir / "results.json").write_text(json.dumps(out, indent=1) + "\n", encoding="utf-8")
+    _write(base, out)
     print("\n".join(notes))
     return out
 
