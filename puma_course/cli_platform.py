@@ -67,36 +67,27 @@ def add_gradescope_parser(sub: Any, course: argparse.ArgumentParser) -> None:
     gs.add_argument("-o", "--output", type=Path, required=True, metavar="ZIP", help="the zip file to write")
 
 
-def _folder_notebooks(folder: Path, names: Sequence[str]) -> tuple[int, list[str]]:
-    """How many ``<student>/<exercise>.ipynb`` entries ``folder`` holds (links and unreadable folders count:
-    grading reports them), and the names of its entries."""
-    seen, found = [], 0
+def _student_folders(folder: Path) -> tuple[int, list[str]]:
+    """How many student folders ``folder`` holds (sub-folders, and links, which grading refuses and reports),
+    and the names of its entries. A student folder without the notebook is graded "missing", with the
+    notebooks found under other names: feedback worth giving."""
     try:
-        entries = sorted(os.listdir(folder))
+        entries = sorted(e for e in os.listdir(folder) if not e.startswith("."))
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(folder)!r} ({exc.strerror})") from None
-    wanted = {f"{n}.ipynb" for n in names}
-    for entry in (e for e in entries if not e.startswith(".")):
-        seen.append(entry)
-        path = folder / entry
-        if path.is_symlink():
-            found += 1
-        elif path.is_dir():
-            try:
-                found += len(wanted & set(os.listdir(path)))
-            except OSError:
-                found += 1
-    return found, seen
+    found = sum(1 for e in entries if (folder / e).is_symlink() or (folder / e).is_dir())
+    return found, entries
 
 
 def collect_or_explain(args: argparse.Namespace, names: Sequence[str]) -> tuple[Any, bool]:
-    """The platform download read as ``--layout`` says (None for folders), and False when it holds no notebook
-    of ``names`` (said on stderr, with what the folder holds). The files not graded are printed."""
+    """The platform download read as ``--layout`` says (None for folders), and False when it holds nothing to
+    grade: no student folder (``folders``), no notebook of ``names`` (a platform's layout); said on stderr,
+    with what the folder holds. The files of a download that are not graded are printed."""
     if not args.submissions.is_dir():
         raise ValueError(f"submissions: expected a folder, got {str(args.submissions)!r}")
     collected = None
     if args.layout == "folders":
-        found, seen = _folder_notebooks(args.submissions, names)
+        found, seen = _student_folders(args.submissions)
     else:
         from .grading.collect import collect
 
@@ -109,7 +100,8 @@ def collect_or_explain(args: argparse.Namespace, names: Sequence[str]) -> tuple[
     if not found:
         shown = (", ".join(repr(n) for n in seen[:8]) + (" …" if len(seen) > 8 else "")) if seen else "nothing"
         print(
-            f"puma-course grade: no notebook of {', '.join(names)} found in {str(args.submissions)!r} read as "
+            f"puma-course grade: no {'student folder' if collected is None else 'notebook of ' + ', '.join(names)} "
+            f"found in {str(args.submissions)!r} read as "
             f"--layout {args.layout} ({LAYOUT_SHAPES[args.layout]}); it holds: {shown}",
             file=sys.stderr,
         )

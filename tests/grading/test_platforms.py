@@ -161,6 +161,13 @@ def test_empty_or_unrecognised_download_exits_2_saying_what_it_looked_for(moodle
     assert "--layout folders" in capsys.readouterr().err
 
 
+def test_canvas_download_graded_as_folders_exits_2_and_names_the_layout(canvas_download, tmp_path, capsys):
+    # what the issue saw: "graded 0 notebook(s) of 0 student(s)" and exit code 0
+    assert main(["grade", str(canvas_download), "-o", str(tmp_path / "g.csv"), "--course", str(ROOT)]) == 2
+    err = capsys.readouterr().err
+    assert "no student folder" in err and "--layout canvas" in err and "smithjohn_101_1001" in err
+
+
 def test_numbers_are_plain_decimals():
     assert [number(x) for x in (0, 13, 2.5, 1 / 3, 2 / 3, 1e-9, 1e6)] == [
         "0",
