@@ -4,13 +4,13 @@
 (``grades.csv`` -> ``grades-canvas.csv``, ``grades-moodle.csv``, ``grades-wide.csv``):
 
 * ``canvas``: Canvas's gradebook import (Canvas Instructor Guide, "How do I import grades in the
-  Gradebook?", and the file Canvas exports, which its import accepts back): the identifier columns
-  ``Student``, ``ID``, ``SIS User ID``, ``SIS Login ID``, ``Section`` first, one column per
-  assignment (a header that names no existing assignment becomes a new assignment on import; one of
-  the form ``Name (1234)`` updates assignment 1234), a second row ``Points Possible`` giving each
-  assignment's points, and the total as ``Final Points``, a column Canvas's export writes and its
-  import treats as read-only. ``ID`` is the Canvas user id read from the download's file names;
-  Canvas matches students by it.
+  Gradebook?"; canvas-lms ``app/models/gradebook_importer.rb``, which reads the file): the identifier
+  columns ``Student``, ``ID``, ``SIS User ID``, ``SIS Login ID``, ``Section`` first (the importer
+  requires ``Student`` and ``ID`` first and ``Section`` last of them), one column per assignment (a
+  header equal to an assignment's title, or ``Title (1234)``, fills that assignment; any other becomes
+  a new assignment), a second row whose first cell holds ``Points Possible`` (the new assignments'
+  points), and the total as ``Final Points``, a trailing column the importer drops as read-only. ``ID``
+  is the Canvas user id read from the download's file names; the importer matches students by it.
 * ``moodle``: Moodle's CSV grade import (MoodleDocs, "Grade import", Moodle 3.11 to 4.5): any column
   can be mapped to a grade item, and one column identifies the user, mapped to its ID number,
   email address, username or user id. The download names students by full name and a per-assignment
