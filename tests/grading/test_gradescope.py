@@ -23,12 +23,13 @@ import pytest
 
 from puma_course import __version__
 from puma_course.cli import main
-from puma_course.grading.gradescope import wheel_name
+from puma_course.grading import EXERCISES, NotebookResult
+from puma_course.grading.gradescope import _bank_files, results_json, wheel_name
 from tests.support import ROOT
 
 EX = "ex01_rotations"
 BWRAP = shutil.which("bwrap")
-pytestmark = pytest.mark.skipif(BWRAP is None, reason="bubblewrap is not installed")
+needs_bwrap = pytest.mark.skipif(BWRAP is None, reason="bubblewrap is not installed")
 
 _VISIBILITY = {"enum": ["hidden", "after_due_date", "after_published", "visible"]}
 _FORMAT = {"enum": ["text", "html", "simple_format", "md", "ansi"]}
@@ -165,6 +166,7 @@ def test_the_zip_holds_what_the_specification_asks_at_its_root(autograder_zip):
     assert config == {"exercise": EX, "version": __version__, "wheel": wheel_name()}
 
 
+@needs_bwrap
 @pytest.mark.parametrize("sandbox", [False, True], ids=["no-os-sandbox", "os-sandbox"])
 def test_honest_notebook_gets_full_marks(autograder_zip, tmp_path, sandbox):
     r = _run(autograder_zip, tmp_path, (ROOT / "solutions" / f"{EX}.ipynb").read_bytes(), sandbox)
@@ -179,6 +181,7 @@ def test_honest_notebook_gets_full_marks(autograder_zip, tmp_path, sandbox):
     assert r["extra_data"]["version"] == __version__
 
 
+@needs_bwrap
 def test_blank_notebook_scores_0_and_hidden_case_details_wait_for_the_due_date(autograder_zip, tmp_path):
     r = _run(autograder_zip, tmp_path, (ROOT / "exercises" / f"{EX}.ipynb").read_bytes())
     assert r["score"] == 0
@@ -188,17 +191,20 @@ def test_blank_notebook_scores_0_and_hidden_case_details_wait_for_the_due_date(a
     assert "hidden case" not in r["output"]
 
 
+@needs_bwrap
 def test_broken_notebook_scores_0_and_says_why(autograder_zip, tmp_path):
     r = _run(autograder_zip, tmp_path, b'{"cells": [')
     assert r["score"] == 0 and r["extra_data"]["status"] == "malformed"
     assert "malformed" in r["output"]
 
 
+@needs_bwrap
 def test_missing_notebook_scores_0_and_says_what_to_upload(autograder_zip, tmp_path):
     r = _run(autograder_zip, tmp_path, None)
     assert r["score"] == 0 and f"upload {EX}.ipynb" in r["output"]
 
 
+@needs_bwrap
 @pytest.mark.parametrize("sandbox", [False, True], ids=["no-os-sandbox", "os-sandbox"])
 def test_hostile_notebook_gains_nothing(autograder_zip, tmp_path, sandbox):
     nb = nbformat.read(ROOT / "exercises" / f"{EX}.ipynb", as_version=4)
@@ -216,6 +222,7 @@ def test_hostile_notebook_gains_nothing(autograder_zip, tmp_path, sandbox):
     assert q1["score"] == 0 and "FAILED" in q1["output"]
 
 
+@needs_bwrap
 def test_setup_sh_installs_the_pinned_wheel_offline(autograder_zip, tmp_path):
     tree = _tree(autograder_zip, tmp_path, None)
     done = _bwrap(tree, ["/autograder/source/setup.sh"], env={"PUMA_PIP_OPTIONS": "--no-index --no-deps"})
@@ -229,3 +236,31 @@ def test_setup_sh_installs_the_pinned_wheel_offline(autograder_zip, tmp_path):
     assert found.returncode != 0 and "numpy" in found.stderr
     installed = list((tree / "puma-venv").glob("lib/python*/site-packages/puma_course/grading/gradescope.py"))
     assert installed, "the wheel did not install the package's files"
+
+
+def test_hidden_case_details_are_held_back_until_the_due_date():
+    ex = EXERCISES[EX]
+    r = NotebookResult.blank("s", ex)
+    r.scores["q1"] = 1.0
+    r.question_notes["q1"] = ["5/9 cases pass", "hidden case 7: values differ for axis 'z', angle 2.5"]
+    out = results_json(r, ex, ["status: ok"], "# Feedback", 1.2, {"seed": 1})
+    jsonschema.validate(out, RESULTS_SCHEMA)
+    visible = [t for t in out["tests"] if t["visibility"] == "visible"]
+    assert all("angle 2.5" not in t["output"] for t in visible)
+    assert "1 hidden-case failure(s)" in visible[0]["output"] and visible[0]["score"] == 1.0
+    later = [t for t in out["tests"] if t["visibility"] == "after_due_date"]
+    assert any("hidden case 7: values differ for axis 'z', angle 2.5" in t["output"] for t in later)
+    assert out["score"] == 1.0 and sum(t.get("max_score", 0) for t in out["tests"]) == ex.max_score
+
+
+def test_the_course_bank_folder_goes_into_the_zip(tmp_path):
+    assert _bank_files(tmp_path) == {}  # today: the bank is inside the wheel
+    (tmp_path / "bank" / "__pycache__").mkdir(parents=True)
+    (tmp_path / "bank" / "ex01_rotations.py").write_text("QUESTIONS = 1\n", encoding="utf-8")
+    (tmp_path / "bank" / "__pycache__" / "x.pyc").write_bytes(b"0")
+    assert _bank_files(tmp_path) == {"bank/ex01_rotations.py": b"QUESTIONS = 1\n"}
+    (tmp_path / "solutions").mkdir()  # a course folder
+    out = tmp_path / "a.zip"
+    assert main(["gradescope", EX, "-o", str(out), "--course", str(tmp_path)]) == 0
+    with zipfile.ZipFile(out) as zf:
+        assert zf.read("bank/ex01_rotations.py") == b"QUESTIONS = 1\n"
