@@ -76,8 +76,11 @@ def gradebook_path(output: str | os.PathLike[str], fmt: str) -> Path:
 
 def read_roster(path: str | os.PathLike[str]) -> dict[str, RosterEntry]:
     """Moodle's grade export (CSV) as full name -> identifiers (ValueError when its columns are missing)."""
-    with open(path, newline="", encoding="utf-8-sig") as fh:
-        rows = list(csv.DictReader(fh))
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
+            rows = list(csv.DictReader(fh))
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise ValueError(f"roster: expected a readable UTF-8 CSV file, got {str(path)!r} ({exc})") from None
     need = {"First name", "Last name"}
     if not rows or not need <= set(rows[0]) or not ({"ID number", "Email address"} & set(rows[0])):
         have = sorted(rows[0]) if rows else []

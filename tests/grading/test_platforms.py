@@ -178,3 +178,14 @@ def test_numbers_are_plain_decimals():
         "0",
         "1000000",
     ]
+
+
+def test_a_roster_without_moodle_columns_is_refused(tmp_path):
+    from puma_course.grading.gradebook import read_roster
+
+    bad = tmp_path / "r.csv"
+    bad.write_text("name,mail\nAnn,a@x\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="roster: expected Moodle's grade export"):
+        read_roster(bad)
+    with pytest.raises(ValueError, match="roster: expected a readable"):
+        read_roster(tmp_path / "nope.csv")
