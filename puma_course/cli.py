@@ -24,6 +24,7 @@ import os
 import shlex
 import subprocess
 import sys
+import threading
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -82,7 +83,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="open JupyterLab on the course (lectures and exercises), START_HERE.ipynb first",
         description="Open JupyterLab at the course folder, with the index START_HERE.ipynb as its first page.",
         epilog="Every other option goes to JupyterLab unchanged, e.g. --port 8899, --allow-root, "
-        "--ServerApp.token=TOKEN, --LabApp.default_url=/lab.",
+        "--IdentityProvider.token=TOKEN, --LabApp.default_url=/lab.",
     )
     lab.add_argument("--no-browser", action="store_true", help="start the server without opening a browser")
     lab.add_argument("--print-command", action="store_true", help="print the JupyterLab command instead of running it")
@@ -142,7 +143,7 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=None,
         metavar="NAME",
-        help="grade only this exercise (repeatable; default: every exercise in the course's exercises/)",
+        help="grade this exercise (repeatable; default: the course's exercises that some student handed in)",
     )
     gr.add_argument("--quiet", action="store_true", help="no progress lines")
 
@@ -169,6 +170,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     site.add_argument(
         "-o", "--output", type=Path, default=None, metavar="DIR", help="where the site goes (default: <course>/_site)"
+    )
+    site.add_argument(
+        "--repo-url",
+        default=None,
+        metavar="URL",
+        help="the course's repository, linked from the landing page (default: [tool.puma-course] repository, "
+        "else [project.urls] Repository, in the course's pyproject.toml; none when neither is set)",
     )
     return parser
 
@@ -247,6 +255,32 @@ def _course_exercises(root: Path, known: Sequence[str]) -> list[str]:
     return graded
 
 
+def _handed_in(submissions: Path, names: list[str]) -> list[str]:
+    """Of the course's exercises ``names``, those some student handed in; the others are named once, here."""
+    from .grading.submissions import handed_in
+
+    if not submissions.is_dir():
+        return names  # grade() says what is wrong with the folder
+    try:
+        graded = handed_in(submissions, names)
+    except OSError as exc:
+        raise ValueError(
+            f"submissions: expected a readable folder, got {str(submissions)!r} ({exc.strerror})"
+        ) from None
+    if not graded:
+        raise ValueError(
+            f"submissions: expected <student>/<exercise>.ipynb files named after the course's exercises "
+            f"({', '.join(names)}), got none in {str(submissions)!r}"
+        )
+    absent = [name for name in names if name not in graded]
+    if absent:
+        print(
+            f"not graded (nobody handed them in; name them with --exercise to grade them anyway): {', '.join(absent)}",
+            file=sys.stderr,
+        )
+    return graded
+
+
 def _grade(args: argparse.Namespace) -> int:
     import warnings
 
@@ -254,7 +288,11 @@ def _grade(args: argparse.Namespace) -> int:
     from .grading.sandbox import choose
     from .grading.summary import write_summary
 
-    names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
+    names = (
+        args.exercise
+        if args.exercise
+        else _handed_in(args.submissions, _course_exercises(_course(args), list(EXERCISES)))
+    )
     private = []
     try:  # the course's solutions stay out of the sandbox wherever the course is
         private.append(_course(args) / "solutions")
@@ -277,12 +315,16 @@ def _grade(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
 
+    lock = threading.Lock()
+
     def progress(r: Any) -> None:
+        # called from --jobs threads at once: one line per record, written whole (print writes the text
+        # and its newline separately, so two records could share a line) and flushed under a lock
         if not args.quiet:
-            print(
-                f"{r.student:>20} {r.exercise:<18} {r.score:>6g}/{r.max_score:<4g} {r.status} ({r.seconds:.1f} s)",
-                flush=True,
-            )
+            line = f"{r.student:>20} {r.exercise:<18} {r.score:>6g}/{r.max_score:<4g} {r.status} ({r.seconds:.1f} s)"
+            with lock:
+                sys.stdout.write(line.replace("\n", " ") + "\n")
+                sys.stdout.flush()
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", GradingIntegrityWarning)
@@ -360,7 +402,7 @@ def _site(args: argparse.Namespace) -> int:
     except ImportError as exc:  # pragma: no cover - the extra is missing
         print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
         return 2
-    report = build_site(_course(args), args.output)
+    report = build_site(_course(args), args.output, repo_url=args.repo_url)
     print(
         f"built {len(report.pages)} pages in {report.seconds:.1f} s, {report.size_bytes / 1e6:.1f} MB: "
         f"open {report.out / 'index.html'} in a browser"

@@ -194,13 +194,28 @@ def test_check_of_a_missing_file_outside_a_course_exits_2(outside, capsys, monke
 def test_grade_grades_the_exercises_the_course_hands_out(course_copy, capsys, monkeypatch):
     (course_copy / "exercises" / "ex99_mine.ipynb").write_text("{}", encoding="utf-8")
     (course_copy / "subs" / "ann").mkdir(parents=True)
+    (course_copy / "subs" / "ben").mkdir(parents=True)
+    (course_copy / "subs" / "ben" / "ex01_rotations.ipynb").write_text("{}", encoding="utf-8")
     monkeypatch.chdir(course_copy)
     assert main(["grade", "subs", "-o", "g.csv", "--quiet", "--seed", "1"]) == 0
     with open(course_copy / "g.csv", newline="", encoding="utf-8") as fh:
         rows = list(csv.DictReader(fh))
-    assert [(r["student"], r["exercise"], r["status"]) for r in rows] == [("ann", "ex01_rotations", "missing")]
+    assert [(r["student"], r["exercise"], r["status"]) for r in rows] == [
+        ("ann", "ex01_rotations", "missing"),
+        ("ben", "ex01_rotations", "malformed"),
+    ]
     err = capsys.readouterr().err
     assert "not graded" in err and "ex99_mine" in err
+
+
+def test_grade_of_a_class_that_handed_in_no_exercise_exits_2(course_copy, capsys, monkeypatch):
+    (course_copy / "subs" / "ann").mkdir(parents=True)
+    (course_copy / "subs" / "ann" / "ex1.ipynb").write_text("{}", encoding="utf-8")
+    monkeypatch.chdir(course_copy)
+    assert main(["grade", "subs", "-o", "g.csv", "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "named after the course's exercises" in err and "ex01_rotations" in err
+    assert not (course_copy / "g.csv").exists()
 
 
 def test_release_check_passes_on_the_committed_exercises(capsys, monkeypatch):

@@ -29,7 +29,7 @@ from pathlib import Path
 
 from .text import display_name, quoted
 
-__all__ = ["StudentFolder", "Notebook", "scan", "read_student", "read_path", "MAX_NOTEBOOK_BYTES"]
+__all__ = ["StudentFolder", "Notebook", "scan", "read_student", "read_path", "handed_in", "MAX_NOTEBOOK_BYTES"]
 
 MAX_NOTEBOOK_BYTES = 20_000_000
 _NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
@@ -93,6 +93,26 @@ def scan(folder: Path) -> list[StudentFolder]:
         used.add(shown)
         student.name = shown
     return found
+
+
+def handed_in(folder: Path, exercises: Sequence[str]) -> list[str]:
+    """The exercises of ``exercises`` (in their order) that some student's folder holds an entry for.
+
+    An entry named ``<exercise>.ipynb`` counts whatever it is (a link or a folder is refused when
+    graded, but it was handed in); student folders that are links, or that cannot be listed, are
+    not looked into. Nothing is opened but the folders.
+    """
+    found: set[str] = set()
+    wanted = {f"{name}.ipynb": name for name in exercises}
+    for student in scan(folder):
+        if student.refused is not None:
+            continue
+        try:
+            names = os.listdir(folder / student.raw)
+        except OSError:
+            continue
+        found.update(wanted[n] for n in names if n in wanted)
+    return [name for name in exercises if name in found]
 
 
 def _refusal(mode: int) -> str | None:
