@@ -44,7 +44,7 @@ def outside(tmp_path):
     here = (tmp_path / "elsewhere").resolve()
     here.mkdir()
     if any(is_course(f) for f in (here, *here.parents)):
-        pytest.skip(f"a folder above {here} is a course")
+        pytest.skip(f"not run: the test needs a folder outside any course, and a folder above {here} is a course")
     return here
 
 
@@ -361,7 +361,9 @@ def _clean_env(**extra: str) -> dict[str, str]:
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(os.name != "posix", reason="venv layout (bin/) of POSIX")
+@pytest.mark.skipif(
+    os.name != "posix", reason="not run: the install test calls the venv's bin/ programs, a POSIX layout"
+)
 def test_a_non_editable_install_works_on_an_instructors_course(tmp_path, course_copy):
     src = tmp_path / "src"  # a copy, so building leaves no build/ or egg-info in the checkout
     shutil.copytree(ROOT / "puma_course", src / "puma_course", ignore=shutil.ignore_patterns("__pycache__"))
@@ -437,7 +439,7 @@ def _get(port: int, path: str) -> tuple[int, dict[str, str], str]:
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(os.name != "posix", reason="lab replaces its process with JupyterLab on POSIX only")
+@pytest.mark.skipif(os.name != "posix", reason="not run: lab replaces its process with JupyterLab (exec) on POSIX only")
 def test_lab_serves_the_course_root_and_opens_the_index_first(tmp_path):
     port, token = _free_port(), secrets.token_hex(16)
     env = _clean_env(
