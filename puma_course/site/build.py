@@ -66,9 +66,11 @@ def _title(nb_path: Path) -> str:
 def repository_url(root: Path) -> str | None:
     """The course's repository address from ``pyproject.toml``: ``[tool.puma-course] repository``, else
     ``[project.urls]`` ``Repository`` (or ``Source``, ``Homepage``); None when there is none."""
-    try:
-        import tomllib
-    except ImportError:  # pragma: no cover - Python 3.10
+    import importlib
+
+    try:  # the standard library's since Python 3.11 (3.10: no repository from pyproject.toml)
+        tomllib = importlib.import_module("tomllib")
+    except ModuleNotFoundError:  # pragma: no cover
         return None
     try:
         data = tomllib.loads((root / "pyproject.toml").read_text(encoding="utf-8"))
