@@ -6,6 +6,9 @@
                       [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--seed N]
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
+    puma-course site [--course DIR] [-o DIR] [--repo-url URL]
+
+``grade`` without ``--exercise`` grades the course's exercises that some student handed in.
 
 Every command works on the course it is run in: the nearest folder, at or above the current
 one, that holds ``solutions/`` or ``notebooks/`` (:mod:`puma_course.course`), or the folder named
