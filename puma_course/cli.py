@@ -238,64 +238,21 @@ def _release(args: argparse.Namespace) -> int:
     return 0
 
 
-def _course_exercises(root: Path, known: Sequence[str]) -> list[str]:
-    """The exercises the course at ``root`` hands out (``exercises/*.ipynb``) that the grader knows."""
-    folder = root / "exercises"
-    names = sorted(p.stem for p in folder.glob("*.ipynb"))
-    if not names:
-        raise ValueError(
-            f"exercise: expected --exercise NAME or a course that hands out exercises, got none in {str(folder)!r}"
-        )
-    unknown = [name for name in names if name not in known]
-    if unknown:
-        print(f"not graded (the grader has no questions for them): {', '.join(unknown)}", file=sys.stderr)
-    graded = [name for name in names if name in known]
-    if not graded:
-        raise ValueError(
-            f"exercise: expected exercises the grader knows ({', '.join(sorted(known))}) in {str(folder)!r}, "
-            f"got only {', '.join(unknown)}"
-        )
-    return graded
-
-
-def _handed_in(submissions: Path, names: list[str]) -> list[str]:
-    """Of the course's exercises ``names``, those some student handed in; the others are named once, here."""
-    from .grading.submissions import handed_in
-
-    if not submissions.is_dir():
-        return names  # grade() says what is wrong with the folder
-    try:
-        graded = handed_in(submissions, names)
-    except OSError as exc:
-        raise ValueError(
-            f"submissions: expected a readable folder, got {str(submissions)!r} ({exc.strerror})"
-        ) from None
-    if not graded:
-        raise ValueError(
-            f"submissions: expected <student>/<exercise>.ipynb files named after the course's exercises "
-            f"({', '.join(names)}), got none in {str(submissions)!r}"
-        )
-    absent = [name for name in names if name not in graded]
-    if absent:
-        print(
-            f"not graded (nobody handed them in; name them with --exercise to grade them anyway): {', '.join(absent)}",
-            file=sys.stderr,
-        )
-    return graded
-
-
 def _grade(args: argparse.Namespace) -> int:
     import warnings
 
     from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
     from .grading.sandbox import choose
+    from .grading.submissions import exercises_to_grade
     from .grading.summary import write_summary
 
-    names = (
-        args.exercise
-        if args.exercise
-        else _handed_in(args.submissions, _course_exercises(_course(args), list(EXERCISES)))
-    )
+    names = args.exercise
+    if not names:
+        names, unknown, absent = exercises_to_grade(_course(args) / "exercises", args.submissions, list(EXERCISES))
+        if unknown:
+            print(f"not graded (the grader has no questions for them): {', '.join(unknown)}", file=sys.stderr)
+        if absent:
+            print(f"not graded (nobody handed them in; --exercise grades them): {', '.join(absent)}", file=sys.stderr)
     private = []
     try:  # the course's solutions stay out of the sandbox wherever the course is
         private.append(_course(args) / "solutions")
