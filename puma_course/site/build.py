@@ -252,6 +252,8 @@ def build_site(
     out_dir = Path(out) if out is not None else root / "_site"
     if repo_url is None:
         repo_url = repository_url(root)
+    if repo_url is not None and not re.fullmatch(r"https?://[^\s\"'<>]+", repo_url):
+        raise ValueError(f"repo_url: expected an http:// or https:// address, got {repo_url!r}")
     lectures = sorted((root / "notebooks").glob("[0-9][0-9]_*.ipynb"))
     exercises = sorted((root / "exercises").glob("ex*.ipynb"))
     if not lectures:

@@ -164,6 +164,13 @@ def test_the_site_command_takes_a_repository_link(tmp_path, monkeypatch):
     assert seen == {"repo_url": "https://x.example/c"}
 
 
+def test_a_repository_link_that_is_not_a_web_address_is_refused(tmp_path, capsys):
+    for bad in ("javascript:alert(1)", "git@example.org:c.git", 'https://x.example/"><script>'):
+        assert main(["site", "--course", str(ROOT), "-o", str(tmp_path / "s"), "--repo-url", bad]) == 2
+        assert "repo_url: expected an http:// or https:// address" in capsys.readouterr().err
+    assert not (tmp_path / "s").exists()
+
+
 @pytest.mark.slow
 def test_building_the_site_in_a_clean_clone_leaves_git_status_clean(tmp_path):
     """`puma-course site` with its defaults (output _site/ in the course) changes nothing git tracks or sees."""
