@@ -149,7 +149,7 @@ def sandbox_for(mode: str) -> Sandbox:
         return choose("none")
     box = bwrap()
     if box.kind != "bwrap":
-        pytest.skip(f"bubblewrap cannot run here: {box.reason}")
+        pytest.skip(f"grading under the sandbox not run: bubblewrap cannot run here ({box.reason})")
     return box
 
 

@@ -79,7 +79,7 @@ def _inside(program: str, private=(), timeout=60) -> dict:
     """Run ``program`` (which sets ``result``) as the worker inside the sandbox; return its result."""
     box = _box()
     if box.kind != "bwrap":
-        pytest.skip(f"bubblewrap cannot run here: {box.reason}")
+        pytest.skip(f"sandbox check not run: bubblewrap cannot run here ({box.reason})")
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
