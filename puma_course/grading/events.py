@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from .bounds import check_answer
 from .child import ChildResult
 from .model import Exercise, NotebookResult, Question, Verdict, score_question
 from .text import quoted
@@ -82,6 +83,9 @@ def call_verdict(
         return Verdict(reasons.get(_text(error), "the call failed"))
     if "value" not in event:
         return Verdict("no value came back")
+    refused = check_answer(event["value"], expected)  # measured before anything is built from it
+    if refused is not None:
+        return Verdict(refused)
     try:
         return q.judge(event["value"], expected, args)
     except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the grading

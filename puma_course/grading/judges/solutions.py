@@ -65,6 +65,13 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
             return Verdict(arr)
         if len(arr) == 0:
             return Verdict(f"returned no configuration; the pose has {k}", "missing_solutions")
+        if len(arr) > k:
+            # more rows than solutions: two of them are one solution (or one is none); said before any
+            # pairwise work, so the judge's cost is bounded by the reference's size, not the answer's
+            return Verdict(
+                f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
+                "duplicates",
+            )
         why = _not_reaching(arr, expected, expected["T"])
         if why is not None:
             return why
@@ -77,7 +84,7 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
                 "negative_stroke",
             )
         D = _dist(arr[:, None, :], arr[None, :, :], rev)
-        twice = np.argwhere(np.triu(D < 1e-7, k=1))
+        twice = np.argwhere(np.triu(D < match_tol, k=1))  # the same tolerance as a match: one solution, once
         if twice.size:
             i, j = (int(v) + 1 for v in twice[0])
             return Verdict(
