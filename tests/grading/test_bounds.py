@@ -50,7 +50,7 @@ def test_each_solution_listed_twice_with_the_copy_moved_2e7_fails():
 
 
 def test_a_duplicate_within_the_match_tolerance_is_a_duplicate():
-    """The duplicate and match tolerances agree: a row replaced by a copy of another moved 5e-7 of another is one solution twice."""
+    """Duplicate and match tolerances agree: a row replaced by a copy of another moved 5e-7 is one solution twice."""
     q = EX09.question("q2")
     call = _ik_plan()[0]
     sols = _right(call).copy()
