@@ -35,6 +35,7 @@ __all__ = [
     "write_csv",
     "csv_rows",
     "safe_name",
+    "replace_atomically",
 ]
 
 _COUNT_LINE = re.compile(r"^\d+/\d+ cases pass$")
@@ -171,7 +172,7 @@ def safe_name(name: str) -> str:
     return file_stem(name)
 
 
-def _replace_atomically(path: Path, text: str) -> None:
+def replace_atomically(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` through a fresh temporary file and a rename: whole or not at all, and a
     link planted at ``path`` is replaced, never followed."""
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:50]}.", suffix=".tmp", dir=path.parent)
@@ -186,15 +187,23 @@ def _replace_atomically(path: Path, text: str) -> None:
 
 
 def write_feedback(
-    folder: str | os.PathLike[str], results: Sequence[NotebookResult], seed: int, unsandboxed: str | None = None
+    folder: str | os.PathLike[str],
+    results: Sequence[NotebookResult],
+    seed: int,
+    unsandboxed: str | None = None,
+    reserved: Sequence[str] = (),
 ) -> dict[str, Path]:
-    """One Markdown file per student in ``folder`` (created); returns the file of each student."""
+    """One Markdown file per student in ``folder`` (created); returns the file of each student.
+
+    ``reserved`` are file stems no student gets (the grades file's and the class summary's, when they are
+    written into the same folder): a student whose folder has such a name gets ``NAME_2.md``.
+    """
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
     by_student: dict[str, list[NotebookResult]] = {}
     for r in results:
         by_student.setdefault(r.student, []).append(r)
-    used: set[str] = set()
+    used: set[str] = {r.lower() for r in reserved}
     files = {}
     for student, mine in by_student.items():
         stem = base = file_stem(student)
@@ -203,7 +212,7 @@ def write_feedback(
             stem, k = f"{base}_{k}", k + 1
         used.add(stem.lower())
         files[student] = out / f"{stem}.md"
-        _replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed))
+        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed))
     return files
 
 
@@ -250,4 +259,4 @@ def write_csv(
         out.parent.mkdir(parents=True, exist_ok=True)
     buffer = io.StringIO()
     csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox))
-    _replace_atomically(out, buffer.getvalue())
+    replace_atomically(out, buffer.getvalue())

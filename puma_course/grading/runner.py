@@ -282,6 +282,15 @@ def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[
         _positive(key, value)
 
 
+def _reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
+    """The file stems in the feedback folder that belong to the grader's own files (the CSV, the class summary)."""
+    from .summary import summary_path
+
+    folder = os.path.realpath(feedback)
+    own = [Path(output), summary_path(output)]
+    return [p.stem for p in own if p.suffix.lower() == ".md" and os.path.realpath(p.parent) == folder]
+
+
 def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
     return NotebookResult.blank(student, ex, state if state != "read" else "grader-error", note)
 
@@ -393,5 +402,6 @@ def grade(
         )
     write_csv(output, results, names, seed=seed, sandbox=box.label)
     if feedback is not None:
-        write_feedback(feedback, results, seed, unsandboxed=box.reason if box.kind != "bwrap" else None)
+        unsandboxed = box.reason if box.kind != "bwrap" else None
+        write_feedback(feedback, results, seed, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
     return results

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from .diagnose import TITLES
 from .model import EXERCISES, NotebookResult, Question
-from .report import verdict
+from .report import replace_atomically, verdict
 
 __all__ = ["QuestionSummary", "question_summaries", "class_summary", "write_summary", "summary_path"]
 
@@ -149,11 +149,13 @@ def write_summary(
 ) -> tuple[Path, str]:
     """Write :func:`class_summary` next to the grades file ``output``; return its path and a short text.
 
-    The text names the file and the ``lines`` questions with the lowest share of students passing,
+    The file is written like the CSV and the feedback (a fresh temporary name moved into place), and
+    :func:`~puma_course.grading.grade` keeps its name free of any student's feedback file. The text names
+    the file and the ``lines`` questions with the lowest share of students passing,
     each with its commonest diagnosed mistake.
     """
     path = summary_path(output)
-    path.write_text(class_summary(results), encoding="utf-8")
+    replace_atomically(path, class_summary(results))  # whole or not at all; a link planted there is replaced
     hard = sorted((s for s in question_summaries(results) if s.submitted), key=lambda s: s.passed / s.submitted)
     text = [f"class summary: {path}"]
     for s in hard[:lines]:
