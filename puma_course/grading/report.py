@@ -217,7 +217,11 @@ def write_feedback(
 
 
 def csv_rows(
-    results: Sequence[NotebookResult], names: Sequence[str], seed: int | None = None, sandbox: str = ""
+    results: Sequence[NotebookResult],
+    names: Sequence[str],
+    seed: int | None = None,
+    sandbox: str = "",
+    limits: str = "",
 ) -> list[list[str]]:
     """The CSV's rows, header first (see :func:`write_csv`)."""
     qids: list[str] = []
@@ -225,13 +229,15 @@ def csv_rows(
         for q in EXERCISES[name].questions:
             if q.qid not in qids:
                 qids.append(q.qid)
-    rows = [["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "seed", "notes"]]
+    rows = [
+        ["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "limits", "seed", "notes"]
+    ]
     for r in results:
         ex = EXERCISES.get(r.exercise)
         bonus = sum(r.scores.get(q.qid, 0.0) for q in ex.questions if q.bonus) if ex is not None else 0.0
         row = [csv_safe(r.student), r.exercise, f"{r.score:g}", f"{r.max_score:g}", f"{round(bonus, 2):g}"]
         row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
-        row += [r.status, sandbox, "" if seed is None else str(seed)]
+        row += [r.status, sandbox, limits, "" if seed is None else str(seed)]
         row.append(csv_safe(one_line(" | ".join(r.notes), 500)))
         rows.append(row)
     return rows
@@ -244,19 +250,21 @@ def write_csv(
     *,
     seed: int | None = None,
     sandbox: str = "",
+    limits: str = "",
 ) -> None:
     """Write the grades: student, exercise, score, max_score, bonus, one column per question id, status,
-    sandbox, seed, notes.
+    sandbox, limits, seed, notes.
 
     ``bonus`` is the part of the score that bonus questions earned (it counts in ``score``, not in
     ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none") and ``seed`` which
-    hidden inputs they got. A text cell that a spreadsheet would read as a formula starts with
-    ``'``. The file is written under a fresh temporary name and moved into place, so it appears
-    whole or not at all.
+    hidden inputs they got; ``limits`` how the notebook's memory, processes and CPU were limited (per
+    notebook by a control group, or per process only, and why). A text cell that a spreadsheet would
+    read as a formula starts with ``'``. The file is written under a fresh temporary name and moved
+    into place, so it appears whole or not at all.
     """
     out = Path(output)
     if out.parent and not out.parent.exists():
         out.parent.mkdir(parents=True, exist_ok=True)
     buffer = io.StringIO()
-    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox))
+    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, limits))
     replace_atomically(out, buffer.getvalue())

@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from . import child, events
+from . import child, events, limits
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
 from .sandbox import Sandbox, child_env, choose
@@ -43,6 +43,7 @@ from .text import quoted
 __all__ = [
     "GradingIntegrityWarning",
     "SandboxWarning",
+    "LimitsWarning",
     "make_plan",
     "grade_notebook",
     "grade",
@@ -65,6 +66,10 @@ class GradingIntegrityWarning(UserWarning):
 
 class SandboxWarning(UserWarning):
     """The notebooks are graded without the operating-system sandbox."""
+
+
+class LimitsWarning(UserWarning):
+    """The notebooks are graded with per-process limits only: no control group per notebook (:mod:`.limits`)."""
 
 
 def _package_digest() -> dict[str, bytes]:
@@ -157,14 +162,21 @@ def _run_worker(
     timeout_cell: float,
     timeout: float,
     private: Sequence[Path],
+    groups: limits.Run | None = None,
 ) -> child.ChildResult:
-    """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one."""
+    """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one.
+
+    With ``groups`` (the run's control groups, :mod:`.limits`) the worker starts inside a fresh group of its
+    own, and whatever of its process tree is left when it ends is killed with the group.
+    """
 
     def launch(work: str | None) -> child.ChildResult:
         lib, _, seen_work = box.paths(stage.libs[exercise.name], stage.bin, Path(work or "."))
         payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.sites], box.kind == "bwrap") + data
         cmd = box.command(stage.libs[exercise.name], stage.bin, private)
-        return child.run(cmd, payload, cwd=work, env=child_env(seen_work), timeout=timeout)
+        with groups.notebook() if groups is not None else contextlib.nullcontext() as group:
+            cmd = group.wrap(cmd) if group is not None else cmd
+            return child.run(cmd, payload, cwd=work, env=child_env(seen_work), timeout=timeout)
 
     if box.kind == "bwrap":
         return launch(None)
@@ -183,13 +195,14 @@ def _grade_data(
     timeout: float,
     stop_note: str,
     private: Sequence[Path] = (),
+    groups: limits.Run | None = None,
 ) -> NotebookResult:
     start = time.perf_counter()
     result = NotebookResult.blank(student, exercise)
-    outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+    outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private, groups)
     if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
         # the worker never started (the sandbox could not be set up, say): not the student's doing; once more
-        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private, groups)
         if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
             said = outcome.stderr.decode("utf-8", "replace").strip().splitlines()
             result.status = "grader-error"
@@ -309,6 +322,7 @@ def grade(
     sandbox: str | Sandbox = "auto",
     timeout_student: float = 120.0,
     private: Sequence[str | os.PathLike[str]] = (),
+    cgroups: bool | limits.Run = True,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
@@ -317,6 +331,9 @@ def grade(
     none with a :class:`SandboxWarning`), "bwrap", "none", or a :class:`~.sandbox.Sandbox` chosen
     earlier; ``timeout_student`` caps the time of all of a student's notebooks together;
     ``private`` names more folders the sandbox must hide (the course's ``solutions/``, say).
+    ``cgroups`` True puts each notebook in a control group of its own with limits for its whole process
+    tree (:mod:`.limits`; where that cannot be done here: a :class:`LimitsWarning` and the CSV's ``limits``
+    column say so), False does not try, or a :class:`~.limits.Run` opened earlier is used (and not closed).
     Returns the results (sorted by student, exercise).
     """
     sub_dir = Path(submissions)
@@ -327,6 +344,45 @@ def grade(
     box = _box(sandbox)
     if box.kind != "bwrap":
         warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
+    groups = cgroups if isinstance(cgroups, limits.Run) else limits.open_run(enabled=bool(cgroups))
+    try:
+        return _grade_class(
+            sub_dir,
+            output,
+            feedback,
+            jobs,
+            timeout_cell,
+            timeout_total,
+            seed,
+            names,
+            progress,
+            box,
+            timeout_student,
+            private,
+            groups,
+        )
+    finally:
+        if not isinstance(cgroups, limits.Run):
+            groups.close()
+
+
+def _grade_class(
+    sub_dir: Path,
+    output: str | os.PathLike[str],
+    feedback: str | os.PathLike[str] | None,
+    jobs: int,
+    timeout_cell: float,
+    timeout_total: float,
+    seed: int,
+    names: list[str],
+    progress: Callable[[NotebookResult], None] | None,
+    box: Sandbox,
+    timeout_student: float,
+    private: Sequence[str | os.PathLike[str]],
+    groups: limits.Run,
+) -> list[NotebookResult]:
+    if not groups.enforced:
+        warnings.warn(f"notebook limits: {groups.label}", LimitsWarning, stacklevel=3)
     try:
         students = scan(sub_dir)
     except OSError as exc:
@@ -373,7 +429,7 @@ def grade(
                         limit = min(timeout_total, left)
                         note = _stop_note(limit, limit < timeout_total)
                         res = _grade_data(
-                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden
+                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden, groups
                         )
                 except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
                     why = f"{type(exc).__name__}: {exc}"[:300]
@@ -400,7 +456,7 @@ def grade(
             GradingIntegrityWarning,
             stacklevel=2,
         )
-    write_csv(output, results, names, seed=seed, sandbox=box.label)
+    write_csv(output, results, names, seed=seed, sandbox=box.label, limits=groups.label)
     if feedback is not None:
         unsandboxed = box.reason if box.kind != "bwrap" else None
         write_feedback(feedback, results, seed, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
