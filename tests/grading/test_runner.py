@@ -82,7 +82,9 @@ def test_a_worker_that_cannot_start_is_the_graders_error_not_the_students(tmp_pa
     nbformat.write(nbformat.v4.new_notebook(), sub)
     broken = Sandbox("bwrap", "/bin/sh", sites=choose("none").sites)
     monkeypatch.setattr(
-        Sandbox, "bwrap_args", lambda self, *a, **k: ["-c", "echo 'bwrap: no user namespaces' >&2; exit 1"]
+        Sandbox,
+        "launch",
+        lambda self, *a, **k: (["/bin/sh", "-c", "echo 'bwrap: no user namespaces' >&2; exit 1"], -1),
     )
     r = grade_notebook(sub, EX, "s", sandbox=broken)
     assert r.status == "grader-error" and "could not start (exit code 1): `bwrap: no user namespaces`" in r.notes[0]
