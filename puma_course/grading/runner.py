@@ -172,13 +172,14 @@ def _run_worker(
 
     def launch(work: str | None) -> child.ChildResult:
         lib, _, seen_work = box.paths(stage.libs[exercise.name], stage.bin, Path(work or "."))
-        payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.sites], box.kind == "bwrap") + data
-        cmd, fd = box.launch(stage.libs[exercise.name], stage.bin, private)  # fd: bubblewrap's --args file
+        payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.seen_sites], box.kind == "bwrap") + data
+        # fd: bubblewrap's --args file; cwd "/": the launcher's shell would export the grader's folder as PWD
+        cmd, fd = box.launch(stage.libs[exercise.name], stage.bin, private)
         try:
             with groups.notebook() if groups is not None else contextlib.nullcontext() as group:
                 cmd = group.wrap(cmd) if group is not None else cmd
                 fds: dict[str, Any] = {"pass_fds": (fd,)} if fd >= 0 else {}
-                return child.run(cmd, payload, cwd=work, env=child_env(seen_work), timeout=timeout, **fds)
+                return child.run(cmd, payload, cwd=work or "/", env=child_env(seen_work), timeout=timeout, **fds)
         finally:
             if fd >= 0:
                 os.close(fd)

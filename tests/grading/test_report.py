@@ -108,7 +108,23 @@ def test_csv_columns(tmp_path):
         "seed",
         "notes",
     ]
-    assert rows[1] == ["ann", "ex01_rotations", "3", "13", "0", "2", "1", "0", "0", "0", "ok", "bwrap", limits, "12", ""]
+    assert rows[1] == [
+        "ann",
+        "ex01_rotations",
+        "3",
+        "13",
+        "0",
+        "2",
+        "1",
+        "0",
+        "0",
+        "0",
+        "ok",
+        "bwrap",
+        limits,
+        "12",
+        "",
+    ]
     assert list(tmp_path.glob("sub/*")) == [out]  # no temporary file left behind
 
 

@@ -68,7 +68,7 @@ def _worker(cells, calls, exercise=EX, sandbox: Sandbox | None = None, timeout=3
     box = sandbox or choose("none")
     with Stage([exercise]) as stage:
         lib, _, _ = box.paths(stage.libs[exercise.name], stage.bin, Path("."))
-        job = {"calls": calls, "timeout_cell": 10, "path": [lib, *box.sites], "filename": "nb.ipynb"}
+        job = {"calls": calls, "timeout_cell": 10, "path": [lib, *box.seen_sites], "filename": "nb.ipynb"}
         payload = json.dumps(job).encode() + b"\n" + nbformat.writes(nb).encode()
         cwd = None if box.kind == "bwrap" else str(stage.root)
         env = child_env("/puma/work" if box.kind == "bwrap" else str(stage.root))
