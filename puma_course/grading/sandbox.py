@@ -16,9 +16,9 @@ Under bubblewrap the worker gets:
   ``--die-with-parent``, no further user namespaces inside;
 * a read-only view of the system (``/usr`` and its links, the dynamic loader's files) and of the
   Python install (its prefix and site-packages; outside the system's folders at neutral names,
-  ``/python/0``, ``/python/1``, ..., so no mount point and no path it is given is a host path); a read-only empty folder over the course
-  package, ``solutions/``, the submissions, the grader's output and anything else the grader
-  names as private, wherever they fall inside those;
+  ``/python/0``, ``/python/1``, ..., so no mount point and no path it is given is a host path);
+  a read-only empty folder over the course package, ``solutions/``, the submissions, the grader's
+  output and anything else the grader names as private, wherever they fall inside those;
 * the student-side package (``/puma/lib``) and the worker (``/puma/bin``) read-only, and one
   writable, size-capped, in-memory folder, ``/puma/work`` (also ``HOME`` and ``TMPDIR``);
   a small capped ``/dev/shm``; everything else read-only;
