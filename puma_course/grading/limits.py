@@ -141,6 +141,8 @@ class Run:
     memory: int = MEMORY
     processes: int = PROCESSES
     cpus: float = CPUS
+    #: what each notebook's group used, in the order they ended
+    usages: list[Usage] = field(default_factory=list)
     _count: int = 0
 
     @property
@@ -172,7 +174,7 @@ class Run:
         try:
             yield group
         finally:
-            group.close()
+            self.usages.append(group.close())
 
     def close(self) -> None:
         for folder in dict.fromkeys(self.folders.values()):
