@@ -9,7 +9,8 @@ it detaches (``setsid``, double forks), so the limits below hold for the noteboo
 * at most :data:`PROCESSES` processes and threads;
 * CPU: at most :data:`CPUS` cores (a CFS quota), and an equal share against every other notebook graded
   at the same time (the groups have equal weights, and the kernel's per-session autogroups, which gave a
-  notebook's sixty ``setsid`` children sixty shares, apply only outside control groups). A slowish
+  notebook's sixty ``setsid`` children sixty shares, apply only outside control groups); the run's folder
+  weighs as many ordinary processes as notebooks are graded at once (:meth:`Run.share`). A slowish
   classmate's calls are timed on the wall clock, but its share of the CPU cannot be taken.
 
 :func:`open_run` makes a folder for the grading run in each controller's hierarchy, under the grader's own
@@ -175,6 +176,18 @@ class Run:
             yield group
         finally:
             self.usages.append(group.close())
+
+    def share(self, notebooks: int) -> None:
+        """Weigh the run's folder as ``notebooks`` ordinary processes against the rest of the machine (each of
+        the notebooks graded at once then competes as one process would, however many it forks)."""
+        if not self.enforced:
+            return
+        n = max(1, int(notebooks))
+        with contextlib.suppress(OSError):
+            if self.version == 1:
+                _write(self.folders["cpu"] / "cpu.shares", str(min(262144, 1024 * n)))
+            else:
+                _write(self.folders["cpu"] / "cpu.weight", str(min(10000, 100 * n)))
 
     def close(self) -> None:
         for folder in dict.fromkeys(self.folders.values()):

@@ -389,6 +389,7 @@ def _grade_class(
 ) -> list[NotebookResult]:
     if not groups.enforced:
         warnings.warn(f"notebook limits: {groups.label}", LimitsWarning, stacklevel=3)
+    groups.share(jobs)
     try:
         students = scan(sub_dir)
     except OSError as exc:
