@@ -6,6 +6,8 @@
                       [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--seed N]
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
+    puma-course grade ... [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
+    puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (see :mod:`puma_course.cli_platform`)
 
 Every command works on the course it is run in: the nearest folder, at or above the current
 one, that holds ``solutions/`` or ``notebooks/`` (:mod:`puma_course.course`), or the folder named
@@ -29,6 +31,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from .cli_platform import add_grade_arguments, add_gradescope_parser, collect_or_explain, gradescope, write_gradebooks
 from .course import INDEX, CourseNotFoundError, course_root
 
 __all__ = ["main", "build_parser", "lab_command"]
@@ -146,6 +149,8 @@ def build_parser() -> argparse.ArgumentParser:
         help="grade only this exercise (repeatable; default: every exercise in the course's exercises/)",
     )
     gr.add_argument("--quiet", action="store_true", help="no progress lines")
+    add_grade_arguments(gr)
+    add_gradescope_parser(sub, course)
 
     ck = sub.add_parser("check", parents=[course], help="grade your own notebook on the public cases")
     ck.add_argument(
@@ -257,6 +262,9 @@ def _grade(args: argparse.Namespace) -> int:
     from .grading.summary import write_summary
 
     names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
+    collected, found = collect_or_explain(args, names)
+    if not found:
+        return 2
     private = []
     try:  # the course's solutions stay out of the sandbox wherever the course is
         private.append(_course(args) / "solutions")
@@ -316,10 +324,12 @@ def _grade(args: argparse.Namespace) -> int:
             timeout_student=args.timeout_student,
             private=private,
             cgroups=groups,
+            collected=collected,
         )
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")
-    print(write_summary(results, args.output)[1])
+    print(write_summary(results, args.output, unmatched=collected.problems if collected else ())[1])
+    write_gradebooks(args, results, names, collected)
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
         print(f"WARNING: {w.message}", file=sys.stderr)
@@ -397,7 +407,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     if extra and args.command != "lab":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.jupyter_args = extra
-    handlers = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
+    handlers: dict[str, Any] = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
+    handlers["gradescope"] = lambda a: gradescope(a, _course(a))
     try:
         return handlers[args.command](args)
     except CourseNotFoundError as exc:

@@ -19,7 +19,7 @@ import io
 import os
 import re
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from pathlib import Path
 
 from .model import EXERCISES, Exercise, NotebookResult, Question
@@ -186,6 +186,9 @@ def replace_atomically(path: Path, text: str) -> None:
         raise
 
 
+_replace_atomically = replace_atomically  # the name other modules import
+
+
 def write_feedback(
     folder: str | os.PathLike[str],
     results: Sequence[NotebookResult],
@@ -221,6 +224,7 @@ def csv_rows(
     names: Sequence[str],
     seed: int | None = None,
     sandbox: str = "",
+    late: Collection[tuple[str, str]] | None = None,
     limits: str = "",
 ) -> list[list[str]]:
     """The CSV's rows, header first (see :func:`write_csv`)."""
@@ -232,6 +236,8 @@ def csv_rows(
     rows = [
         ["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "limits", "seed", "notes"]
     ]
+    if late is not None:
+        rows[0].append("late")
     for r in results:
         ex = EXERCISES.get(r.exercise)
         bonus = sum(r.scores.get(q.qid, 0.0) for q in ex.questions if q.bonus) if ex is not None else 0.0
@@ -239,6 +245,8 @@ def csv_rows(
         row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
         row += [r.status, sandbox, limits, "" if seed is None else str(seed)]
         row.append(csv_safe(one_line(" | ".join(r.notes), 500)))
+        if late is not None:
+            row.append("late" if (r.student, r.exercise) in late else "")
         rows.append(row)
     return rows
 
@@ -250,6 +258,7 @@ def write_csv(
     *,
     seed: int | None = None,
     sandbox: str = "",
+    late: Collection[tuple[str, str]] | None = None,
     limits: str = "",
 ) -> None:
     """Write the grades: student, exercise, score, max_score, bonus, one column per question id, status,
@@ -258,13 +267,14 @@ def write_csv(
     ``bonus`` is the part of the score that bonus questions earned (it counts in ``score``, not in
     ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none") and ``seed`` which
     hidden inputs they got; ``limits`` how the notebook's memory, processes and CPU were limited (per
-    notebook by a control group, or per process only, and why). A text cell that a spreadsheet would
-    read as a formula starts with ``'``. The file is written under a fresh temporary name and moved
-    into place, so it appears whole or not at all.
+    notebook by a control group, or per process only, and why); with ``late`` (the (student, exercise)
+    pairs a platform marked late), a last column ``late`` says "late" for those. A text cell that a
+    spreadsheet would read as a formula starts with ``'``. The file is written under a fresh temporary
+    name and moved into place, so it appears whole or not at all.
     """
     out = Path(output)
     if out.parent and not out.parent.exists():
         out.parent.mkdir(parents=True, exist_ok=True)
     buffer = io.StringIO()
-    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, limits))
+    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, late, limits=limits))
     replace_atomically(out, buffer.getvalue())

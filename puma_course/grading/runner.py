@@ -33,11 +33,12 @@ from typing import Any
 import numpy as np
 
 from . import child, events, limits
+from .collect import Collected
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
 from .sandbox import Sandbox, child_env, choose
 from .stage import Stage
-from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, read_path, read_student, scan
+from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
 from .text import quoted
 
 __all__ = [
@@ -329,6 +330,7 @@ def grade(
     timeout_student: float = 120.0,
     private: Sequence[str | os.PathLike[str]] = (),
     cgroups: bool | limits.Run = True,
+    collected: Collected | None = None,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
@@ -340,7 +342,9 @@ def grade(
     ``cgroups`` True puts each notebook in a control group of its own with limits for its whole process
     tree (:mod:`.limits`; where that cannot be done here: a :class:`LimitsWarning` and the CSV's ``limits``
     column say so), False does not try, or a :class:`~.limits.Run` opened earlier is used (and not closed).
-    Returns the results (sorted by student, exercise).
+    ``collected`` is a platform's download read by :func:`~.collect.collect` (``submissions`` is then
+    its folder): its students are graded instead of the folder's sub-folders, and the CSV gains a
+    ``late`` column. Returns the results (sorted by student, exercise).
     """
     sub_dir = Path(submissions)
     names = list(exercises) if exercises else list(EXERCISES)
@@ -366,6 +370,7 @@ def grade(
             timeout_student,
             private,
             groups,
+            collected,
         )
     finally:
         if not isinstance(cgroups, limits.Run):
@@ -386,12 +391,17 @@ def _grade_class(
     timeout_student: float,
     private: Sequence[str | os.PathLike[str]],
     groups: limits.Run,
+    collected: Collected | None,
 ) -> list[NotebookResult]:
     if not groups.enforced:
         warnings.warn(f"notebook limits: {groups.label}", LimitsWarning, stacklevel=3)
     groups.share(jobs)
+
+    def read(s: StudentFolder) -> StudentFiles:
+        return read_student(sub_dir, s, names) if collected is None else collected.read(s, names)
+
     try:
-        students = scan(sub_dir)
+        students = scan(sub_dir) if collected is None else collected.folders()
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     plans = {name: make_plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
@@ -406,14 +416,14 @@ def _grade_class(
             # process cannot alter what is graded for a classmate it runs before
             used = 0
             for s in students:
-                files = read_student(sub_dir, s, names)
+                files = read(s)
                 used += sum(len(nb.data or b"") for nb in files.notebooks.values())
                 if used > PRE_READ_BYTES:
                     break
                 pre[s.raw] = files
 
-        def work(s: Any) -> list[NotebookResult]:
-            files = pre.pop(s.raw, None) or read_student(sub_dir, s, names)
+        def work(s: StudentFolder) -> list[NotebookResult]:
+            files = pre.pop(s.raw, None) or read(s)
             end = time.monotonic() + timeout_student
             out = []
             for name in names:
@@ -463,7 +473,8 @@ def _grade_class(
             GradingIntegrityWarning,
             stacklevel=2,
         )
-    write_csv(output, results, names, seed=seed, sandbox=box.label, limits=groups.label)
+    late = None if collected is None else collected.late()
+    write_csv(output, results, names, seed=seed, sandbox=box.label, late=late, limits=groups.label)
     if feedback is not None:
         unsandboxed = box.reason if box.kind != "bwrap" else None
         write_feedback(feedback, results, seed, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
