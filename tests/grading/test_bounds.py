@@ -123,3 +123,16 @@ def test_number_bound_follows_the_reference_and_never_exceeds_the_worker_cap():
             value = np.asarray(right, dtype=float).tolist() if not callable(right) else None
             if value is not None:
                 assert check_answer(value, c["expected"]) is None, (ex.name, q.qid, np.shape(right))
+
+
+def test_judging_a_notebook_has_a_time_limit(monkeypatch):
+    """Past the judging budget the remaining cases are not judged (failed), whatever the judges cost."""
+    import puma_course.grading.events as ev
+
+    monkeypatch.setattr(ev, "JUDGING_SECONDS", 0.0)
+    plan = make_plan(EX09, seed=3)
+    events = [{"kind": "call", "qid": c["qid"], "case": c["case"], "value": 0.0} for c in plan]
+    result = NotebookResult.blank("slow", EX09)
+    apply(result, EX09, plan, ChildResult(events=events, done=True), timeout_cell=10, stop_note="")
+    assert result.score == 0
+    assert all("not judged: judging this notebook" in notes[1] for notes in result.question_notes.values())
