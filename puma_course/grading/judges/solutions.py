@@ -65,9 +65,7 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
             return Verdict(arr)
         if len(arr) == 0:
             return Verdict(f"returned no configuration; the pose has {k}", "missing_solutions")
-        if len(arr) > k:
-            # more rows than solutions: two of them are one solution (or one is none); said before any
-            # pairwise work, so the judge's cost is bounded by the reference's size, not the answer's
+        if len(arr) > 4 * k:  # far more rows than solutions: said before any other work (a bounded cost)
             return Verdict(
                 f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
                 "duplicates",
@@ -89,6 +87,11 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
             i, j = (int(v) + 1 for v in twice[0])
             return Verdict(
                 f"rows {i} and {j} are the same configuration: list each solution once (there are {k} here)",
+                "duplicates",
+            )
+        if len(arr) > k:  # more rows than solutions, none two within the match tolerance (reference rows that close)
+            return Verdict(
+                f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
                 "duplicates",
             )
         M = _dist(sols[:, None, :], arr[None, :, :], rev) < match_tol
