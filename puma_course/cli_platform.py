@@ -135,6 +135,29 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
     return list(names), collected
 
 
+def open_limits(box: Any) -> Any:
+    """A control group per notebook for this run (:func:`puma_course.grading.limits.open_run`), said on stderr:
+    the limits in force, or loudly that they hold per process only."""
+    from .grading import limits
+
+    groups = limits.open_run()
+    if groups.enforced:
+        print(f"limits: {groups.label}", file=sys.stderr)
+        return groups
+    print(
+        f"WARNING: notebook limits are {groups.label}.\n"
+        "WARNING: a notebook's processes together may then use more memory, processes and CPU than one "
+        "notebook's limits (README.md, Safety); the CSV's limits column says so.",
+        file=sys.stderr,
+    )
+    if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
+        print(
+            "WARNING: grading as root without control groups: the per-process process limit is not enforced.",
+            file=sys.stderr,
+        )
+    return groups
+
+
 def _suggest_layout(seen: Sequence[str]) -> None:
     """Say so when a folder read as ``folders`` looks like a platform's download."""
     import re

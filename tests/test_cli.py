@@ -308,7 +308,7 @@ def test_grade_warns_and_exits_3_when_the_package_changes_during_grading(tmp_pat
     from puma_course.grading import runner
 
     digests = iter([{"a.py": b"1"}, {"a.py": b"2"}])
-    monkeypatch.setattr(runner, "_package_digest", lambda: next(digests))
+    monkeypatch.setattr(runner, "package_digest", lambda _package: next(digests))
     (tmp_path / "subs" / "ann").mkdir(parents=True)
     code = main(
         ["grade", str(tmp_path / "subs"), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations", "--quiet"]

@@ -21,12 +21,11 @@ import copy
 import json
 import os
 import secrets
-import sys
 import tempfile
 import time
 import warnings
 import zlib
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -36,6 +35,7 @@ from . import child, events, limits
 from .collect import Collected
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
+from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
 from .sandbox import Sandbox, child_env, choose
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
@@ -71,11 +71,6 @@ class SandboxWarning(UserWarning):
 
 class LimitsWarning(UserWarning):
     """The notebooks are graded with per-process limits only: no control group per notebook (:mod:`.limits`)."""
-
-
-def _package_digest() -> dict[str, bytes]:
-    """The bytes of every module of the package, by path inside it."""
-    return {p.relative_to(_PACKAGE_DIR).as_posix(): p.read_bytes() for p in sorted(_PACKAGE_DIR.rglob("*.py"))}
 
 
 def _jsonable(value: Any) -> Any:
@@ -119,12 +114,6 @@ def make_plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
                 }
             )
     return calls
-
-
-def _positive(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 or value == float("inf"):
-        raise ValueError(f"{name}: expected a positive number of seconds, got {value!r}")
-    return float(value)
 
 
 def _box(sandbox: str | Sandbox) -> Sandbox:
@@ -224,18 +213,6 @@ def _grade_data(
     return result
 
 
-def _stop_note(seconds: float, by_student: bool) -> str:
-    if by_student:
-        return (
-            f"stopped after {seconds:g} s: the total time for all of this student's notebooks ran out; "
-            "answers that came back before that were graded"
-        )
-    return (
-        f"the notebook ran longer than {seconds:g} s in total and was stopped; "
-        "answers that came back before that were graded"
-    )
-
-
 def grade_notebook(
     path: str | os.PathLike[str] | None,
     exercise: Exercise,
@@ -269,46 +246,6 @@ def grade_notebook(
         return _grade_data(
             data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
         )
-
-
-@contextlib.contextmanager
-def _undumpable(on: bool) -> Iterator[None]:
-    """Linux, without the OS sandbox: make the grader's memory unreachable through /proc and ptrace for its workers."""
-    libc = None
-    if on and sys.platform.startswith("linux"):
-        try:
-            import ctypes
-
-            libc = ctypes.CDLL(None, use_errno=True)
-            libc.prctl(4, 0, 0, 0, 0)  # PR_SET_DUMPABLE = 4
-        except (OSError, AttributeError):
-            libc = None
-    try:
-        yield
-    finally:
-        if libc is not None:
-            libc.prctl(4, 1, 0, 0, 0)
-
-
-def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[str, float]) -> None:
-    if not submissions.is_dir():
-        raise ValueError(f"submissions: expected a folder with one sub-folder per student, got {str(submissions)!r}")
-    for name in names:
-        if name not in EXERCISES:
-            raise ValueError(f"exercises: expected names among {sorted(EXERCISES)}, got {name!r}")
-    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
-        raise ValueError(f"jobs: expected a whole number of notebooks at a time, at least 1, got {jobs!r}")
-    for key, value in times.items():
-        _positive(key, value)
-
-
-def _reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
-    """The file stems in the feedback folder that belong to the grader's own files (the CSV, the class summary)."""
-    from .summary import summary_path
-
-    folder = os.path.realpath(feedback)
-    own = [Path(output), summary_path(output)]
-    return [p.stem for p in own if p.suffix.lower() == ".md" and os.path.realpath(p.parent) == folder]
 
 
 def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
@@ -405,7 +342,7 @@ def _grade_class(
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     plans = {name: make_plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
-    package_before = _package_digest()
+    package_before = package_digest(_PACKAGE_DIR)
     hidden = [_PACKAGE_DIR, PACKAGE_PARENT / "solutions", sub_dir, Path(output), *(Path(p) for p in private)]
     hidden += [Path(feedback)] if feedback is not None else []
     with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
@@ -461,7 +398,7 @@ def _grade_class(
             results = [r for batch in pool.map(work, students) for r in batch]
         changed = [f"grading stage: {p}" for p in stage.changed()]
     results.sort(key=lambda r: (r.student, r.exercise))
-    package_after = _package_digest()
+    package_after = package_digest(_PACKAGE_DIR)
     changed += sorted(
         k for k in set(package_before) | set(package_after) if package_before.get(k) != package_after.get(k)
     )
