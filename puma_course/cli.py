@@ -3,7 +3,7 @@
     puma-course lab [--course DIR] [--no-browser] [--print-command] [JUPYTER-OPTIONS ...]
     puma-course release [--course DIR] [--solutions DIR] [--exercises DIR] [--check]
     puma-course grade SUBMISSIONS -o grades.csv [--course DIR] [--feedback DIR] [--jobs N]
-                      [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--seed N]
+                      [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--secret FILE | --seed N]
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
 
@@ -128,7 +128,21 @@ def build_parser() -> argparse.ArgumentParser:
         help="seconds for all of one student's notebooks together (default 120)",
     )
     gr.add_argument(
-        "--seed", type=int, default=None, metavar="N", help="seed of the hidden inputs (default: a fresh random one)"
+        "--secret",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help="the instructor's key file every student's hidden inputs are drawn from, each student's their own "
+        "(default: .grading-secret in the course folder, created on first use, readable by you only); keep it "
+        "and never hand it out: the same file regrades identically",
+    )
+    gr.add_argument(
+        "--seed",
+        type=int,
+        default=None,
+        metavar="N",
+        help="a public seed instead of the key file, for demonstrations and tests: anyone who knows N can "
+        "rebuild every hidden input",
     )
     gr.add_argument(
         "--sandbox",
@@ -255,6 +269,7 @@ def _grade(args: argparse.Namespace) -> int:
     from .grading.summary import write_summary
 
     names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
+    key = _grading_key(args)
     private = []
     try:  # the course's solutions stay out of the sandbox wherever the course is
         private.append(_course(args) / "solutions")
@@ -294,7 +309,7 @@ def _grade(args: argparse.Namespace) -> int:
             jobs=args.jobs,
             timeout_cell=args.timeout_cell,
             timeout_total=args.timeout_total,
-            seed=args.seed,
+            secret=key,
             exercises=names,
             progress=progress,
             sandbox=box,
@@ -308,6 +323,33 @@ def _grade(args: argparse.Namespace) -> int:
     for w in tampered:
         print(f"WARNING: {w.message}", file=sys.stderr)
     return 3 if tampered else 0
+
+
+def _grading_key(args: argparse.Namespace) -> Any:
+    """The key of the hidden inputs: ``--seed N``'s public one, else the key file (``--secret``, else the course's)."""
+    from .grading.secret import SECRET_FILE, from_seed, load_secret
+
+    if args.seed is not None:
+        if args.secret is not None:
+            raise ValueError(f"seed: expected either --secret FILE or --seed N, got both (--seed {args.seed})")
+        print(
+            f"hidden inputs: from the public seed {args.seed} (anyone who knows it can rebuild them)", file=sys.stderr
+        )
+        return from_seed(args.seed)
+    path = args.secret
+    if path is None:
+        try:
+            path = _course(args) / SECRET_FILE
+        except CourseNotFoundError:
+            path = Path.cwd() / SECRET_FILE
+    new = not path.exists()
+    key = load_secret(path)
+    print(
+        f"hidden inputs: each student's own, from the key {'created in' if new else 'in'} {path} "
+        f"(fingerprint {key.fingerprint}; keep this file: the same file regrades identically)",
+        file=sys.stderr,
+    )
+    return key
 
 
 def _notebook(args: argparse.Namespace) -> Path:

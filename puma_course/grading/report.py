@@ -112,7 +112,7 @@ def format_check_report(result: NotebookResult, exercise: Exercise) -> str:
 
 
 def feedback_markdown(
-    student: str, results: Sequence[NotebookResult], seed: int, unsandboxed: str | None = None
+    student: str, results: Sequence[NotebookResult], seed: int | None = None, unsandboxed: str | None = None
 ) -> str:
     """One student's feedback file: per exercise the status, the score, one table row per question, hints.
 
@@ -125,6 +125,7 @@ def feedback_markdown(
     '# Feedback for `x\\\\x0a# Total: 56 / 56`'
     """
     lines = [f"# Feedback for {quoted(student, 120)}", ""]
+    del seed  # accepted for compatibility, never printed: a printed seed let a student rebuild the hidden inputs
     if unsandboxed is not None:
         lines += [
             "> **Warning: graded without the operating-system sandbox** "
@@ -140,7 +141,8 @@ def feedback_markdown(
         lines += [
             f"## {r.exercise}: {ex.title}",
             "",
-            f"Status: `{r.status}`. Score: **{r.score:g} / {r.max_score:g}**.",
+            f"Status: `{r.status}`. Score: **{r.score:g} / {r.max_score:g}**."
+            + (f" Run id: `{r.run_id}`." if r.run_id else ""),
             "",
         ]
         for note in r.notes:
@@ -158,7 +160,11 @@ def feedback_markdown(
         if failing:
             lines += ["", "Hints:"] + [f"- {q.qid}: {q.hint}" for q in failing]
         lines.append("")
-    lines += ["", f"Hidden inputs were drawn with seed {seed}."]
+    lines += [
+        "",
+        "Your hidden inputs were drawn for you alone, from a key your instructor keeps; the run id names them, "
+        "so your instructor can repeat your grading exactly.",
+    ]
     return "\n".join(lines) + "\n"
 
 
@@ -186,7 +192,10 @@ def _replace_atomically(path: Path, text: str) -> None:
 
 
 def write_feedback(
-    folder: str | os.PathLike[str], results: Sequence[NotebookResult], seed: int, unsandboxed: str | None = None
+    folder: str | os.PathLike[str],
+    results: Sequence[NotebookResult],
+    seed: int | None = None,
+    unsandboxed: str | None = None,
 ) -> dict[str, Path]:
     """One Markdown file per student in ``folder`` (created); returns the file of each student."""
     out = Path(folder)
@@ -208,7 +217,11 @@ def write_feedback(
 
 
 def csv_rows(
-    results: Sequence[NotebookResult], names: Sequence[str], seed: int | None = None, sandbox: str = ""
+    results: Sequence[NotebookResult],
+    names: Sequence[str],
+    seed: int | None = None,
+    sandbox: str = "",
+    secret: str = "",
 ) -> list[list[str]]:
     """The CSV's rows, header first (see :func:`write_csv`)."""
     qids: list[str] = []
@@ -216,13 +229,14 @@ def csv_rows(
         for q in EXERCISES[name].questions:
             if q.qid not in qids:
                 qids.append(q.qid)
-    rows = [["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "seed", "notes"]]
+    head = ["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "seed", "secret", "run"]
+    rows = [[*head, "notes"]]
     for r in results:
         ex = EXERCISES.get(r.exercise)
         bonus = sum(r.scores.get(q.qid, 0.0) for q in ex.questions if q.bonus) if ex is not None else 0.0
         row = [csv_safe(r.student), r.exercise, f"{r.score:g}", f"{r.max_score:g}", f"{round(bonus, 2):g}"]
         row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
-        row += [r.status, sandbox, "" if seed is None else str(seed)]
+        row += [r.status, sandbox, "" if seed is None else str(seed), secret, r.run_id]
         row.append(csv_safe(one_line(" | ".join(r.notes), 500)))
         rows.append(row)
     return rows
@@ -235,13 +249,16 @@ def write_csv(
     *,
     seed: int | None = None,
     sandbox: str = "",
+    secret: str = "",
 ) -> None:
     """Write the grades: student, exercise, score, max_score, bonus, one column per question id, status,
-    sandbox, seed, notes.
+    sandbox, seed, secret, run, notes.
 
     ``bonus`` is the part of the score that bonus questions earned (it counts in ``score``, not in
-    ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none") and ``seed`` which
-    hidden inputs they got. A text cell that a spreadsheet would read as a formula starts with
+    ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none"); ``secret`` is the
+    fingerprint of the key the hidden inputs were drawn from, ``run`` each notebook's run id, and
+    ``seed`` the public seed when one stood for the key (empty otherwise): with the same key file,
+    ``grade`` draws the same inputs again. A text cell that a spreadsheet would read as a formula starts with
     ``'``. The file is written under a fresh temporary name and moved into place, so it appears
     whole or not at all.
     """
@@ -249,5 +266,5 @@ def write_csv(
     if out.parent and not out.parent.exists():
         out.parent.mkdir(parents=True, exist_ok=True)
     buffer = io.StringIO()
-    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox))
+    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, secret))
     _replace_atomically(out, buffer.getvalue())

@@ -20,7 +20,6 @@ import contextlib
 import copy
 import json
 import os
-import secrets
 import sys
 import tempfile
 import time
@@ -36,6 +35,7 @@ from . import child, events
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
 from .sandbox import Sandbox, child_env, choose
+from .secret import Secret, from_seed, load_secret, one_off
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, read_path, read_student, scan
 from .text import quoted
@@ -80,11 +80,15 @@ def _jsonable(value: Any) -> Any:
     return value
 
 
-def make_plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
+def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> list[dict[str, Any]]:
     """Every call to make (public + hidden cases) with its expected value, computed here.
 
-    Each question draws its hidden inputs from its own generator, seeded by ``seed`` and the
-    question's name, so adding a question does not change the others' inputs.
+    Each question draws its hidden inputs from its own generator, so adding a question does not
+    change the others' inputs. With a :class:`~.secret.Secret` (what :func:`grade` uses) the
+    generator is seeded with HMAC-SHA256 of (``student``, exercise, question) under the key: every
+    student gets hidden inputs of their own, which nobody without the key can compute. With an
+    integer, every student gets the same ones, from ``seed`` and the question's name (the self-check
+    and ``puma-course check``, which run the public cases).
 
     >>> from puma_course.grading import EXERCISES
     >>> calls = make_plan(EXERCISES["ex01_rotations"], seed=1)
@@ -97,7 +101,10 @@ def make_plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
     """
     calls = []
     for q in exercise.questions:
-        rng = np.random.default_rng([seed, zlib.crc32(f"{exercise.name}:{q.qid}".encode())])
+        if isinstance(seed, Secret):
+            rng = np.random.default_rng(seed.case_seed(student, exercise.name, q.qid))
+        else:
+            rng = np.random.default_rng([seed, zlib.crc32(f"{exercise.name}:{q.qid}".encode())])
         for case, args in enumerate(q.cases(rng)):
             expected = q.reference(*copy.deepcopy(args))
             if not callable(expected):
@@ -220,7 +227,7 @@ def grade_notebook(
     path: str | os.PathLike[str] | None,
     exercise: Exercise,
     student: str = "",
-    seed: int = 0,
+    seed: int | Secret = 0,
     timeout_cell: float = 10.0,
     timeout_total: float = 60.0,
     plan: list[dict[str, Any]] | None = None,
@@ -244,7 +251,7 @@ def grade_notebook(
             return NotebookResult.blank(student, exercise, nb.state, nb.note)
         data = nb.data
     box = _box(sandbox)
-    calls = make_plan(exercise, seed) if plan is None else plan
+    calls = make_plan(exercise, seed, student) if plan is None else plan
     with Stage([exercise]) as stage:
         return _grade_data(
             data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
@@ -282,6 +289,18 @@ def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[
         _positive(key, value)
 
 
+def _key(secret: Secret | str | os.PathLike[str] | None, seed: int | None) -> Secret:
+    """The run's grading key: ``secret`` (a key, or its file, created there if absent), else the public ``seed``'s,
+    else a one-off key."""
+    if secret is not None and seed is not None:
+        raise ValueError(f"seed: expected either a secret or a seed, got both (seed {seed!r})")
+    if isinstance(secret, Secret):
+        return secret
+    if secret is not None:
+        return load_secret(secret)
+    return one_off() if seed is None else from_seed(int(seed))
+
+
 def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
     return NotebookResult.blank(student, ex, state if state != "read" else "grader-error", note)
 
@@ -300,6 +319,7 @@ def grade(
     sandbox: str | Sandbox = "auto",
     timeout_student: float = 120.0,
     private: Sequence[str | os.PathLike[str]] = (),
+    secret: Secret | str | os.PathLike[str] | None = None,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
@@ -308,13 +328,20 @@ def grade(
     none with a :class:`SandboxWarning`), "bwrap", "none", or a :class:`~.sandbox.Sandbox` chosen
     earlier; ``timeout_student`` caps the time of all of a student's notebooks together;
     ``private`` names more folders the sandbox must hide (the course's ``solutions/``, say).
+
+    Each student's hidden inputs are drawn from ``secret`` (a :class:`~.secret.Secret`, or the path
+    of the instructor's key file, created there on first use) with the student's and the exercise's
+    names (:func:`make_plan`): no two students share one, and regrading with the same key gives the
+    same inputs and grades. ``seed`` instead stands for a public key (demonstrations and tests:
+    anyone who knows it can rebuild the inputs); with neither, the key is a fresh one-off. The CSV
+    keeps the key's fingerprint and each notebook's run id; the feedback shows the run id only.
     Returns the results (sorted by student, exercise).
     """
     sub_dir = Path(submissions)
     names = list(exercises) if exercises else list(EXERCISES)
     times = {"timeout_cell": timeout_cell, "timeout_total": timeout_total, "timeout_student": timeout_student}
     _check_args(sub_dir, names, jobs, times)
-    seed = secrets.randbits(31) if seed is None else int(seed)
+    key = _key(secret, seed)
     box = _box(sandbox)
     if box.kind != "bwrap":
         warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
@@ -322,10 +349,12 @@ def grade(
         students = scan(sub_dir)
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
-    plans = {name: make_plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
+    # every expected value, each student's own, before any child runs
+    plans = {(s.name, name): make_plan(EXERCISES[name], key, s.name) for s in students for name in names}
     package_before = _package_digest()
     hidden = [_PACKAGE_DIR, PACKAGE_PARENT / "solutions", sub_dir, Path(output), *(Path(p) for p in private)]
     hidden += [Path(feedback)] if feedback is not None else []
+    hidden += [Path(key.source)] if key.seed is None and key.source not in ("", "one-off") else []
     with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
         hidden.append(stage.root)
         pre: dict[str, StudentFiles] = {}
@@ -364,12 +393,13 @@ def grade(
                         limit = min(timeout_total, left)
                         note = _stop_note(limit, limit < timeout_total)
                         res = _grade_data(
-                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden
+                            nb.data, ex, s.name, plans[s.name, name], stage, box, timeout_cell, limit, note, hidden
                         )
                 except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
                     why = f"{type(exc).__name__}: {exc}"[:300]
                     res = _blank(s.name, ex, "grader-error", f"the grader failed on this notebook: {why}")
                 nb.data = None
+                res.run_id = key.run_id(s.name, name)
                 out.append(res)
                 if progress is not None:
                     progress(res)
@@ -391,7 +421,7 @@ def grade(
             GradingIntegrityWarning,
             stacklevel=2,
         )
-    write_csv(output, results, names, seed=seed, sandbox=box.label)
+    write_csv(output, results, names, seed=key.seed, sandbox=box.label, secret=key.fingerprint)
     if feedback is not None:
-        write_feedback(feedback, results, seed, unsandboxed=box.reason if box.kind != "bwrap" else None)
+        write_feedback(feedback, results, unsandboxed=box.reason if box.kind != "bwrap" else None)
     return results
