@@ -175,23 +175,31 @@ def _absent_globals(module: str, is_package: bool, tree: ast.Module, absent: fro
 
 
 def _member_refs(stmt: ast.stmt, class_name: str) -> tuple[set[str], set[str]]:
-    """(names a member reads, attributes it reads on ``self``, ``cls`` or its own class)."""
-    names, attrs = set(), set()
+    """(global names a member reads, attributes it reads on ``self``, ``cls`` or its own class).
+
+    A name the member binds itself (an argument, an assignment) is its own, not a global.
+    """
+    names, attrs, own = set(), set(), set()
     for node in ast.walk(stmt):
         if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
             names.add(node.id)
+        elif isinstance(node, ast.Name):
+            own.add(node.id)
+        elif isinstance(node, ast.arg):
+            own.add(node.arg)
         elif isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):
             if node.value.id in ("self", "cls", class_name):
                 attrs.add(node.attr)
-    return names, attrs
+    return names - own, attrs
 
 
 def _strip_members(module: str, is_package: bool, tree: ast.Module, absent: frozenset[str]) -> str | None:
     """The module's source with the answer members of its classes replaced by :data:`ABSENT_MEMBER` (None: none).
 
     A class loses the members named in ``absent`` (``"module:Class.member"``), every member that reads a
-    module-level answer (a name of ``absent``) or a removed member of its own class, and then its private
-    members (``_name``) that no remaining member of the class reads: what computes an answer is not there.
+    module-level answer (a name of ``absent``) or a removed member of its own class, and then the private
+    members (``_name``) that removed members read and no remaining member does: what computes an answer
+    is not there.
     """
     answers = _absent_globals(module, is_package, tree, absent)
     changed = False
@@ -212,12 +220,13 @@ def _strip_members(module: str, is_package: bool, tree: ast.Module, absent: froz
         if not drop:
             continue
         more = True
-        while more:  # private helpers that only removed members used
+        while more:  # private helpers of removed members that no remaining member uses
             more = False
             used = set().union(*(refs[n][1] for n in members if n not in drop))
+            helpers = set().union(*(refs[n][1] for n in drop if n in refs))
             for n in members:
                 private = n.startswith("_") and not (n.startswith("__") and n.endswith("__"))
-                if private and n not in drop and n not in used:
+                if private and n in helpers and n not in drop and n not in used:
                     drop.add(n)
                     more = True
         body: list[ast.stmt] = []
