@@ -6,6 +6,8 @@
                       [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--secret FILE | --seed N]
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
+    puma-course grade ... [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
+    puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (see :mod:`puma_course.cli_platform`)
 
 Every command works on the course it is run in: the nearest folder, at or above the current
 one, that holds ``solutions/`` or ``notebooks/`` (:mod:`puma_course.course`), or the folder named
@@ -28,6 +30,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from .cli_platform import add_grade_arguments, add_gradescope_parser, collect_or_explain, gradescope, write_gradebooks
 from .course import INDEX, CourseNotFoundError, course_root
 
 __all__ = ["main", "build_parser", "lab_command"]
@@ -127,23 +130,8 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="S",
         help="seconds for all of one student's notebooks together (default 120)",
     )
-    gr.add_argument(
-        "--secret",
-        type=Path,
-        default=None,
-        metavar="FILE",
-        help="the instructor's key file every student's hidden inputs are drawn from, each student's their own "
-        "(default: .grading-secret in the course folder, created on first use, readable by you only); keep it "
-        "and never hand it out: the same file regrades identically",
-    )
-    gr.add_argument(
-        "--seed",
-        type=int,
-        default=None,
-        metavar="N",
-        help="a public seed instead of the key file, for demonstrations and tests: anyone who knows N can "
-        "rebuild every hidden input",
-    )
+    gr.add_argument("--secret", type=Path, default=None, metavar="FILE", help="key file (default: .grading-secret)")
+    gr.add_argument("--seed", type=int, default=None, metavar="N", help="a public key instead (demonstrations, tests)")
     gr.add_argument(
         "--sandbox",
         choices=("auto", "bwrap", "none"),
@@ -159,6 +147,8 @@ def build_parser() -> argparse.ArgumentParser:
         help="grade only this exercise (repeatable; default: every exercise in the course's exercises/)",
     )
     gr.add_argument("--quiet", action="store_true", help="no progress lines")
+    add_grade_arguments(gr)
+    add_gradescope_parser(sub, course)
 
     ck = sub.add_parser("check", parents=[course], help="grade your own notebook on the public cases")
     ck.add_argument(
@@ -266,15 +256,20 @@ def _grade(args: argparse.Namespace) -> int:
 
     from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
     from .grading.sandbox import choose
+    from .grading.secret import command_key
     from .grading.summary import write_summary
 
     names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
-    key = _grading_key(args)
-    private = []
+    collected, found = collect_or_explain(args, names)
+    if not found:
+        return 2
     try:  # the course's solutions stay out of the sandbox wherever the course is
-        private.append(_course(args) / "solutions")
+        course: Path | None = _course(args)
     except CourseNotFoundError:
-        pass
+        course = None
+    private = [] if course is None else [course / "solutions"]
+    key, said = command_key(args.secret, args.seed, course or Path.cwd())  # each student's hidden inputs
+    print(said, file=sys.stderr)
     box = choose(args.sandbox)
     if box.kind == "bwrap":
         print(f"sandbox: bubblewrap ({box.binary})", file=sys.stderr)
@@ -315,41 +310,16 @@ def _grade(args: argparse.Namespace) -> int:
             sandbox=box,
             timeout_student=args.timeout_student,
             private=private,
+            collected=collected,
         )
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")
-    print(write_summary(results, args.output)[1])
+    print(write_summary(results, args.output, unmatched=collected.problems if collected else ())[1])
+    write_gradebooks(args, results, names, collected)
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
         print(f"WARNING: {w.message}", file=sys.stderr)
     return 3 if tampered else 0
-
-
-def _grading_key(args: argparse.Namespace) -> Any:
-    """The key of the hidden inputs: ``--seed N``'s public one, else the key file (``--secret``, else the course's)."""
-    from .grading.secret import SECRET_FILE, from_seed, load_secret
-
-    if args.seed is not None:
-        if args.secret is not None:
-            raise ValueError(f"seed: expected either --secret FILE or --seed N, got both (--seed {args.seed})")
-        print(
-            f"hidden inputs: from the public seed {args.seed} (anyone who knows it can rebuild them)", file=sys.stderr
-        )
-        return from_seed(args.seed)
-    path = args.secret
-    if path is None:
-        try:
-            path = _course(args) / SECRET_FILE
-        except CourseNotFoundError:
-            path = Path.cwd() / SECRET_FILE
-    new = not path.exists()
-    key = load_secret(path)
-    print(
-        f"hidden inputs: each student's own, from the key {'created in' if new else 'in'} {path} "
-        f"(fingerprint {key.fingerprint}; keep this file: the same file regrades identically)",
-        file=sys.stderr,
-    )
-    return key
 
 
 def _notebook(args: argparse.Namespace) -> Path:
@@ -423,7 +393,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     if extra and args.command != "lab":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.jupyter_args = extra
-    handlers = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
+    handlers: dict[str, Any] = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
+    handlers["gradescope"] = lambda a: gradescope(a, _course(a))
     try:
         return handlers[args.command](args)
     except CourseNotFoundError as exc:

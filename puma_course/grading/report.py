@@ -19,7 +19,7 @@ import io
 import os
 import re
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from pathlib import Path
 
 from .model import EXERCISES, Exercise, NotebookResult, Question
@@ -222,6 +222,7 @@ def csv_rows(
     seed: int | None = None,
     sandbox: str = "",
     secret: str = "",
+    late: Collection[tuple[str, str]] | None = None,
 ) -> list[list[str]]:
     """The CSV's rows, header first (see :func:`write_csv`)."""
     qids: list[str] = []
@@ -231,6 +232,8 @@ def csv_rows(
                 qids.append(q.qid)
     head = ["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "seed", "secret", "run"]
     rows = [[*head, "notes"]]
+    if late is not None:
+        rows[0].append("late")
     for r in results:
         ex = EXERCISES.get(r.exercise)
         bonus = sum(r.scores.get(q.qid, 0.0) for q in ex.questions if q.bonus) if ex is not None else 0.0
@@ -238,6 +241,8 @@ def csv_rows(
         row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
         row += [r.status, sandbox, "" if seed is None else str(seed), secret, r.run_id]
         row.append(csv_safe(one_line(" | ".join(r.notes), 500)))
+        if late is not None:
+            row.append("late" if (r.student, r.exercise) in late else "")
         rows.append(row)
     return rows
 
@@ -250,6 +255,7 @@ def write_csv(
     seed: int | None = None,
     sandbox: str = "",
     secret: str = "",
+    late: Collection[tuple[str, str]] | None = None,
 ) -> None:
     """Write the grades: student, exercise, score, max_score, bonus, one column per question id, status,
     sandbox, seed, secret, run, notes.
@@ -258,13 +264,14 @@ def write_csv(
     ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none"); ``secret`` is the
     fingerprint of the key the hidden inputs were drawn from, ``run`` each notebook's run id, and
     ``seed`` the public seed when one stood for the key (empty otherwise): with the same key file,
-    ``grade`` draws the same inputs again. A text cell that a spreadsheet would read as a formula starts with
-    ``'``. The file is written under a fresh temporary name and moved into place, so it appears
-    whole or not at all.
+    ``grade`` draws the same inputs again. With ``late`` (the (student, exercise) pairs a platform
+    marked late), a last column ``late`` says "late" for those. A text cell that a spreadsheet would
+    read as a formula starts with ``'``. The file is written under a fresh temporary name and moved
+    into place, so it appears whole or not at all.
     """
     out = Path(output)
     if out.parent and not out.parent.exists():
         out.parent.mkdir(parents=True, exist_ok=True)
     buffer = io.StringIO()
-    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, secret))
+    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, secret, late))
     _replace_atomically(out, buffer.getvalue())

@@ -32,12 +32,13 @@ from typing import Any
 import numpy as np
 
 from . import child, events
+from .collect import Collected
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
 from .sandbox import Sandbox, child_env, choose
-from .secret import Secret, from_seed, load_secret, one_off
+from .secret import Secret, choose_key
 from .stage import Stage
-from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, read_path, read_student, scan
+from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
 from .text import quoted
 
 __all__ = [
@@ -83,12 +84,10 @@ def _jsonable(value: Any) -> Any:
 def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> list[dict[str, Any]]:
     """Every call to make (public + hidden cases) with its expected value, computed here.
 
-    Each question draws its hidden inputs from its own generator, so adding a question does not
-    change the others' inputs. With a :class:`~.secret.Secret` (what :func:`grade` uses) the
-    generator is seeded with HMAC-SHA256 of (``student``, exercise, question) under the key: every
-    student gets hidden inputs of their own, which nobody without the key can compute. With an
-    integer, every student gets the same ones, from ``seed`` and the question's name (the self-check
-    and ``puma-course check``, which run the public cases).
+    Each question draws its hidden inputs from its own generator (adding a question does not change
+    the others'): with a :class:`~.secret.Secret` (:func:`grade`), seeded with HMAC-SHA256 of
+    (``student``, exercise, question) under the key, so each student's are their own and nobody
+    without the key can compute them; with an integer, everyone's, from ``seed`` and the question.
 
     >>> from puma_course.grading import EXERCISES
     >>> calls = make_plan(EXERCISES["ex01_rotations"], seed=1)
@@ -289,18 +288,6 @@ def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[
         _positive(key, value)
 
 
-def _key(secret: Secret | str | os.PathLike[str] | None, seed: int | None) -> Secret:
-    """The run's grading key: ``secret`` (a key, or its file, created there if absent), else the public ``seed``'s,
-    else a one-off key."""
-    if secret is not None and seed is not None:
-        raise ValueError(f"seed: expected either a secret or a seed, got both (seed {seed!r})")
-    if isinstance(secret, Secret):
-        return secret
-    if secret is not None:
-        return load_secret(secret)
-    return one_off() if seed is None else from_seed(int(seed))
-
-
 def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
     return NotebookResult.blank(student, ex, state if state != "read" else "grader-error", note)
 
@@ -320,6 +307,7 @@ def grade(
     timeout_student: float = 120.0,
     private: Sequence[str | os.PathLike[str]] = (),
     secret: Secret | str | os.PathLike[str] | None = None,
+    collected: Collected | None = None,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
@@ -329,24 +317,27 @@ def grade(
     earlier; ``timeout_student`` caps the time of all of a student's notebooks together;
     ``private`` names more folders the sandbox must hide (the course's ``solutions/``, say).
 
-    Each student's hidden inputs are drawn from ``secret`` (a :class:`~.secret.Secret`, or the path
-    of the instructor's key file, created there on first use) with the student's and the exercise's
-    names (:func:`make_plan`): no two students share one, and regrading with the same key gives the
-    same inputs and grades. ``seed`` instead stands for a public key (demonstrations and tests:
-    anyone who knows it can rebuild the inputs); with neither, the key is a fresh one-off. The CSV
-    keeps the key's fingerprint and each notebook's run id; the feedback shows the run id only.
-    Returns the results (sorted by student, exercise).
+    Each student's hidden inputs are their own, drawn from ``secret`` (a key, or the instructor's key
+    file; ``seed``: a public key; neither: a one-off key; :func:`~.secret.choose_key`, :func:`make_plan`).
+
+    ``collected`` is a platform's download read by :func:`~.collect.collect` (``submissions`` is then
+    its folder): its students are graded instead of the folder's sub-folders, and the CSV gains a
+    ``late`` column. Returns the results (sorted by student, exercise).
     """
     sub_dir = Path(submissions)
     names = list(exercises) if exercises else list(EXERCISES)
     times = {"timeout_cell": timeout_cell, "timeout_total": timeout_total, "timeout_student": timeout_student}
     _check_args(sub_dir, names, jobs, times)
-    key = _key(secret, seed)
+    key = choose_key(secret, seed)
     box = _box(sandbox)
     if box.kind != "bwrap":
         warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
+
+    def read(s: StudentFolder) -> StudentFiles:
+        return read_student(sub_dir, s, names) if collected is None else collected.read(s, names)
+
     try:
-        students = scan(sub_dir)
+        students = scan(sub_dir) if collected is None else collected.folders()
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     # every expected value, each student's own, before any child runs
@@ -363,14 +354,14 @@ def grade(
             # process cannot alter what is graded for a classmate it runs before
             used = 0
             for s in students:
-                files = read_student(sub_dir, s, names)
+                files = read(s)
                 used += sum(len(nb.data or b"") for nb in files.notebooks.values())
                 if used > PRE_READ_BYTES:
                     break
                 pre[s.raw] = files
 
-        def work(s: Any) -> list[NotebookResult]:
-            files = pre.pop(s.raw, None) or read_student(sub_dir, s, names)
+        def work(s: StudentFolder) -> list[NotebookResult]:
+            files = pre.pop(s.raw, None) or read(s)
             end = time.monotonic() + timeout_student
             out = []
             for name in names:
@@ -421,7 +412,8 @@ def grade(
             GradingIntegrityWarning,
             stacklevel=2,
         )
-    write_csv(output, results, names, seed=key.seed, sandbox=box.label, secret=key.fingerprint)
+    late = None if collected is None else collected.late()
+    write_csv(output, results, names, seed=key.seed, sandbox=box.label, secret=key.fingerprint, late=late)
     if feedback is not None:
         write_feedback(feedback, results, unsandboxed=box.reason if box.kind != "bwrap" else None)
     return results

@@ -28,7 +28,7 @@ import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Secret", "SECRET_FILE", "load_secret", "from_seed", "one_off"]
+__all__ = ["Secret", "SECRET_FILE", "load_secret", "from_seed", "one_off", "choose_key", "command_key"]
 
 #: The key file's name in the course folder.
 SECRET_FILE = ".grading-secret"
@@ -118,3 +118,32 @@ def load_secret(path: str | os.PathLike[str], create: bool = True) -> Secret:
     if os.name == "posix" and p.stat().st_mode & (stat.S_IRWXG | stat.S_IRWXO):
         os.chmod(p, 0o600)  # a key others can read is no secret: take their access away
     return Secret(key, str(p))
+
+
+def choose_key(secret: Secret | str | os.PathLike[str] | None, seed: int | None) -> Secret:
+    """A grading run's key: ``secret`` (a key, or its file, created there if absent), else the public
+    ``seed``'s, else a one-off key. ValueError when both are given."""
+    if secret is not None and seed is not None:
+        raise ValueError(f"seed: expected either a secret or a seed, got both (seed {seed!r})")
+    if isinstance(secret, Secret):
+        return secret
+    if secret is not None:
+        return load_secret(secret)
+    return one_off() if seed is None else from_seed(int(seed))
+
+
+def command_key(secret: Path | None, seed: int | None, course: Path) -> tuple[Secret, str]:
+    """``puma-course grade``'s key and the line it prints: ``--seed N``'s public key, else the key file
+    (``--secret FILE``, else ``course/.grading-secret``, created on first use)."""
+    if seed is not None:
+        if secret is not None:
+            raise ValueError(f"seed: expected either --secret FILE or --seed N, got both (--seed {seed})")
+        return from_seed(seed), f"hidden inputs: from the public seed {seed} (anyone who knows it can rebuild them)"
+    path = secret if secret is not None else course / SECRET_FILE
+    new = not path.exists()
+    key = load_secret(path)
+    where = "created in" if new else "in"
+    return key, (
+        f"hidden inputs: each student's own, from the key {where} {path} (fingerprint {key.fingerprint}; "
+        "keep this file: the same file regrades identically)"
+    )
