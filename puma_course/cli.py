@@ -3,7 +3,7 @@
     puma-course lab [--course DIR] [--no-browser] [--print-command] [JUPYTER-OPTIONS ...]
     puma-course release [--course DIR] [--solutions DIR] [--exercises DIR] [--check]
     puma-course grade SUBMISSIONS -o grades.csv [--course DIR] [--feedback DIR] [--jobs N]
-                      [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--seed N]
+                      [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--secret FILE | --seed N]
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
     puma-course grade ... [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
@@ -142,9 +142,8 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="S",
         help="seconds for all of one student's notebooks together (default 120)",
     )
-    gr.add_argument(
-        "--seed", type=int, default=None, metavar="N", help="seed of the hidden inputs (default: a fresh random one)"
-    )
+    gr.add_argument("--secret", type=Path, default=None, metavar="FILE", help="key file (default: .grading-secret)")
+    gr.add_argument("--seed", type=int, default=None, metavar="N", help="a public key instead (demonstrations, tests)")
     gr.add_argument(
         "--sandbox",
         choices=("auto", "bwrap", "none"),
@@ -257,16 +256,19 @@ def _grade(args: argparse.Namespace) -> int:
     from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
     from .grading.runner import LimitsWarning
     from .grading.sandbox import choose
+    from .grading.secret import command_key
     from .grading.summary import write_summary
 
     names, collected = choose_and_collect(args, _course(args), list(EXERCISES))
     if names is None:
         return 2
-    private = []
     try:  # the course's solutions stay out of the sandbox wherever the course is
-        private.append(_course(args) / "solutions")
+        course: Path | None = _course(args)
     except CourseNotFoundError:
-        pass
+        course = None
+    private = [] if course is None else [course / "solutions"]
+    key, said = command_key(args.secret, args.seed, course or Path.cwd())  # each student's hidden inputs
+    print(said, file=sys.stderr)
     box = choose(args.sandbox)
     if box.kind == "bwrap":
         print(f"sandbox: bubblewrap ({box.binary})", file=sys.stderr)
@@ -302,7 +304,7 @@ def _grade(args: argparse.Namespace) -> int:
             jobs=args.jobs,
             timeout_cell=args.timeout_cell,
             timeout_total=args.timeout_total,
-            seed=args.seed,
+            secret=key,
             exercises=names,
             progress=progress,
             sandbox=box,

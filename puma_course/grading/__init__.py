@@ -14,7 +14,8 @@ exercise), serves three jobs:
   submitted notebook in its own fresh process, inside an operating-system sandbox where one is
   available (:mod:`.sandbox`), with time and resource limits, against a student-side
   ``puma_course`` that holds only what the exercise allows (:mod:`.student`: no answer key
-  within reach); it calls the student's functions on inputs drawn at grading time (seeded), brings
+  within reach); it calls the student's functions on inputs drawn at grading time, each
+  student's own, from the instructor's secret key (:mod:`.secret`), brings
   back only the numbers they return, and compares them in the grader's process with the
   package's reference (:mod:`.compare`); :mod:`.report` writes the CSV and the feedback.
 

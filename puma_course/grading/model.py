@@ -149,6 +149,11 @@ class Exercise:
     allowed: tuple[str, ...] = ()
 
     @property
+    def answer_keys(self) -> tuple[str, ...]:
+        """Every question's ``forbidden`` names, once each, sorted: what the student side leaves out unless allowed."""
+        return tuple(sorted({spec for q in self.questions for spec in q.forbidden}))
+
+    @property
     def max_score(self) -> float:
         """The points of the questions that are not a bonus."""
         return float(sum(q.points for q in self.questions if not q.bonus))
@@ -190,6 +195,8 @@ class NotebookResult:
     seconds: float = 0.0
     #: qid -> the keys of the common mistakes diagnosed in its failing cases (one per case)
     mistakes: dict[str, list[str]] = field(default_factory=dict)
+    #: names this notebook's hidden inputs (:meth:`~puma_course.grading.secret.Secret.run_id`); "" outside a class run
+    run_id: str = ""
 
     @classmethod
     def blank(cls, student: str, exercise: Exercise, status: str = "ok", note: str | None = None) -> NotebookResult:

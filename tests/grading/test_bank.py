@@ -13,7 +13,7 @@ from puma_course.grading import EXERCISES, Exercise, Question, bank
 from puma_course.grading.bank import _formulas
 from puma_course.grading.bank._reference import chains, motion, porter_chain
 from puma_course.grading.model import register
-from puma_course.grading.runner import _jsonable
+from puma_course.grading.plan import _jsonable
 from puma_course.grading.worker import forbidden_codes, resolve
 from tests.support import ROOT
 
