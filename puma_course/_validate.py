@@ -261,11 +261,18 @@ def as_length(value: Any, name: str, *, positive: bool = False, what: str | None
     return x
 
 
-def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2) -> float:
-    """Return ``value`` as a tolerance: a finite number with 0 < tol <= ``upper``.
+def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2, lower: float = 0.0) -> float:
+    """Return ``value`` as a tolerance: a finite number with ``lower`` < tol <= ``upper`` (``lower`` = 0)
+    or ``lower`` <= tol <= ``upper``.
 
     A tolerance decides what counts as singular or equal; NaN, negative or huge values would
-    silently switch those decisions off or on for every input, so they are refused.
+    silently switch those decisions off or on for every input, so they are refused; so is a
+    tolerance below ``lower``, what float64 rounding of the quantity it is compared with can honour.
+
+    >>> as_tol(1e-16, lower=1e-12)
+    Traceback (most recent call last):
+    ...
+    ValueError: tol: expected a tolerance with 1e-12 <= tol <= 0.01 (float64 cannot honour less), got 1e-16
 
     >>> as_tol(1e-9)
     1e-09
@@ -274,11 +281,15 @@ def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2) -> float:
     ...
     ValueError: tol: expected finite numbers, got NaN or infinity in inf
     """
-    if type(value) is float and 0.0 < value <= upper:
+    if type(value) is float and 0.0 < value <= upper and value >= lower:
         return value  # the common case, checked in plain floats
     x = float(as_array(value, name, (), what=f"a small positive tolerance (0 < {name} <= {upper:g})"))
     if not 0.0 < x <= upper:
         raise ValueError(f"{name}: expected a small positive tolerance (0 < {name} <= {upper:g}), got {x:g}")
+    if x < lower:
+        raise ValueError(
+            f"{name}: expected a tolerance with {lower:g} <= {name} <= {upper:g} (float64 cannot honour less), got {x:g}"
+        )
     return x
 
 

@@ -1,0 +1,127 @@
+"""Issue 21, the kinematics at every edge: snaps keep the pose, a near-threshold pose keeps the start
+configuration (with ``near=``), ``ik`` and ``ik_batch`` agree on both sides of every threshold, tolerances
+cannot switch the singularity logic into wrong answers, and extreme sizes are refused or answered right.
+
+The truth is always the forward kinematics (an independent product of link matrices for the PUMA:
+:meth:`DHChain.fk`), never the solver's own output."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from puma_course.kinematics import DHChain, Puma560
+
+ANGLES = st.floats(-3.1, 3.1, allow_nan=False)
+NEAR_ZERO = st.sampled_from([0.0, 1e-12, -1e-12, 1e-9, -1e-9, 5e-8, -5e-8, 1e-7, -1e-7, 2e-7, -2e-7, 1e-6])
+
+
+def _size(arm: Puma560) -> float:
+    a2, a3, d3, d4 = arm.lengths.values()
+    return a2 + math.hypot(a3, d4) + abs(d3)
+
+
+def _pose_error(arm: Puma560, rows, T) -> float:
+    """Largest entry error of the poses the rows reach, through the generic product of link matrices."""
+    rows = np.asarray(rows, dtype=float).reshape(-1, 6)
+    if not len(rows):
+        return 0.0
+    return float(np.abs(DHChain.fk(arm, rows) - T).max())
+
+
+def _wrapped(a):
+    return np.abs(np.arctan2(np.sin(a), np.cos(a)))
+
+
+def _check_pose_start_and_batch(arm: Puma560, q, tol: float = 1e-7, start_tol: float = 1e-6) -> None:
+    T = arm.fk(q)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = arm.ik(T, near=q, tol=tol)
+        batch = arm.ik_batch(T[None], near=q[None], tol=tol)
+    assert sol.success
+    rows = np.array(list(sol))
+    assert _pose_error(arm, rows, T) <= 1e-9 * _size(arm)
+    assert _wrapped(rows - q).max(axis=1).min() <= start_tol  # the start configuration is among them
+    brows = batch.q[0][batch.valid[0]]
+    assert len(brows) == len(rows)  # ik and ik_batch: the same count on both sides of every threshold
+    for r in rows:  # ... and the same rows
+        assert _wrapped(brows - r).max(axis=1).min() <= 1e-12
+
+
+@settings(derandomize=True, max_examples=3000, deadline=None)
+@given(st.lists(ANGLES, min_size=6, max_size=6), NEAR_ZERO, st.sampled_from([1e-7, 1e-12, 1e-3]))
+def test_puma_wrist_near_and_at_theta5_zero_keeps_the_pose_at_any_tol(q, t5, tol):
+    # issue 21: tol=1e-16 gave pose errors 0.17-1.9 at θ5 = 0; the snap moved the hand up to 1e-7;
+    # ik and ik_batch counted differently at θ5 = -1e-7
+    q = np.array(q)
+    q[4] = t5
+    _check_pose_start_and_batch(Puma560(), q, tol)
+
+
+@settings(derandomize=True, max_examples=3000, deadline=None)
+@given(st.lists(ANGLES, min_size=6, max_size=6), NEAR_ZERO)
+def test_puma_elbow_near_stretched_keeps_the_pose_and_the_start(q, dt3):
+    arm = Puma560()
+    a2, a3, d3, d4 = arm.lengths.values()
+    q = np.array(q)
+    q[2] = math.atan2(a3, d4) - math.pi / 2 + dt3  # S3 = 0 at dt3 = 0 (arm stretched)
+    q[4] = math.copysign(min(max(abs(q[4]), 0.01), 3.13), q[4])  # the compound case is the wrist test's
+    # within the elbow snap (S3 < 1e-7 size) θ3 is exactly the stretched angle, up to ~2e-7 rad from the
+    # start; the wrist takes up that difference amplified by 1 / sin θ5: the start is that near
+    _check_pose_start_and_batch(arm, q, start_tol=1e-6 + 4e-7 / abs(math.sin(q[4])))
+
+
+def _on_axis_theta2(arm: Puma560, t3: float) -> float:
+    """θ2 putting the wrist centre of a d3 = 0 arm on the base axis (reach X = 0), by bisection."""
+    a2, a3, _, d4 = arm.lengths.values()
+
+    def reach(t2: float) -> float:
+        return a2 * math.cos(t2) + a3 * math.cos(t2 + t3) - d4 * math.sin(t2 + t3)
+
+    lo, hi = -math.pi, 0.0
+    grid = np.linspace(lo, hi, 64)
+    vals = [reach(g) for g in grid]
+    for g0, g1, v0, v1 in zip(grid[:-1], grid[1:], vals[:-1], vals[1:], strict=True):
+        if v0 * v1 <= 0:
+            lo, hi = g0, g1
+            break
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if (reach(lo) <= 0) == (reach(mid) <= 0):
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+@settings(derandomize=True, max_examples=1000, deadline=None)
+@given(st.lists(ANGLES, min_size=6, max_size=6), st.sampled_from([0.0, 1e-12, -1e-12, 1e-9, 5e-8, -5e-8, 2e-7]))
+def test_puma_d3_zero_wrist_near_the_base_axis_keeps_the_pose(q, dt2):
+    # issue 21: Puma560(d3=0) snapped a wrist 5e-8 m from the base axis onto it (error 4.6e-8 m)
+    arm = Puma560(d3=0.0)
+    q = np.array(q)
+    q[2] = min(max(q[2], -2.5), 0.5)
+    q[1] = _on_axis_theta2(arm, q[2]) + dt2
+    _check_pose_start_and_batch(arm, q)
+
+
+@pytest.mark.parametrize("tol", [1e-16, 1e-13, 0.0, -1e-7])
+def test_puma_refuses_a_tolerance_float64_cannot_honour(tol):
+    # issue 21: tol=1e-16 switched the wrist singularity off and answered wrongly with success=True
+    arm = Puma560()
+    T = arm.fk(np.zeros(6))
+    for f in (arm.ik, arm.ik_batch):
+        with pytest.raises(ValueError, match=r"tol: .*1e-12 <= tol <= 0.01.*got|tol: expected a small positive"):
+            f(T, tol=tol)
+
+
+def test_puma_accepts_the_smallest_honoured_tolerance():
+    arm = Puma560()
+    q = np.array([0.3, -0.4, 0.2, 1.0, 0.0, 0.5])
+    _check_pose_start_and_batch(arm, q, tol=1e-12)
