@@ -287,9 +287,8 @@ def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2, lower: float =
     if not 0.0 < x <= upper:
         raise ValueError(f"{name}: expected a small positive tolerance (0 < {name} <= {upper:g}), got {x:g}")
     if x < lower:
-        raise ValueError(
-            f"{name}: expected a tolerance with {lower:g} <= {name} <= {upper:g} (float64 cannot honour less), got {x:g}"
-        )
+        why = "float64 cannot honour less"
+        raise ValueError(f"{name}: expected a tolerance with {lower:g} <= {name} <= {upper:g} ({why}), got {x:g}")
     return x
 
 
