@@ -125,3 +125,64 @@ def test_puma_accepts_the_smallest_honoured_tolerance():
     arm = Puma560()
     q = np.array([0.3, -0.4, 0.2, 1.0, 0.0, 0.5])
     _check_pose_start_and_batch(arm, q, tol=1e-12)
+
+
+# ---------------------------------------------------------------------------------------------------- MK3
+def _mk3_wrist_near_axis_configs(n: int, seed: int) -> np.ndarray:
+    """Configurations of the MK3 whose wrist point is 1e-7..1e-4 mm from the base axis (θ2 by bisection)."""
+    from puma_course.kinematics import MK3
+
+    d1, a1, a2, a3, d5 = MK3().lengths.values()
+    rng = np.random.default_rng(seed)
+    out = []
+    while len(out) < n:
+        q = rng.uniform(-3, 3, 5)
+        e = 10 ** rng.uniform(-7, -4) * rng.choice([-1, 1])
+
+        def f(t2: float, q=q, e=e) -> float:
+            return a1 + a2 * math.cos(t2) + a3 * math.cos(t2 + q[2]) - e
+
+        g = np.linspace(-math.pi, math.pi, 400)
+        v = [f(t) for t in g]
+        idx = [i for i in range(399) if v[i] * v[i + 1] <= 0]
+        if not idx:
+            continue
+        lo, hi = g[idx[0]], g[idx[0] + 1]
+        for _ in range(100):
+            mid = 0.5 * (lo + hi)
+            if (f(lo) <= 0) == (f(mid) <= 0):
+                lo = mid
+            else:
+                hi = mid
+        q[1] = 0.5 * (lo + hi)
+        out.append(q)
+    return np.array(out)
+
+
+def test_mk3_reaches_poses_with_the_wrist_point_microns_from_the_base_axis():
+    # issue 21: up to 191 of 200 such poses were called "out of the arm plane"
+    from puma_course.kinematics import MK3
+
+    arm = MK3()
+    size = sum(abs(v) for v in arm.lengths.values())
+    Q = _mk3_wrist_near_axis_configs(200, seed=21)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for q in Q:
+            T = arm.fk(q)
+            sol = arm.ik(T, near=q)
+            assert sol.success, sol.reason
+            assert max(np.abs(DHChain.fk(arm, r) - T).max() for r in sol) <= 1e-9 * size
+            assert _wrapped(np.array(list(sol)) - q).max(axis=1).min() <= 1e-6
+        b = arm.ik_batch(arm.fk(Q), near=Q)
+    assert b.reachable.all()
+
+
+@pytest.mark.parametrize("tol", [1e-16, 1e-13])
+def test_mk3_refuses_a_tolerance_float64_cannot_honour(tol):
+    # issue 21: MK3.ik(fk(q), tol=1e-16) refused 37 of 200 reachable poses
+    from puma_course.kinematics import MK3
+
+    arm = MK3()
+    with pytest.raises(ValueError, match=r"tol: expected a tolerance with 1e-12 <= tol <= 0.01 .*got 1e-1"):
+        arm.ik(arm.fk(np.zeros(5)), tol=tol)
