@@ -186,3 +186,74 @@ def test_mk3_refuses_a_tolerance_float64_cannot_honour(tol):
     arm = MK3()
     with pytest.raises(ValueError, match=r"tol: expected a tolerance with 1e-12 <= tol <= 0.01 .*got 1e-1"):
         arm.ik(arm.fk(np.zeros(5)), tol=tol)
+
+
+# ---------------------------------------------------------------------------------------------------- BLAS
+_PORTER_PARALLEL = """
+import sys, warnings
+import numpy as np
+from puma_course.kinematics import Porter
+warnings.simplefilter("ignore")
+arm = Porter()
+rng = np.random.default_rng(21)
+out = []
+for k in range(60):
+    q = rng.uniform(-3, 3, 6); q[2] = abs(q[2]) + 0.2; q[4] = np.pi / 2 * rng.choice([1, 3])
+    near = q + rng.normal(0, 0.3, 6); near[2] = abs(near[2])
+    sol = arm.ik(arm.fk(q), near=near)
+    out.extend(float(v).hex() for r in sol for v in r)
+print(" ".join(out))
+"""
+
+
+def test_porter_ik_near_at_parallel_planes_is_bit_identical_under_two_openblas_kernels():
+    # issue 21: Porter's ik(near) at c4 = 0 differed by up to 1.3e-8 between Haswell and Prescott
+    # (families.nearest_parallel used `@` and np.linalg.norm). Both of CI's kernels, in subprocesses,
+    # so that this test catches it in either pass.
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    sys.path.insert(0, str(root / ".ci"))
+    try:
+        from openblas_kernels import kernels
+    finally:
+        sys.path.pop(0)
+    k1, k2 = kernels()
+    if not k1 or k1 == k2:
+        pytest.skip("no two OpenBLAS kernels known for this CPU")
+    outs = []
+    for k in (k1, k2):
+        env = {**os.environ, "OPENBLAS_CORETYPE": k}
+        run = subprocess.run([sys.executable, "-c", _PORTER_PARALLEL], env=env, capture_output=True, text=True,
+                             timeout=120, check=True)  # fmt: skip
+        outs.append(run.stdout.split())
+    assert len(outs[0]) > 100
+    assert outs[0] == outs[1]
+
+
+# ---------------------------------------------------------------------------------------------------- follow
+@pytest.mark.parametrize("robot", ["puma", "porter"])
+def test_follow_does_not_jump_at_an_exactly_singular_sample(robot):
+    # issue 21: follow called ik_batch without near: PUMA θ4 went 1.114 -> 0 -> 1.095 through θ5 = 0,
+    # Porter stepped 1.77 rad through c4 = 0
+    from puma_course.kinematics import Porter
+    from puma_course.kinematics.trajectories import follow
+
+    if robot == "puma":
+        arm = Puma560()
+        qa = np.array([0.2, -0.5, 0.3, 1.114, -0.1, 0.4])
+        qb = np.array([0.3, -0.4, 0.2, 1.095, 0.1, 0.5])
+    else:
+        arm = Porter()
+        qa = np.array([0.3, 0.4, 0.5, 0.6, math.pi / 2 - 0.1, 0.2])
+        qb = np.array([0.35, 0.45, 0.55, 0.65, math.pi / 2 + 0.1, 0.25])
+    Q = qa + np.linspace(0.0, 1.0, 21)[:, None] * (qb - qa)  # sample 10 is exactly singular
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        jp = follow(arm, arm.fk(Q), Q[0])
+    dq = float(np.linalg.norm(qb - qa)) / 20
+    assert jp.start_jump < 1e-6
+    assert jp.max_step < 3 * dq, jp.step
