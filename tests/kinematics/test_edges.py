@@ -257,3 +257,33 @@ def test_follow_does_not_jump_at_an_exactly_singular_sample(robot):
     dq = float(np.linalg.norm(qb - qa)) / 20
     assert jp.start_jump < 1e-6
     assert jp.max_step < 3 * dq, jp.step
+
+
+# ---------------------------------------------------------------------------------------------------- common normal
+@pytest.mark.parametrize("delta", [5e-9, 1.2e-8, 1e-7, 1e-5, 0.3])
+@pytest.mark.parametrize("seed", range(5))
+def test_common_normal_of_nearly_parallel_lines(delta, seed):
+    # issue 21: ZeroDivisionError 5e-9 rad from parallel, 35% off at 1.2e-8. Hand-worked in a local frame:
+    # the z axis and the line through (0, 1, 0) along (sin δ, 0, cos δ) are 1 apart along y, with feet
+    # (0, 0, 0) and (0, 1, 0); then the whole picture is moved rigidly (the truth moves with it).
+    from puma_course.kinematics.frame_assignment import common_normal
+    from puma_course.transforms import rodrigues
+
+    rng = np.random.default_rng(seed)
+    R = rodrigues(rng.normal(size=3), rng.uniform(0, 3))
+    o = rng.uniform(-2, 2, 3)
+    u2 = np.array([math.sin(delta), 0.0, math.cos(delta)])
+    t0 = rng.uniform(-3, 3)
+    cn = common_normal(o + R @ [0.0, 0.0, rng.uniform(-3, 3)], R[:, 2], o + R @ ([0.0, 1.0, 0.0] + t0 * u2), R @ u2)
+    assert cn.kind == "skew"
+    assert abs(cn.a - 1.0) <= 1e-6
+    assert np.abs(cn.direction - R[:, 1]).max() <= 1e-6
+    # where along the lines the normal sits moves by (rounding of the input) / δ², O(1) at δ = 5e-9: the
+    # feet are checked for what they must be, on their lines and joined by a X
+    for foot, p, u in ((cn.foot1, o, R[:, 2]), (cn.foot2, o + R[:, 1], R @ u2)):
+        off = foot - p
+        assert np.abs(off - np.dot(off, u) * u).max() <= 1e-6
+    assert np.abs(cn.foot2 - cn.foot1 - cn.a * cn.direction).max() <= 1e-6
+    if delta >= 1e-5:
+        assert np.abs(cn.foot1 - o).max() <= 1e-6 and np.abs(cn.foot2 - (o + R[:, 1])).max() <= 1e-6
+    assert abs(cn.alpha - delta) <= 1e-9  # about X = +y, z turns to (sin δ, 0, cos δ) by +δ
