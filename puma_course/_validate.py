@@ -29,6 +29,8 @@ __all__ = [
     "as_transform",
     "as_positive",
     "as_length",
+    "as_robot_length",
+    "ROBOT_LENGTHS",
     "as_tol",
     "as_count",
     "as_choice",
@@ -261,6 +263,27 @@ def as_length(value: Any, name: str, *, positive: bool = False, what: str | None
     return x
 
 
+#: Sizes accepted for a closed-form robot's non-zero lengths: its solvers form fourth powers of lengths
+#: (and of coordinates of that size), which must neither overflow nor underflow in float64.
+ROBOT_LENGTHS = (1e-50, 1e50)
+
+
+def as_robot_length(value: Any, name: str, *, positive: bool = False, what: str | None = None) -> float:
+    """A robot's length: :func:`as_length`, and zero or between 1e-50 and 1e50 in size.
+
+    >>> as_robot_length(1.5e100, "l1")
+    Traceback (most recent call last):
+    ...
+    ValueError: l1: expected 0 or a size from 1e-50 to 1e+50 (its 4th power must stay finite), got 1.5e+100
+    """
+    x = as_length(value, name, positive=positive, what=what)
+    lo, hi = ROBOT_LENGTHS
+    if x != 0.0 and not lo <= abs(x) <= hi:
+        why = "its 4th power must stay finite"
+        raise ValueError(f"{name}: expected 0 or a size from {lo:g} to {hi:g} ({why}), got {x:g}")
+    return x
+
+
 def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2, lower: float = 0.0) -> float:
     """Return ``value`` as a tolerance: a finite number with ``lower`` < tol <= ``upper`` (``lower`` = 0)
     or ``lower`` <= tol <= ``upper``.
@@ -292,8 +315,12 @@ def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2, lower: float =
     return x
 
 
-def as_count(value: Any, name: str, *, minimum: int = 0) -> int:
-    """Return ``value`` as an integer >= ``minimum``; a fractional number is refused, not truncated.
+#: Largest count accepted (samples, steps, bins): larger ones cannot be held in memory anyway.
+MAX_COUNT = 10**8
+
+
+def as_count(value: Any, name: str, *, minimum: int = 0, maximum: int = MAX_COUNT) -> int:
+    """Return ``value`` as an integer in [``minimum``, ``maximum``]; a fractional number is refused, not truncated.
 
     >>> as_count(5, "n", minimum=2)
     5
@@ -313,6 +340,8 @@ def as_count(value: Any, name: str, *, minimum: int = 0) -> int:
         n = int(x)
     if n < minimum:
         raise ValueError(f"{name}: expected a whole number >= {minimum}, got {n}")
+    if n > maximum:
+        raise ValueError(f"{name}: expected a whole number from {minimum} to {maximum:g}, got {n:g}")
     return n
 
 

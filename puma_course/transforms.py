@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import MAX_MAGNITUDE, as_array, as_rotation, as_transform
+from ._validate import MAX_MAGNITUDE, as_array, as_rotation, as_tol, as_transform
 
 __all__ = [
     "rotx",
@@ -118,13 +118,17 @@ def rodrigues(axis: Any, angle: Any) -> np.ndarray:
     """
     a = as_array(axis, "axis", (3,), batch=True)
     t = _angle(angle)
-    norm = np.linalg.norm(a, axis=-1, keepdims=True)
-    if np.any(norm < 1e-12):
+    # scaled by its largest entry before squaring (issue 21: [1e200, 0, 0] squared to inf gave the identity)
+    big = np.max(np.abs(a), axis=-1, keepdims=True)
+    if np.any(big == 0.0):
         raise ValueError("axis: expected a non-zero 3-vector (the rotation axis), got a zero vector")
-    K = skew(a / norm)
+    a = a / big
+    k = a / np.sqrt(a[..., 0:1] ** 2 + a[..., 1:2] ** 2 + a[..., 2:3] ** 2)
+    K = skew(k)
     s = np.sin(t)[..., None, None]
     c = np.cos(t)[..., None, None]
-    return np.eye(3) + s * K + (1.0 - c) * (K @ K)
+    # [k]x² = k kᵀ - I, elementwise (no `@`: a BLAS kernel would decide the last bit)
+    return c * np.eye(3) + s * K + (1.0 - c) * (k[..., :, None] * k[..., None, :])
 
 
 def axis_angle(R: Any) -> tuple[np.ndarray, Any]:
@@ -334,6 +338,7 @@ def is_rotation(R: Any, tol: float = 1e-9) -> bool:
     >>> is_rotation(rotz(0.3)), is_rotation(np.diag([1.0, 1.0, -1.0]))
     (True, False)
     """
+    tol = as_tol(tol, "tol", upper=1.0)  # a NaN tolerance made every comparison pass (issue 21)
     try:
         as_rotation(R, "R", batch=True, tol=tol)
     except ValueError:
@@ -359,6 +364,8 @@ def wrap_angle(angle: Any) -> Any:
     if isinstance(angle, float):
         w = _PI - (_PI - angle) % _TWO_PI
         return w + _TWO_PI if w <= -_PI else w  # rounding may land on -π itself
+    if angle is None or isinstance(angle, (str, bytes)):  # np.asarray(None, float) is NaN (issue 21)
+        raise ValueError(f"angle: expected angles in radians (numbers), got {angle!r}")
     a = np.asarray(angle, dtype=float)
     wa = _PI - np.mod(_PI - a, _TWO_PI)
     return np.where(wa <= -_PI, wa + _TWO_PI, wa)

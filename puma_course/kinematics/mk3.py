@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_length, as_tol
+from .._validate import as_robot_length, as_tol
 from ..transforms import wrap_angle
 from ._ops import ARRAY
 from .dh import DHChain, Link
@@ -129,8 +129,10 @@ class MK3(DHChain):
         a3: float = DEFAULTS["a3"],
         d5: float = DEFAULTS["d5"],
     ) -> None:
-        d1, a1, d5 = (as_length(v, n, what=f"the length {n} in mm") for v, n in ((d1, "d1"), (a1, "a1"), (d5, "d5")))
-        a2, a3 = (as_length(v, n, positive=True, what=f"the link length {n} in mm (positive)")
+        d1, a1, d5 = (
+            as_robot_length(v, n, what=f"the length {n} in mm") for v, n in ((d1, "d1"), (a1, "a1"), (d5, "d5"))
+        )
+        a2, a3 = (as_robot_length(v, n, positive=True, what=f"the link length {n} in mm (positive)")
                   for v, n in ((a2, "a2"), (a3, "a3")))  # fmt: skip
         self._L = (d1, a1, a2, a3, d5)
         self._ltol = 1e-9 * (abs(d1) + abs(a1) + a2 + a3 + abs(d5))

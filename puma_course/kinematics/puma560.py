@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_length, as_tol
+from .._validate import as_robot_length, as_tol
 from ..transforms import wrap_angle
 from ._ops import ARRAY, SCALAR
 from .dh import DHChain, Link, split_q
@@ -225,9 +225,9 @@ class Puma560(DHChain):
         d3: float = DEFAULTS["d3"],
         d4: float = DEFAULTS["d4"],
     ) -> None:
-        a2 = as_length(a2, "a2", positive=True, what="the upper-arm length a2 in metres (a positive number)")
+        a2 = as_robot_length(a2, "a2", positive=True, what="the upper-arm length a2 in metres (a positive number)")
         a3, d3, d4 = (
-            as_length(v, n, what=f"the length {n} in metres") for v, n in ((a3, "a3"), (d3, "d3"), (d4, "d4"))
+            as_robot_length(v, n, what=f"the length {n} in metres") for v, n in ((a3, "a3"), (d3, "d3"), (d4, "d4"))
         )
         if math.hypot(a3, d4) <= 0.0:
             raise ValueError("a3, d4: expected a forearm of non-zero length (a3² + d4² > 0), got a3 = d4 = 0")

@@ -305,6 +305,8 @@ def time_scaling(duration: float, n: int, kind: str = "quintic") -> TimeScaling:
     from .._validate import as_choice
 
     T = as_positive(duration, "duration")
+    if not 1e-50 <= T <= 1e50:  # ṡ ~ 1 / T and s̈ ~ 1 / T² must stay finite (issue 21: 1e-200 gave NaN and inf)
+        raise ValueError(f"duration: expected a duration from 1e-50 to 1e50 seconds, got {T:g}")
     n = as_count(n, "n", minimum=2)
     kind = as_choice(kind, "kind", ("quintic", "linear"))
     t = np.linspace(0.0, T, n)

@@ -287,3 +287,68 @@ def test_common_normal_of_nearly_parallel_lines(delta, seed):
     if delta >= 1e-5:
         assert np.abs(cn.foot1 - o).max() <= 1e-6 and np.abs(cn.foot2 - (o + R[:, 1])).max() <= 1e-6
     assert abs(cn.alpha - delta) <= 1e-9  # about X = +y, z turns to (sin δ, 0, cos δ) by +δ
+
+
+# ---------------------------------------------------------------------------------------------------- extreme sizes
+def test_extreme_sizes_are_answered_right():
+    # issue 21: rodrigues([1e200, 0, 0], 0.3) was the identity; porter.angle of 1e200 vectors NaN and of
+    # 1e-200 vectors 0 instead of π/2
+    from puma_course.kinematics.porter import angle
+    from puma_course.transforms import rodrigues, rotx
+
+    for big in (1e200, 1e-200, 1e-310, 1e150):
+        assert np.abs(rodrigues([big, 0.0, 0.0], 0.3) - rotx(0.3)).max() <= 1e-15
+    for size in (1e200, 1e-200, 1.0):
+        v, w, n = np.array([size, 0.0, 0.0]), np.array([0.0, size, 0.0]), np.array([0.0, 0.0, size])
+        assert angle(v, w, n) == math.pi / 2
+
+
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: __import__("puma_course.kinematics", fromlist=["ThreeStepArm"]).ThreeStepArm(1.5e100, 1e100), "l1"),
+        (lambda: __import__("puma_course.kinematics", fromlist=["ThreeStepArm"]).ThreeStepArm(1.0, 1e-100), "l2"),
+        (lambda: Puma560(a3=1e150), "a3"),
+        (
+            lambda: __import__("puma_course.kinematics.spaces", fromlist=["x"]).joint_from_actuator(
+                1e150, 1e150, 1e150
+            ),
+            "b",
+        ),
+        (lambda: __import__("puma_course.kinematics.trajectories", fromlist=["x"]).time_scaling(1e-200, 5), "duration"),
+        (lambda: __import__("puma_course.kinematics.trajectories", fromlist=["x"]).time_scaling(1.0, 1e300), "n"),
+        (
+            lambda: DHChain([__import__("puma_course.kinematics", fromlist=["Link"]).Link(0, 0, 0, kind="P")]).fk(
+                [1e308]
+            ),
+            "q",
+        ),
+        (lambda: __import__("puma_course.kinematics.ik", fromlist=["x"]).IKSolutions(np.array([[np.nan, 0.0]])), "q"),
+    ],
+)
+def test_extreme_sizes_are_refused_naming_the_argument(call, name):
+    # issue 21: ThreeStepArm(1.5e100, 1e100) returned 8 "valid" solutions 156% off; Puma560(a3=1e150) could
+    # not solve its own fk; joint_from_actuator(1e150, ...) gave π/2 for π/3; time_scaling(1e-200, 5) NaN and
+    # inf; a prismatic DHChain at 1e308 inf; IKSolutions took NaN rows; int8 lengths overflowed
+    with pytest.raises(ValueError, match=rf"^{name}\b.*expected"):
+        call()
+
+
+def test_contract_junk_that_was_accepted():
+    # issue 21: is_rotation(ones, tol=nan) was True; wrap_angle(None) NaN
+    from puma_course.transforms import is_rotation, wrap_angle
+
+    with pytest.raises(ValueError, match="^tol"):
+        is_rotation(np.ones((3, 3)), tol=float("nan"))
+    with pytest.raises(ValueError, match="^angle"):
+        wrap_angle(None)
+    assert is_rotation(np.eye(3)) and not is_rotation(np.ones((3, 3)))
+
+
+def test_solve_three_steps_with_int8_lengths_computes_in_floats():
+    # issue 21: int8 lengths overflowed to "l1 + l2 = -56"
+    from puma_course.kinematics.three_step.procedure import solve_three_steps
+
+    a = solve_three_steps([150.0, 20.0, 30.0], np.eye(3), np.int8(100), np.int8(100))
+    b = solve_three_steps([150.0, 20.0, 30.0], np.eye(3), 100.0, 100.0)
+    assert a.theta0 == b.theta0 and a.theta1 == b.theta1 and a.theta2 == b.theta2

@@ -42,7 +42,10 @@ def angle(v: Any, w: Any, n: Any) -> float:
             raise ValueError(
                 f"{name}: expected a non-zero 3-vector (the angle is undefined for a zero vector), got zeros"
             )
-    a, b, c = v.tolist(), w.tolist(), n.tolist()
+    # each vector scaled by its largest entry first: the angle does not depend on their lengths, and a dot
+    # or cross product of 1e200-long vectors overflows to NaN, of 1e-200-long ones underflows to 0
+    # (issue 21: angle gave NaN and 0 instead of π/2)
+    a, b, c = ([x / m for x in u.tolist()] for u in (v, w, n) for m in [float(np.max(np.abs(u)))])
     return _angle((a[0], a[1], a[2]), (b[0], b[1], b[2]), (c[0], c[1], c[2]))
 
 
