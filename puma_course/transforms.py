@@ -148,11 +148,13 @@ def axis_angle(R: Any) -> tuple[np.ndarray, Any]:
     w = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], axis=-1)
     sin_t = np.linalg.norm(w, axis=-1) / 2.0
     angle = np.arctan2(sin_t, cos_t)
-    # Away from a half turn the antisymmetric part w = 2 sin(θ) k is accurate, even for tiny θ.
-    from_w = (sin_t > 0.0) & ((cos_t > 0.0) | (sin_t > 1e-6))
+    # Below a quarter turn the antisymmetric part w = 2 sin(θ) k gives k to eps / sin θ, even for tiny θ;
+    # above it the symmetric part gives k to eps / (1 - cos θ) <= eps (w's eps / sin θ grows towards π).
+    from_w = (sin_t > 0.0) & (cos_t > 0.0)
     k_w = w / np.where(from_w, 2.0 * sin_t, 1.0)[..., None]
-    # (near) half turn: R + I ≈ 2 k k^T; take its largest column, signed like w.
-    B = (R + np.eye(3)) / 2.0
+    # (near) half turn: the symmetric part (R + R^T)/2 - cos θ I = (1 - cos θ) k k^T exactly (R + I would
+    # keep sin θ [k]x, off by 5e-7 at θ = π - 1e-6, issue 21); take its largest column, signed like w.
+    B = (R + np.swapaxes(R, -1, -2)) / 2.0 - cos_t[..., None, None] * np.eye(3)
     col = np.argmax(np.diagonal(B, axis1=-2, axis2=-1), axis=-1)
     k_b = np.take_along_axis(B, col[..., None, None], axis=-1)[..., 0]
     k_b = k_b / np.maximum(np.linalg.norm(k_b, axis=-1, keepdims=True), 1e-300)

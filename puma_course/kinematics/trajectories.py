@@ -229,7 +229,7 @@ def follow(robot: Robot, path_Ts: Any, q0: Any) -> JointPath:
     start = prev
     rev = robot.revolute
     n = Q.shape[0]
-    flagged = np.asarray(sol.flags).reshape(n, -1).any(axis=1)
+    flagged: list[bool] = (np.asarray(sol.flags).reshape(n, -1) != 0).any(axis=1).tolist()
     choice = np.empty(n, dtype=int)
     for i in range(n):
         if flagged[i]:  # the previous configuration decides the free joints (issue 21: no jump at a singular sample)
