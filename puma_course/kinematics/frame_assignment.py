@@ -122,7 +122,7 @@ def common_normal(p1: Any, u1: Any, p2: Any, u2: Any, *, hint: Any = None, at: A
             x = -x
         kind, a, foot2 = "intersecting", 0.0, foot1.copy()
     else:
-        x, kind = (x if wn > 0 else -x), "skew"
+        x, kind = (x if wn > 0 else -x) + 0.0, "skew"  # + 0.0: no signed zeros in the printed X
     b = _dot3(u1, u2)
     alpha = _snap_angle(math.atan2(_dot3(n, x), b))
     return CommonNormal(foot1, foot2, x, a, alpha, kind)
