@@ -352,3 +352,49 @@ def test_solve_three_steps_with_int8_lengths_computes_in_floats():
     a = solve_three_steps([150.0, 20.0, 30.0], np.eye(3), np.int8(100), np.int8(100))
     b = solve_three_steps([150.0, 20.0, 30.0], np.eye(3), 100.0, 100.0)
     assert a.theta0 == b.theta0 and a.theta1 == b.theta1 and a.theta2 == b.theta2
+
+
+# ---------------------------------------------------------------------------------------------------- three-step arm
+@settings(derandomize=True, max_examples=500, deadline=None)
+@given(st.lists(ANGLES, min_size=6, max_size=6), st.sampled_from([0.0, 1e-9, -1e-7, 1e-6, 2e-5, -5e-5, 9e-5]))
+def test_three_step_elbow_near_stretched_keeps_every_solution(q, dt2):
+    # issue 21: the elbow snap was a length tolerance spanning ~9e-5 rad of θ2: 8 of 100k poses lost half
+    # their solutions, the start included
+    from puma_course.kinematics import ThreeStepArm
+
+    arm = ThreeStepArm(1.5, 1.0)
+    q = np.array(q)
+    q[2] = dt2
+    q[4] = math.copysign(min(max(abs(q[4]), 0.05), 3.09), q[4])  # the wrist away from its own singularity
+    T = arm.fk(q)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = arm.ik(T, near=q)
+        b = arm.ik_batch(T[None], near=q[None])
+    rows = np.array(list(sol))
+    assert np.abs(arm.fk(rows) - T).max() <= 1e-9 * 2.5
+    # the start is among them, within the conditioning of the stretched elbow (sqrt(eps) in θ2)
+    assert _wrapped(rows - q).max(axis=1).min() <= 1e-6 + (0 if abs(dt2) > 1e-6 else 1e-6)
+    assert b.valid.sum() == len(rows)
+    if abs(dt2) >= 1e-6:  # elbow up and down are distinct solutions: both kept
+        assert len(rows) == 8
+
+
+def test_three_step_just_beyond_reach_gives_no_duplicate_pairs():
+    # issue 21: a pose 2.5e-9 beyond reach got 8 "valid" solutions that were four duplicate pairs, unflagged
+    from puma_course.kinematics import ThreeStepArm
+
+    arm = ThreeStepArm(1.5, 1.0)
+    T = arm.fk(np.array([0.3, 0.4, 0.0, 0.2, 0.5, 0.1]))
+    w = T[:3, 3] - 0.0  # the tool is at the wrist centre for this arm
+    for beyond in (0.0, 1e-12, 1e-9, 2.4e-9):
+        Tb = T.copy()
+        Tb[:3, 3] = w * (1.0 + beyond / np.linalg.norm(w))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            sol = arm.ik(Tb)
+        rows = np.array(list(sol))
+        assert len(rows) == 4 and all("elbow" in f for f in sol.flags)
+        d = _wrapped(rows[:, None, :] - rows[None, :, :]).max(axis=-1) + np.eye(len(rows))
+        assert d.min() > 1e-6  # distinct
+        assert np.abs(arm.fk(rows)[:, :3, 3] - Tb[:3, 3]).max() <= 1e-9 * 2.5 + beyond
