@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_array, as_transform
+from .._validate import MAX_MAGNITUDE, as_array, as_transform
 from .ik import IKBatch, IKSolutions, SingularityWarning
 
 __all__ = ["Robot"]
@@ -76,8 +76,13 @@ class Robot(ABC):
 
     def check_q(self, q: Any, name: str = "q") -> np.ndarray:
         """``q`` as a float array of shape (n,) or (N, n), or ``ValueError`` naming what is wrong."""
-        return as_array(
-            q, name, (self.n,), batch=True, what=f"joint values of shape ({self.n},) or (N, {self.n}) for {self.name}"
+        return as_array(  # joint values up to 1e150 in size: a prismatic 1e308 summed to inf (issue 21)
+            q,
+            name,
+            (self.n,),
+            batch=True,
+            what=f"joint values of shape ({self.n},) or (N, {self.n}) for {self.name}",
+            max_magnitude=MAX_MAGNITUDE,
         )
 
     def q(self, name: str) -> np.ndarray:
