@@ -110,11 +110,13 @@ def student(hub: Hub, git: GitServer, user: str) -> dict[str, Any]:
         t = time.monotonic()
         hub.pull(user, git.url)
         row["pull"] = time.monotonic() - t
-        cells = hubctl.code_cells(git.edition / "notebooks" / "01_rotations_and_transforms.ipynb")
+        cells, may_fail = hubctl.code_cells(git.edition / "notebooks" / "01_rotations_and_transforms.ipynb")
         t = time.monotonic()
-        hubctl.run_in_kernel(hub, user, f"{REPO_NAME}/notebooks/01_rotations_and_transforms.ipynb", cells)
+        hubctl.run_in_kernel(
+            hub, user, f"{REPO_NAME}/notebooks/01_rotations_and_transforms.ipynb", cells, may_fail=may_fail
+        )
         row["lecture01"] = time.monotonic() - t
-        ex = hubctl.code_cells(git.edition / "exercises" / "ex03_puma_fk.ipynb")
+        ex, _ = hubctl.code_cells(git.edition / "exercises" / "ex03_puma_fk.ipynb")
         t = time.monotonic()
         out = hubctl.run_in_kernel(
             hub,
@@ -165,7 +167,7 @@ def sizing(mem_student: float, cpu_student: float, lecture_alone: float) -> str:
     lines += [
         "",
         f"Per active student: {mem_gib * 1024:.0f} MiB resident at peak (server + kernel), "
-        f"{cpu_student:.1f} CPU-seconds for one session (lecture 01 and one self-check); "
+        f"{cpu_student:.1f} CPU-seconds for one session (server start, pull, lecture 01, one self-check); "
         f"lecture 01 alone took {lecture_alone:.1f} s of wall time.",
         "",
         "Zero to JupyterHub (`config.yaml`: `singleuser.memory.guarantee` / `.limit`, "
@@ -238,13 +240,13 @@ def main(argv: list[str] | None = None) -> int:
     cpus = sorted(cpu[r["user"]] for r in ok) or [0.0]
     print(f"\n{args.students} students, {args.at_once or args.students} at once, on {os.cpu_count()} cores; "
           f"whole run {wall:.0f} s")  # fmt: skip
-    print(f"time to a ready server : {quantiles([r['ready'] for r in ok])}")
-    print(f"nbgitpuller first pull : {quantiles([r['pull'] for r in ok])}")
-    print(f"lecture 01 (all cells) : {quantiles([r['lecture01'] for r in ok])}")
-    print(f"exercise 3 self-check  : {quantiles([r['selfcheck'] for r in ok])}")
+    print(f"time to a ready server : {quantiles([r['ready'] for r in rows if 'ready' in r])}")
+    print(f"nbgitpuller first pull : {quantiles([r['pull'] for r in rows if 'pull' in r])}")
+    print(f"lecture 01 (all cells) : {quantiles([r['lecture01'] for r in rows if 'lecture01' in r])}")
+    print(f"exercise 3 self-check  : {quantiles([r['selfcheck'] for r in rows if 'selfcheck' in r])}")
     print(f"failures               : {len(failed)} of {len(rows)}")
     for r in failed:
-        print(f"   {r['user']}: {r['error']}")
+        print(f"   {r['user']}: {r['error'][:200]!r}")
     print(f"peak memory per student (server + kernels): median {statistics.median(peaks) / mib:.0f} MiB, "
           f"max {peaks[-1] / mib:.0f} MiB")  # fmt: skip
     print(f"CPU per student session: median {statistics.median(cpus):.1f} s, max {cpus[-1]:.1f} s")

@@ -229,7 +229,7 @@ def single_user_env(edition: Path) -> Path:
         shutil.rmtree(env, ignore_errors=True)
         _run([py, "-m", "venv", str(env)])
         _run([*pip, "-r", "binder/requirements.txt"], cwd=edition)
-        _run([*pip, "jupyterlab>=4.0", f"jupyterhub=={jupyterhub.__version__}"], cwd=edition)
+        _run([*pip, "jupyterlab>=4.0", "ipykernel", f"jupyterhub=={jupyterhub.__version__}"], cwd=edition)
     else:
         _run([*pip, "--no-deps", "--force-reinstall", "."], cwd=edition)
     # what a hub's image sets for a class without internet: JupyterLab does not offer to fetch Jupyter's news
@@ -457,11 +457,14 @@ def request(method: str, url: str, token: str, body: Any = None, timeout: float 
 # ---- code through a kernel (the Jupyter Server API's kernel websocket) ---------------------------
 
 
-def run_in_kernel(hub: Hub, user: str, path: str, sources: list[str], timeout: float = 300) -> list[dict[str, Any]]:
+def run_in_kernel(
+    hub: Hub, user: str, path: str, sources: list[str], timeout: float = 300, may_fail: Iterable[int] = ()
+) -> list[dict[str, Any]]:
     """Open a session for the notebook ``path`` (its kernel starts in the notebook's folder, as JupyterLab's
     does), run each source in turn, end it; per source: its text outputs and seconds.
 
-    Raises ``RuntimeError`` with the traceback when a source fails.
+    Raises ``RuntimeError`` with the traceback when a source fails, unless its index is in ``may_fail``
+    (a cell tagged ``raises-exception``, which shows an error on purpose).
     """
     session = hub.user_api(
         user,
@@ -472,7 +475,9 @@ def run_in_kernel(hub: Hub, user: str, path: str, sources: list[str], timeout: f
     try:
         # in a thread of its own: the caller may be inside an event loop (Playwright's sync API runs one)
         with ThreadPoolExecutor(1) as pool:
-            return pool.submit(asyncio.run, _run_sources(hub, user, session["kernel"]["id"], sources, timeout)).result()
+            return pool.submit(
+                asyncio.run, _run_sources(hub, user, session["kernel"]["id"], sources, timeout, set(may_fail))
+            ).result()
     finally:
         try:
             hub.user_api(user, "DELETE", f"/sessions/{session['id']}")
@@ -480,7 +485,9 @@ def run_in_kernel(hub: Hub, user: str, path: str, sources: list[str], timeout: f
             pass
 
 
-async def _run_sources(hub: Hub, user: str, kid: str, sources: list[str], timeout: float) -> list[dict[str, Any]]:
+async def _run_sources(
+    hub: Hub, user: str, kid: str, sources: list[str], timeout: float, may_fail: set[int]
+) -> list[dict[str, Any]]:
     from tornado.httpclient import HTTPRequest
     from tornado.websocket import websocket_connect
 
@@ -489,7 +496,7 @@ async def _run_sources(hub: Hub, user: str, kid: str, sources: list[str], timeou
     session = uuid.uuid4().hex
     results = []
     try:
-        for src in sources:
+        for index, src in enumerate(sources):
             msg_id = uuid.uuid4().hex
             msg = {
                 "header": {
@@ -535,7 +542,7 @@ async def _run_sources(hub: Hub, user: str, kid: str, sources: list[str], timeou
                     error = "\n".join(content["traceback"])
                 elif kind == "status" and content["execution_state"] == "idle":
                     break
-            if error:
+            if error and index not in may_fail:
                 raise RuntimeError(f"a cell failed:\n{src[:300]}\n{error[-2000:]}")
             results.append({"outputs": "".join(outputs), "seconds": time.monotonic() - t0})
     finally:
@@ -543,9 +550,12 @@ async def _run_sources(hub: Hub, user: str, kid: str, sources: list[str], timeou
     return results
 
 
-def code_cells(path: Path) -> list[str]:
+def code_cells(path: Path) -> tuple[list[str], set[int]]:
+    """A notebook's code cells, and the indexes of those tagged ``raises-exception`` (errors on purpose)."""
     nb = json.loads(path.read_text(encoding="utf-8"))
-    return ["".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "code"]
+    cells = [c for c in nb["cells"] if c["cell_type"] == "code"]
+    fail = {i for i, c in enumerate(cells) if "raises-exception" in c.get("metadata", {}).get("tags", [])}
+    return ["".join(c["source"]) for c in cells], fail
 
 
 # ---- processes ---------------------------------------------------------------------------------
