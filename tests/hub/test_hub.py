@@ -275,3 +275,30 @@ def test_two_students_and_an_update(classroom: dict[str, Any]) -> None:
         assert requests[user], f"{user}: no request recorded"
         outside = _external(requests[user])
         assert not outside, f"{user}'s browser asked hosts other than 127.0.0.1: {outside[:10]}"
+
+
+def test_the_image_runs_lecture_03_under_nbclient(classroom: dict[str, Any], tmp_path: Path) -> None:
+    """The environment built from the edition's binder/requirements.txt (the image) runs lecture 03 headless."""
+    import subprocess
+
+    env: Path = classroom["env"]
+    work = tmp_path / "notebooks"
+    work.mkdir()
+    src = classroom["edition"] / LECTURE
+    (work / src.name).write_bytes(src.read_bytes())
+    code = (
+        "import sys, nbformat, nbclient\n"
+        "nb = nbformat.read(sys.argv[1], as_version=4)\n"
+        "nbclient.NotebookClient(nb, timeout=600, kernel_name='python3',"
+        " resources={'metadata': {'path': sys.argv[2]}}).execute()\n"
+        "print(sum(1 for c in nb.cells if c.cell_type == 'code' and c.outputs))\n"
+    )
+    done = subprocess.run(
+        [str(env / "bin" / "python"), "-c", code, str(work / src.name), str(work)],
+        capture_output=True,
+        text=True,
+        timeout=900,
+        env={"PATH": f"{env}/bin:/usr/bin:/bin", "HOME": str(tmp_path), "MPLBACKEND": "Agg"},
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert int(done.stdout.split()[-1]) > 5, done.stdout
