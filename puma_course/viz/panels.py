@@ -111,7 +111,7 @@ def robot_panel(
 
     Everything comes from the robot API: one slider per joint labelled by ``robot.joint_symbols``,
     limited by ``robot.qlim``, in degrees for revolute joints (``θ1 [deg]``) and in the robot's
-    ``units`` for the others (``d3 [m]``, or ``q2 []`` for a unitless length). ``q`` is the
+    ``units`` for the others (``d3 [m]``, or ``q2 [length]`` for a chain that names no unit). ``q`` is the
     start: a configuration name (``"qn"``) or a joint vector (radians / lengths); by default 0
     where the limits allow it. ``readout`` is ``"pose"`` (the matrix ``robot.fk(q)``, named
     ⁰Tₙ), ``None`` or a callable ``readout(q)`` / ``readout(q, frames)`` returning text.
@@ -169,12 +169,13 @@ def dh_link_panel(
     """
     lo, hi = length_range
     sliders = joint_sliders(
-        ["α_{i-1}", "a_{i-1}", "θ_i", "d_i"],
+        ["αᵢ₋₁", "aᵢ₋₁", "θᵢ", "dᵢ"],  # plain Unicode: a slider's label shows no TeX
         [-np.pi, lo, -np.pi, lo],
         [np.pi, hi, np.pi, hi],
         values,
         degrees=[True, False, True, False],
         step=[1.0, 0.05, 1.0, 0.05],
+        units="",
     )
 
     def steps(q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -2,8 +2,9 @@
 
 :class:`Lab` starts ``jupyter lab`` on 127.0.0.1 (a free port, a random token) serving a
 temporary copy of the lectures (so nothing the browser does can change the committed
-notebooks), with its own settings and workspace folders (no autosave, no news, no update
-check: nothing leaves the machine). It stops the server by its PID. :func:`browser` launches
+notebooks), started as ``puma-course lab`` starts it (:func:`puma_course.cli.lab_command`) with
+empty settings and workspace folders of its own, so every JupyterLab setting is the default a
+student gets (windowed notebooks included); no news, no update check: nothing leaves the machine. It stops the server by its PID. :func:`browser` launches
 the system Chromium (Playwright's own browser download does not work offline).
 
 Used by ``tests/browser/test_lectures.py`` and ``benchmarks/bench_viewer.py``.
@@ -61,9 +62,16 @@ def missing() -> str | None:
 
 
 def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
+    """A free port on 127.0.0.1: the first free one of ``$PUMA_LAB_PORTS`` ("8800-8849") if set, else any."""
+    lo, _, hi = os.environ.get("PUMA_LAB_PORTS", "0").partition("-")
+    for port in range(int(lo), int(hi or lo) + 1):
+        with socket.socket() as s:
+            try:
+                s.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            return int(s.getsockname()[1])
+    raise RuntimeError(f"no free port in PUMA_LAB_PORTS={os.environ['PUMA_LAB_PORTS']}")
 
 
 class Lab:
@@ -75,19 +83,10 @@ class Lab:
         shutil.copytree(notebooks, self.root, ignore=shutil.ignore_patterns(".ipynb_checkpoints"))
         self.port = _free_port()
         self.token = secrets.token_hex(16)
+        # an empty settings folder: every JupyterLab setting at its default, as `puma-course lab` runs it
+        # (windowed notebooks, autosave on); only the user's own settings are kept out of the test
         settings = self.tmp / "settings"
-        (settings / "@jupyterlab" / "docmanager-extension").mkdir(parents=True)
-        (settings / "@jupyterlab" / "docmanager-extension" / "plugin.jupyterlab-settings").write_text(
-            json.dumps({"autosave": False})
-        )
-        (settings / "@jupyterlab" / "apputils-extension").mkdir(parents=True)
-        (settings / "@jupyterlab" / "apputils-extension" / "notification.jupyterlab-settings").write_text(
-            json.dumps({"fetchNews": "false", "checkForUpdates": False})
-        )
-        (settings / "@jupyterlab" / "notebook-extension").mkdir(parents=True)
-        (settings / "@jupyterlab" / "notebook-extension" / "tracker.jupyterlab-settings").write_text(
-            json.dumps({"windowingMode": "none"})  # every cell in the page, as a reader scrolling would see it
-        )
+        settings.mkdir()
         env = dict(os.environ)
         env.update(
             JUPYTERLAB_SETTINGS_DIR=str(settings),
@@ -99,28 +98,36 @@ class Lab:
         env.pop("MPLBACKEND", None)
         self.log = open(self.tmp / "server.log", "wb")  # noqa: SIM115 - closed in stop()
         self.proc = subprocess.Popen(
-            [
-                sys.executable,
-                "-m",
-                "jupyter",
-                "lab",
-                "--no-browser",
-                "--ServerApp.ip=127.0.0.1",
-                f"--ServerApp.port={self.port}",
-                "--ServerApp.port_retries=0",
-                f"--IdentityProvider.token={self.token}",
-                f"--ServerApp.root_dir={self.root}",
-                "--LabApp.news_url=",
-                "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
-                "--LabApp.extension_manager=readonly",
-            ]
-            + (["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else []),  # fmt: skip
+            self.command(),
             stdout=self.log,
             stderr=subprocess.STDOUT,
             env=env,
             cwd=self.root,
         )
         self._wait_ready()
+
+    def command(self) -> list[str]:
+        """``puma-course lab``'s own command line (:func:`puma_course.cli.lab_command`) plus the server's address.
+
+        The extra options only choose where the server listens and turn off what would reach the
+        network (news, update check, extension manager): no JupyterLab setting differs from its default.
+        """
+        from puma_course.cli import lab_command
+
+        extra = [
+            "--ServerApp.ip=127.0.0.1",
+            f"--ServerApp.port={self.port}",
+            "--ServerApp.port_retries=0",
+            f"--IdentityProvider.token={self.token}",
+            "--LabApp.news_url=",
+            "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+            "--LabApp.extension_manager=readonly",
+        ]
+        if hasattr(os, "geteuid") and os.geteuid() == 0:
+            extra.append("--allow-root")
+        cmd = lab_command(self.root, extra, no_browser=True)
+        cmd[0] = sys.executable
+        return cmd
 
     @property
     def base(self) -> str:
