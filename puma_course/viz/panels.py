@@ -186,10 +186,12 @@ def dh_link_panel(
     span = max(abs(lo), abs(hi))
     L = 0.35 * span
     F0, _ = steps(sliders.radians())
-    corners = np.array([[x, y, z] for x in (-span, span) for y in (-span, span) for z in (-span, span)])
+    # the view holds the two frames as they start (origins and axis tips), so they fill the picture;
+    # a slider that carries {i} out of it makes the viewer frame the pose again
+    tips = (F0[:, :3, 3][:, None, :] + L * np.swapaxes(F0[:, :3, :3], 1, 2)).reshape(-1, 3)
     viewer = Viewer(F0, F0[:, :3, 3], labels=["{i-1}", "", "", "", "{i}"], lengths=[L, 0.6 * L, 0.6 * L, 0.6 * L, L],
                     faint=[False, True, True, True, False], axes=[True, False, False, False, True],
-                    view_points=corners * 0.75, title=title, height=height, link_radius=0.012 * span,
+                    view_points=np.vstack([F0[:, :3, 3], tips]), title=title, height=height, link_radius=0.012 * span,
                     link_color="#8c8c8c", note="grey: the path of the origin (a along X, then d along Z)")  # fmt: skip
     name = frame_name("i-1", "i")
 
