@@ -303,3 +303,11 @@ def press_and_time(page: Any, handle: Any, box: Any, key: str = "ArrowRight", ti
     t_key = page.evaluate("() => window.__pumaKeyT")
     t_draw = box.evaluate("b => b.__puma.lastPoseRender")
     return float(t_draw - t_key)
+
+
+def press_and_time_parts(page: Any, handle: Any, box: Any, key: str = "ArrowRight") -> tuple[float, float]:
+    """Like :func:`press_and_time`: (key press -> repaint, key press -> the kernel's new pose arrives) in ms."""
+    total = press_and_time(page, handle, box, key)
+    t_key = page.evaluate("() => window.__pumaKeyT")
+    t_msg = box.evaluate("b => b.__puma.lastPoseMessage")
+    return total, float(t_msg - t_key)
