@@ -324,6 +324,8 @@ function render({ model, el }) {
     renderer.render(scene, camera);
     placeAllLabels(width, heightPx);
     const now = performance.now();
+    const eye = camera.position.clone().sub(controls.target).normalize();
+    stats.eye = [eye.x, eye.y, eye.z]; // the direction the view looks from (a user's turn changes it)
     stats.renders += 1;
     stats.lastRender = now;
     if (poseDirty) {

@@ -165,6 +165,21 @@ def test_lecture_panels_in_chromium(name: str, lab: Lab, page: Any, artifacts: P
     assert all(0 <= lab_["ax"] <= bb["width"] and 0 <= lab_["ay"] <= bb["height"] for lab_ in back), back
     _no_overlap(back)
     panel.screenshot(path=str(artifacts / f"{stem}_panel_reset.png"))
+
+    # 5. the user's turn of the view is kept while the arm moves, and the arm stays in the picture
+    page.mouse.move(bb["x"] + bb["width"] / 2, bb["y"] + bb["height"] / 2)
+    page.mouse.down()
+    page.mouse.move(bb["x"] + bb["width"] / 2 - 90, bb["y"] + bb["height"] / 2 - 20, steps=6)
+    page.mouse.up()
+    page.wait_for_timeout(200)
+    eye = np.array(box.evaluate("b => b.__puma.eye"))
+    index, value = moves[0]
+    _set_slider(page, box, index, value - 90.0)
+    page.wait_for_timeout(200)
+    np.testing.assert_allclose(box.evaluate("b => b.__puma.eye"), eye, atol=1e-6)
+    moved = box.evaluate("b => b.__puma.labels")
+    assert all(0 <= lab_["ax"] <= bb["width"] and 0 <= lab_["ay"] <= bb["height"] for lab_ in moved), moved
+    panel.screenshot(path=str(artifacts / f"{stem}_panel_turned_moved.png"))
     assert not page.errors, f"{name}: errors on the page: {page.errors}"
 
 
