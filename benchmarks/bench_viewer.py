@@ -43,7 +43,7 @@ from tests.browser.lab import (  # noqa: E402
 
 
 def _time_moves(page: object, lab: Lab, name: str, args: argparse.Namespace) -> tuple[list[float], list[float], str]:
-    """Open and run lecture ``name``, then time ``args.moves`` key presses on slider ``args.slider`` of its first panel."""
+    """Open and run lecture ``name``; time ``args.moves`` key presses on slider ``args.slider`` of its first panel."""
     p: Any = page
     open_notebook(p, lab, name)
     run_all(p)
@@ -56,7 +56,9 @@ def _time_moves(page: object, lab: Lab, name: str, args: argparse.Namespace) -> 
     handle.focus()
     for _ in range(args.warmup):
         press_and_time(p, handle, box)
-    parts = [press_and_time_parts(p, handle, box, "ArrowRight" if k % 10 < 5 else "ArrowLeft") for k in range(args.moves)]
+    parts = [
+        press_and_time_parts(p, handle, box, "ArrowRight" if k % 10 < 5 else "ArrowLeft") for k in range(args.moves)
+    ]
     description = p.locator(".jp-Notebook .widget-slider .widget-label").nth(args.slider).inner_text()
     return [t for t, _ in parts], [m for _, m in parts], description
 
@@ -90,7 +92,7 @@ def main(argv: list[str] | None = None) -> int:
                   f"p90 {q[-1]:.1f}  max {max(times):.1f}")  # fmt: skip
             print(f"  of which key press -> the kernel's pose arrives: median {statistics.median(to_message):.1f}, "
                   f"max {max(to_message):.1f}; the browser's draw after it: median "
-                  f"{statistics.median([t - m for t, m in zip(times, to_message)]):.1f}")  # fmt: skip
+                  f"{statistics.median([t - m for t, m in zip(times, to_message, strict=True)]):.1f}")  # fmt: skip
             print(f"  target: median <= 100 ms -> {'met' if statistics.median(times) <= 100 else 'NOT met'}")
     print(f"whole run {time.perf_counter() - t0:.0f} s")
     return 0

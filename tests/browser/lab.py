@@ -4,8 +4,9 @@
 temporary copy of the lectures (so nothing the browser does can change the committed
 notebooks), started as ``puma-course lab`` starts it (:func:`puma_course.cli.lab_command`) with
 empty settings and workspace folders of its own, so every JupyterLab setting is the default a
-student gets (windowed notebooks included); no news, no update check: nothing leaves the machine. It stops the server by its PID. :func:`browser` launches
-the system Chromium (Playwright's own browser download does not work offline).
+student gets (windowed notebooks included); no news, no update check: nothing leaves the machine.
+It stops the server by its PID. :func:`browser` launches the system Chromium (Playwright's own
+browser download does not work offline).
 
 Used by ``tests/browser/test_lectures.py`` and ``benchmarks/bench_viewer.py``.
 """

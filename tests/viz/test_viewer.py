@@ -147,6 +147,7 @@ def test_the_stills_note_sits_under_the_axes_numbers_and_labels():
 
     from puma_course.viz.frames import new_axes, set_equal
     from puma_course.viz.viewer import STILL_NOTE, _note_below
+
     fig, ax = new_axes(figsize=(5.6, 4.2), title="PUMA-560", dpi=110)
     try:
         set_equal(ax, np.array([[-0.6, -0.6, -0.4], [0.6, 0.6, 1.0]]))
