@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import json
 import os
+import random
 import secrets
 import shutil
 import signal
@@ -65,7 +66,9 @@ def missing() -> str | None:
 def _free_port() -> int:
     """A free port on 127.0.0.1: the first free one of ``$PUMA_LAB_PORTS`` ("8800-8849") if set, else any."""
     lo, _, hi = os.environ.get("PUMA_LAB_PORTS", "0").partition("-")
-    for port in range(int(lo), int(hi or lo) + 1):
+    ports = list(range(int(lo), int(hi or lo) + 1))
+    random.shuffle(ports)  # two servers started at once rarely pick the same one
+    for port in ports:
         with socket.socket() as s:
             try:
                 s.bind(("127.0.0.1", port))
@@ -98,14 +101,17 @@ class Lab:
         )
         env.pop("MPLBACKEND", None)
         self.log = open(self.tmp / "server.log", "wb")  # noqa: SIM115 - closed in stop()
-        self.proc = subprocess.Popen(
-            self.command(),
-            stdout=self.log,
-            stderr=subprocess.STDOUT,
-            env=env,
-            cwd=self.root,
-        )
-        self._wait_ready()
+        for attempt in range(3):  # a port found free may be taken by another server before this one binds it
+            cmd = self.command()
+            self.proc = subprocess.Popen(cmd, stdout=self.log, stderr=subprocess.STDOUT, env=env, cwd=self.root)
+            try:
+                self._wait_ready()
+                break
+            except RuntimeError:
+                if attempt == 2 or "is not available" not in self.server_log():
+                    self.stop()
+                    raise
+                self.port = _free_port()
 
     def command(self) -> list[str]:
         """``puma-course lab``'s own command line (:func:`puma_course.cli.lab_command`) plus the server's address.
