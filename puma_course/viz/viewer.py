@@ -41,7 +41,7 @@ import traitlets
 from .._validate import as_array
 from ..kinematics.ik import IKSolutions
 from ..kinematics.robot import Robot
-from .frames import AXIS_COLORS, draw_frame, draw_points, new_axes, set_equal
+from .frames import AXIS_COLORS, draw_frame, draw_points, new_axes, note_below, set_equal
 
 __all__ = ["Viewer", "RobotViewer", "view_box"]
 
@@ -260,7 +260,7 @@ class Viewer(anywidget.AnyWidget):
             if sc["units"]:
                 ax.set(xlabel=f"x [{sc['units']}]", ylabel=f"y [{sc['units']}]", zlabel=f"z [{sc['units']}]")
             if note:
-                _note_below(fig, ax, note)
+                note_below(fig, ax, note)
             buf = io.BytesIO()
             fig.savefig(buf, format="png", dpi=dpi)
         finally:
@@ -275,26 +275,6 @@ class Viewer(anywidget.AnyWidget):
     def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[Any, Any], dict[Any, Any]] | None:
         data = super()._repr_mimebundle_(**kwargs)
         return _with_picture(data, self)
-
-
-def _note_below(fig: Any, ax: Any, note: str, gap_px: float = 4.0) -> None:
-    """Write ``note`` under everything ``ax`` draws (tick numbers, axis labels): the figure grows downwards to hold it.
-
-    The axes keep their size in pixels; the note never sits on the x label or its numbers.
-    """
-    text = fig.text(0.01, 0.0, note, fontsize=9, color="0.35", style="italic", ha="left", va="bottom")
-    renderer = fig.canvas.get_renderer()
-    text_h = text.get_window_extent(renderer).height
-    drawn = ax.get_tightbbox(renderer)  # pixels from the figure's bottom left
-    need = text_h + 2 * gap_px - drawn.y0  # pixels missing under the axes' lowest drawing
-    if need > 0:
-        dpi = fig.dpi
-        w, h = fig.get_size_inches()
-        box = ax.get_position()  # figure fractions of the old height
-        h_new = h + need / dpi
-        fig.set_size_inches(w, h_new)
-        ax.set_position([box.x0, (box.y0 * h + need / dpi) / h_new, box.width, box.height * h / h_new])
-    text.set_y(gap_px / (fig.get_size_inches()[1] * fig.dpi))
 
 
 #: Written under the still picture a saved notebook (or the website) shows in place of a live viewer.

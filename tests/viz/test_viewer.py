@@ -145,15 +145,15 @@ def test_the_text_repr_names_the_viewer_and_holds_no_memory_address():
 def test_the_stills_note_sits_under_the_axes_numbers_and_labels():
     import matplotlib.pyplot as plt
 
-    from puma_course.viz.frames import new_axes, set_equal
-    from puma_course.viz.viewer import STILL_NOTE, _note_below
+    from puma_course.viz.frames import new_axes, note_below, set_equal
+    from puma_course.viz.viewer import STILL_NOTE
 
     fig, ax = new_axes(figsize=(5.6, 4.2), title="PUMA-560", dpi=110)
     try:
         set_equal(ax, np.array([[-0.6, -0.6, -0.4], [0.6, 0.6, 1.0]]))
         ax.set(xlabel="x [m]", ylabel="y [m]", zlabel="z [m]")
         size = fig.get_size_inches().copy()
-        _note_below(fig, ax, STILL_NOTE)
+        note_below(fig, ax, STILL_NOTE)
         fig.canvas.draw()
         r = fig.canvas.get_renderer()
         note = fig.texts[-1].get_window_extent(r)
