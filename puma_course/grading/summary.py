@@ -19,7 +19,8 @@ from pathlib import Path
 
 from .diagnose import TITLES
 from .model import EXERCISES, NotebookResult, Question
-from .report import verdict
+from .report import replace_atomically, verdict
+from .text import one_line
 
 __all__ = ["QuestionSummary", "question_summaries", "class_summary", "write_summary", "summary_path"]
 
@@ -93,7 +94,7 @@ def _mistakes_cell(s: QuestionSummary) -> str:
     return "; ".join(f"{TITLES.get(key, key)} (`{key}`): {n}" for key, n in s.common()) or "–"
 
 
-def class_summary(results: Sequence[NotebookResult]) -> str:
+def class_summary(results: Sequence[NotebookResult], unmatched: Sequence[str] = ()) -> str:
     """The class summary as Markdown: one table per exercise, one row per question.
 
     >>> from puma_course.grading import EXERCISES
@@ -131,6 +132,10 @@ def class_summary(results: Sequence[NotebookResult]) -> str:
                 f"| {s.failed} | {s.not_attempted} | {s.mean:.2f} | {_mistakes_cell(s)} |"
             )
         lines.append("")
+    if unmatched:
+        lines += [f"## Files not graded ({len(unmatched)})", ""]
+        lines += [f"- {one_line(u, 400)}" for u in unmatched]
+        lines.append("")
     return "\n".join(lines) + "\n"
 
 
@@ -145,15 +150,18 @@ def summary_path(output: str | os.PathLike[str]) -> Path:
 
 
 def write_summary(
-    results: Sequence[NotebookResult], output: str | os.PathLike[str], lines: int = 8
+    results: Sequence[NotebookResult], output: str | os.PathLike[str], lines: int = 8, unmatched: Sequence[str] = ()
 ) -> tuple[Path, str]:
     """Write :func:`class_summary` next to the grades file ``output``; return its path and a short text.
 
     The text names the file and the ``lines`` questions with the lowest share of students passing,
-    each with its commonest diagnosed mistake.
+    each with its commonest diagnosed mistake. ``unmatched`` lists the files of a platform's download
+    that were not graded (see :mod:`.collect`); the summary ends with them. The file is written like the
+    CSV and the feedback (a fresh temporary name moved into place), and :func:`~puma_course.grading.grade`
+    keeps its name free of any student's feedback file.
     """
     path = summary_path(output)
-    path.write_text(class_summary(results), encoding="utf-8")
+    replace_atomically(path, class_summary(results, unmatched))  # whole or not at all; a planted link is replaced
     hard = sorted((s for s in question_summaries(results) if s.submitted), key=lambda s: s.passed / s.submitted)
     text = [f"class summary: {path}"]
     for s in hard[:lines]:
