@@ -52,6 +52,10 @@ _COURSE_HELP = (
 )
 
 
+#: notebooks open unmodified whatever the student's Python (see :mod:`puma_course.lab_contents`)
+CONTENTS_MANAGER = "--ServerApp.contents_manager_class=puma_course.lab_contents.CourseContentsManager"
+
+
 def lab_command(root: str | os.PathLike[str], jupyter_args: Sequence[str] = (), no_browser: bool = False) -> list[str]:
     """The command line that opens JupyterLab at the course folder ``root``, its index first.
 
@@ -61,11 +65,13 @@ def lab_command(root: str | os.PathLike[str], jupyter_args: Sequence[str] = (), 
     an option given there overrides the ones chosen here.
 
     >>> cmd = lab_command("/srv/course", ["--port", "8899"], no_browser=True)
-    >>> cmd[1:], cmd[0] == sys.executable
-    (['-m', 'jupyterlab', '--ServerApp.root_dir=/srv/course', '--no-browser', '--port', '8899'], True)
+    >>> cmd[1:4], cmd[5:], cmd[0] == sys.executable
+    (['-m', 'jupyterlab', '--ServerApp.root_dir=/srv/course'], ['--no-browser', '--port', '8899'], True)
+    >>> cmd[4] == CONTENTS_MANAGER
+    True
     """
     folder = Path(root)
-    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={folder}"]
+    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={folder}", CONTENTS_MANAGER]
     if (folder / INDEX).is_file():
         cmd.append(f"--LabApp.default_url=/lab/tree/{INDEX}")
     if no_browser:
