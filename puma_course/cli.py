@@ -340,15 +340,13 @@ def _notebook(args: argparse.Namespace) -> Path:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from .grading import EXERCISES, format_check_report, grade_notebook
+    from .grading import format_check_report, grade_notebook
     from .grading.model import BankNotFoundError, load_bank
 
     notebook = _notebook(args)
     name = args.exercise or notebook.stem
-    known: Any
-    try:  # the bank of the course the notebook is in (or --course), else a student edition's public cases
-        load_bank(_course(args) if args.course is not None else find_course(notebook.resolve().parent))
-        known = EXERCISES
+    try:  # the bank of the course the notebook is in (or --course, or the one run in), else an edition's public cases
+        known: Any = load_bank(_course(args) if args.course else find_course(notebook.parent, fallback=True))
     except (BankNotFoundError, CourseNotFoundError):
         from .grading import public as public_cases
 

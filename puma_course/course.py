@@ -58,11 +58,12 @@ def is_course(path: str | os.PathLike[str]) -> bool:
     return any((folder / marker).is_dir() for marker in MARKERS)
 
 
-def find_course(start: str | os.PathLike[str] | None = None) -> Path:
+def find_course(start: str | os.PathLike[str] | None = None, fallback: bool = False) -> Path:
     """The course root at or above ``start`` (default: the current directory), as an absolute path.
 
     Walks up from ``start`` to the first folder holding ``solutions/`` or ``notebooks/``; raises
-    :class:`CourseNotFoundError` naming every folder it searched when there is none.
+    :class:`CourseNotFoundError` naming every folder it searched when there is none (with ``fallback``,
+    it looks from the current directory then: a notebook outside any course, checked in a course).
 
     >>> import tempfile
     >>> with tempfile.TemporaryDirectory() as tmp:
@@ -85,6 +86,8 @@ def find_course(start: str | os.PathLike[str] | None = None) -> Path:
         searched.append(folder)
         if is_course(folder):
             return folder
+    if fallback and start is not None:
+        return find_course()
     raise CourseNotFoundError(
         f"start: expected a folder inside a course (a folder holding {_WHAT} at or above it), got {str(origin)!r}; "
         f"searched {', '.join(repr(str(f)) for f in searched)}",

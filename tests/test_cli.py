@@ -35,6 +35,7 @@ def course_copy(tmp_path):
         shutil.copy(ROOT / sub / "ex01_rotations.ipynb", root / sub)
     (root / "notebooks").mkdir()
     shutil.copy(ROOT / INDEX, root)
+    shutil.copytree(ROOT / "bank", root / "bank", ignore=shutil.ignore_patterns("__pycache__"))  # its questions
     return root.resolve()
 
 
@@ -195,12 +196,14 @@ def test_grade_grades_the_exercises_the_course_hands_out(course_copy, capsys, mo
     (course_copy / "exercises" / "ex99_mine.ipynb").write_text("{}", encoding="utf-8")
     (course_copy / "subs" / "ann").mkdir(parents=True)
     monkeypatch.chdir(course_copy)
-    assert main(["grade", "subs", "-o", "g.csv", "--quiet", "--seed", "1"]) == 0
+    # ann's folder is empty: graded (the CSV says missing), and the run exits 4 (no notebook found anywhere)
+    assert main(["grade", "subs", "-o", "g.csv", "--quiet", "--seed", "1"]) == 4
     with open(course_copy / "g.csv", newline="", encoding="utf-8") as fh:
         rows = list(csv.DictReader(fh))
     assert [(r["student"], r["exercise"], r["status"]) for r in rows] == [("ann", "ex01_rotations", "missing")]
     err = capsys.readouterr().err
     assert "not graded" in err and "ex99_mine" in err
+    assert "no notebook found" in err and "<student>/<exercise>.ipynb" in err
 
 
 def test_release_check_passes_on_the_committed_exercises(capsys, monkeypatch):

@@ -14,7 +14,7 @@ from __future__ import annotations
 import importlib.util
 import os
 import sys
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, MutableMapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -178,7 +178,7 @@ class BankNotFoundError(ValueError):
     """The course has no question bank (``bank/`` beside ``solutions/``), e.g. a student edition."""
 
 
-class Bank(Mapping[str, Exercise]):
+class Bank(MutableMapping[str, Exercise]):
     """The registry of exercises by name, filled from the question bank of a course folder.
 
     The bank is content, not engine: it lives in the course folder (``COURSE/bank/``, one file per
@@ -247,6 +247,12 @@ class Bank(Mapping[str, Exercise]):
 
     def __len__(self) -> int:
         return len(self._loaded())
+
+    def __setitem__(self, name: str, exercise: Exercise) -> None:
+        self._loaded()[name] = exercise
+
+    def __delitem__(self, name: str) -> None:
+        del self._loaded()[name]
 
     def register(self, exercise: Exercise) -> Exercise:
         """Add ``exercise`` (ValueError if the name or a question id is taken twice)."""

@@ -167,10 +167,12 @@ def write_summary(
 
 
 def run_outcome(results: Sequence[Any], submissions: Path, names: Sequence[str]) -> tuple[int, str]:
-    """The exit code of a grading run and what went wrong: (0, ""), or 4 when no notebook was found (the
-    message says where it looked and in which layout), or 5 when every notebook found crashed."""
+    """The exit code of a grading run and what went wrong: (0, ""), or 4 when no student folder holds any
+    notebook (the message says where it looked and in which layout: a flat download of notebooks is named),
+    or 5 when every notebook found crashed."""
     found = [r for r in results if r.status != "missing"]
-    if not found:
+    elsewhere = submissions.is_dir() and any(submissions.glob("*/*.ipynb"))  # misnamed: the feedback names them
+    if not found and not elsewhere:
         flat = sorted(p.name for p in submissions.glob("*.ipynb")) if submissions.is_dir() else []
         layout = (
             f"; it holds notebooks directly ({', '.join(flat[:3])}{', ...' if len(flat) > 3 else ''}): a flat "
@@ -182,7 +184,7 @@ def run_outcome(results: Sequence[Any], submissions: Path, names: Sequence[str])
             f"no notebook found: looked for {str(submissions)!r}/<student>/<exercise>.ipynb with exercise "
             f"in {', '.join(names)} (one folder per student){layout}"
         )
-    if all(r.status == "crashed" for r in found):
+    if found and all(r.status == "crashed" for r in found):
         return 5, (
             f"every one of the {len(found)} notebook(s) found crashed: the grader or its sandbox is broken "
             "here, not the students (see the CSV's notes)"

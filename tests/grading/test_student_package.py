@@ -41,7 +41,7 @@ from puma_course.grading import check, use_exercise
 use_exercise("ex01_rotations")
 check("q1", print)
 for stmt in ("from puma_course import rotx", "import puma_course.transforms",
-             "from puma_course.grading import EXERCISES", "import puma_course.grading.bank", "import puma_course_bank",
+             "from puma_course.grading import EXERCISES", "import puma_course.grading.bank",
              "import puma_course; puma_course.Puma560"):
     try:
         exec(stmt)
