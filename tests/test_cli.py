@@ -481,3 +481,16 @@ def test_lab_serves_the_course_root_and_opens_the_index_first(tmp_path):
         except subprocess.TimeoutExpired:
             server.kill()
             server.wait()
+
+
+def test_a_command_whose_extra_is_missing_says_which_to_install(monkeypatch, capsys):
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "jupyterlab" else real(name, *a))
+    assert main(["lab", "--print-command", "--course", str(ROOT)]) == 2
+    err = capsys.readouterr().err
+    assert "jupyterlab" in err and "'lab' extra" in err and "pip install '.[lab]'" in err
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "nbformat" else real(name, *a))
+    assert main(["release", "--check", "--course", str(ROOT)]) == 2
+    assert "'grader' extra" in capsys.readouterr().err
