@@ -37,11 +37,14 @@ def test_ci_script_propagates_pytest_failure_and_no_tests():
 
 
 def test_readme_commands_match_ci():
-    """README's test command is CI's; its first command installs and opens the whole course."""
+    """README's test command is CI's; its first command makes a virtual environment, installs what a student
+    needs (the lab extra, not the maintainers' tools) and opens the whole course (issue 19)."""
     readme = (ROOT / "README.md").read_text()
     assert 'python -m pip install -e ".[dev]" && python -m pytest' in readme
     blocks = re.findall(r"```bash\n(.*?)```", readme, flags=re.DOTALL)
-    assert blocks[0].strip() == 'python -m pip install -e ".[dev]" && puma-course lab'
+    first = blocks[0].strip().splitlines()
+    assert first[0].startswith("python3 -m venv .venv && source .venv/bin/activate")
+    assert first[1] == 'python -m pip install ".[lab]" && puma-course lab'
     # the old start command served notebooks/ only, out of reach of exercises/
     assert "jupyter lab notebooks/" not in readme
     pyproject = (ROOT / "pyproject.toml").read_text()
