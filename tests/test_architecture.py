@@ -14,7 +14,7 @@ import pytest
 from tests.support import ROOT
 
 PKG = ROOT / "puma_course"
-BASE = {"_validate", "_version", "transforms", "euler", "course", "hub"}
+BASE = {"_validate", "_version", "transforms", "euler", "course", "hub", "extras"}
 #: layer -> the layers it may import (besides itself)
 ALLOWED = {
     "base": {"base"},

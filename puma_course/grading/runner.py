@@ -26,6 +26,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+from ..course import is_course
 from . import child, events, limits
 from .collect import Collected
 from .model import EXERCISES, Exercise, NotebookResult
@@ -68,6 +69,19 @@ class SandboxWarning(UserWarning):
 
 class LimitsWarning(UserWarning):
     """The notebooks are graded with per-process limits only: no control group per notebook (:mod:`.limits`)."""
+
+
+def _checkouts() -> list[Path]:
+    """The course folders a worker must never see: the bank's course and the package's own checkout.
+
+    The package's parent is a checkout (an editable install, or ``pip install -e git+...`` cloning the
+    course into ``<venv>/src``) when it holds a course or a ``.git``; in a non-editable install it is
+    site-packages, which the worker needs, and is not hidden.
+    """
+    folders = [EXERCISES.course] if EXERCISES.course is not None else []
+    if is_course(PACKAGE_PARENT) or (PACKAGE_PARENT / ".git").exists() or (PACKAGE_PARENT / "bank").is_dir():
+        folders.append(PACKAGE_PARENT)
+    return [f for f in dict.fromkeys(folders) if f is not None]
 
 
 def _box(sandbox: str | Sandbox) -> Sandbox:
@@ -302,8 +316,8 @@ def _grade_class(
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     # every expected value, each student's own, before any child runs
     plans = {(s.name, name): make_plan(EXERCISES[name], key, s.name) for s in students for name in names}
-    package_before = package_digest(_PACKAGE_DIR)
-    hidden = [_PACKAGE_DIR, PACKAGE_PARENT / "solutions", sub_dir, Path(output), *(Path(p) for p in private)]
+    package_before = package_digest(_PACKAGE_DIR, EXERCISES.course)
+    hidden = [_PACKAGE_DIR, *_checkouts(), sub_dir, Path(output), *(Path(p) for p in private)]
     hidden += [Path(feedback)] if feedback is not None else []
     hidden += [Path(key.source)] if key.seed is None and key.source not in ("", "one-off") else []
     with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
@@ -370,7 +384,7 @@ def _grade_class(
             results = [r for batch in pool.map(work, students) for r in batch]
         changed = [f"grading stage: {p}" for p in stage.changed()]
     results.sort(key=lambda r: (r.student, r.exercise))
-    package_after = package_digest(_PACKAGE_DIR)
+    package_after = package_digest(_PACKAGE_DIR, EXERCISES.course)
     changed += sorted(
         k for k in set(package_before) | set(package_after) if package_before.get(k) != package_after.get(k)
     )

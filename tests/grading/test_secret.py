@@ -159,6 +159,7 @@ def test_the_seed_table_notebook_scores_only_when_the_key_is_a_known_seed(tmp_pa
 def test_the_cli_keeps_the_key_in_the_course_folder(tmp_path, capsys):
     course = tmp_path / "course"
     (course / "solutions").mkdir(parents=True)
+    shutil.copytree(ROOT / "bank", course / "bank")  # the course's questions live beside its solutions/
     subs = _class(tmp_path)
     out = tmp_path / "g.csv"
     args = [

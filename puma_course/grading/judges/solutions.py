@@ -10,6 +10,7 @@ import numpy as np
 from ...transforms import wrap_angle
 from ..diagnose import close
 from ..model import Judge, Verdict
+from ..remake import made
 from ._poses import POS_TOL, _dist, _floats, _off, _radians, _wrapped, pose_ok
 
 
@@ -111,7 +112,7 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
             return Verdict("the right solutions, in another order: sort them as the question asks", "solution_order")
         return Verdict(None)
 
-    return judge
+    return made(judge, solution_set_judge, match_tol)
 
 
 def nearest_judge() -> Judge:
@@ -151,7 +152,7 @@ def nearest_judge() -> Judge:
             "not_nearest",
         )
 
-    return judge
+    return made(judge, nearest_judge)
 
 
 def path_judge(slack: float = 0.01) -> Judge:
@@ -205,7 +206,7 @@ def path_judge(slack: float = 0.01) -> Judge:
             )
         return Verdict(None)
 
-    return judge
+    return made(judge, path_judge, slack)
 
 
 def rotation_judge(from_angles: Callable[..., np.ndarray]) -> Judge:
@@ -233,7 +234,7 @@ def rotation_judge(from_angles: Callable[..., np.ndarray]) -> Judge:
             f"{float(np.max(np.abs(mine - R))):.3g}"
         )
 
-    return judge
+    return made(judge, rotation_judge, from_angles)
 
 
 def stroke_judge() -> Judge:
@@ -266,4 +267,4 @@ def stroke_judge() -> Judge:
             )
         return Verdict(None)
 
-    return judge
+    return made(judge, stroke_judge)
