@@ -18,7 +18,44 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["geometric_jacobian"]
+__all__ = ["geometric_jacobian", "jacobian_from_axes"]
+
+
+def jacobian_from_axes(axes: np.ndarray, points: np.ndarray, pe: np.ndarray, revolute: Any) -> np.ndarray:
+    """The 6 x n geometric Jacobian from the joint axes, a point on each and the reference point.
+
+    ``axes`` and ``points`` are (..., n, 3) in base coordinates (unit axes), ``pe`` (..., 3) the
+    point whose velocity ``v`` the first three rows give, ``revolute`` an (n,) boolean mask:
+    column i is [z_i × (p_e - o_i); z_i] for a revolute joint and [z_i; 0] for a prismatic one.
+
+    >>> z = np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]])
+    >>> o = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+    >>> jacobian_from_axes(z, o, np.array([2.0, 0.0, 0.0]), [True, False])[:, :] + 0.0
+    array([[0., 0.],
+           [2., 0.],
+           [0., 1.],
+           [0., 0.],
+           [0., 0.],
+           [1., 0.]])
+    """
+    z = np.asarray(axes, dtype=float)
+    p = np.asarray(points, dtype=float)
+    e = np.asarray(pe, dtype=float)
+    if z.ndim < 2 or z.shape[-1] != 3:
+        raise ValueError(f"axes: expected joint axes of shape (..., n, 3), got an array of shape {z.shape}")
+    if p.shape != z.shape:
+        raise ValueError(f"points: expected the shape of axes {z.shape}, got {p.shape}")
+    if e.shape != z.shape[:-2] + (3,):
+        raise ValueError(f"pe: expected a point of shape {z.shape[:-2] + (3,)}, got {e.shape}")
+    rev = np.asarray(revolute)
+    if rev.shape != (z.shape[-2],) or rev.dtype != bool:
+        raise ValueError(f"revolute: expected a boolean mask of shape ({z.shape[-2]},), got {rev!r}")
+    if not (np.all(np.isfinite(z)) and np.all(np.isfinite(p)) and np.all(np.isfinite(e))):
+        raise ValueError("axes, points, pe: expected finite numbers, got NaN or infinity")
+    r = rev[:, None]
+    Jv = np.where(r, np.cross(z, e[..., None, :] - p), z)
+    Jw = np.where(r, z, 0.0)
+    return np.concatenate([np.swapaxes(Jv, -1, -2), np.swapaxes(Jw, -1, -2)], axis=-2)
 
 
 def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
@@ -41,8 +78,4 @@ def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
     F = F[..., : n + 1, :, :]  # drop a tool frame, if any
     z = F[..., 1:, :3, 2]  # joint axes z_1..z_n: (..., n, 3)
     p = F[..., 1:, :3, 3]  # points on them
-    pe = F[..., n, :3, 3][..., None, :]
-    rev = np.asarray(chain.revolute)[:, None]
-    Jv = np.where(rev, np.cross(z, pe - p), z)
-    Jw = np.where(rev, z, 0.0)
-    return np.concatenate([np.swapaxes(Jv, -1, -2), np.swapaxes(Jw, -1, -2)], axis=-2)
+    return jacobian_from_axes(z, p, F[..., n, :3, 3], np.asarray(chain.revolute, dtype=bool))

@@ -111,6 +111,25 @@ class Porter(Robot):
         """
         return frames_array(self.check_q(q), *self._L)
 
+    def jacobian(self, q: Any) -> np.ndarray:
+        """The geometric Jacobian [J_v; J_ω] of p5 (6, 6), or (N, 6, 6) for q (N, 6), scene coordinates.
+
+        The joint axes are read off the frames: α1 turns about z of F1, α2 about y of F2, q2 slides
+        along x of F2, α3 turns about y of F3, α4 about z of F4 and α5 about x of F5, each through
+        its frame's origin; columns as in :func:`~..jacobian.jacobian_from_axes`.
+
+        >>> J = Porter(1.0, 0.5, 0.3).jacobian([0, 0, 2, 0, 0, 0])
+        >>> J[:, 2] + 0.0  # the stroke q2 moves p5 along x2 = x0 and turns nothing
+        array([1., 0., 0., 0., 0., 0.])
+        """
+        from ..jacobian import jacobian_from_axes
+
+        F = self.frames(q)
+        pick = [(1, 2), (2, 1), (2, 0), (3, 1), (4, 2), (5, 0)]  # (frame, column) of each joint's axis
+        axes = np.stack([F[..., k, :3, c] for k, c in pick], axis=-2)
+        points = np.stack([F[..., k, :3, 3] for k, _ in pick], axis=-2)
+        return jacobian_from_axes(axes, points, F[..., 5, :3, 3], np.asarray(self.revolute, dtype=bool))
+
     # ---- inverse problem ------------------------------------------------------------------
     def classify(self, T: Any, *, tol: float = TOL) -> tuple[str, ...]:
         """The singular cases of the pose T that affect at least one Ver.1 branch (empty in general position).
