@@ -8,6 +8,7 @@ from .mk3 import MK3
 from .porter import Porter
 from .puma560 import Puma560
 from .robot import Robot
+from .stations import arm_target, world_pose
 from .three_step import ThreeStepArm
 
 __all__ = [
@@ -24,4 +25,6 @@ __all__ = [
     "ThreeStepArm",
     "joint_distance",
     "mdh",
+    "arm_target",
+    "world_pose",
 ]
