@@ -256,7 +256,7 @@ class IKSolutions(Sequence[np.ndarray]):
         if np.any(lim[:, 0] > lim[:, 1]):
             raise ValueError(f"qlim: expected each lower limit at most its upper limit, got {lim.tolist()}")
         outside = (self.q < lim[:, 0]) | (self.q > lim[:, 1])
-        keep = ~outside.any(axis=1)
+        keep: np.ndarray = ~np.any(outside, axis=1)
         if keep.all():
             return self
         new = object.__new__(IKSolutions)
