@@ -5,6 +5,7 @@ from __future__ import annotations
 from .dh import DHChain, Link, mdh
 from .ik import IKBatch, IKSolutions, KinematicsWarning, SingularityWarning, joint_distance
 from .mk3 import MK3
+from .numerical import DLSResult, ik_dls
 from .porter import Porter
 from .puma560 import Puma560
 from .robot import Robot
@@ -26,5 +27,7 @@ __all__ = [
     "joint_distance",
     "mdh",
     "arm_target",
+    "DLSResult",
+    "ik_dls",
     "world_pose",
 ]
