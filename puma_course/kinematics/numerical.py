@@ -6,9 +6,10 @@ From a start q0 the iteration moves the joints by
 
 (Wampler's / Nakamura's damped least squares; Lynch & Park §6.2 and Corke §8.4.1 describe the
 undamped Newton step it regularises). ``J`` is the geometric Jacobian with its linear rows divided
-by the length scale ℓ, so metres and radians weigh alike. It converges to *one* configuration, in
-general the closed-form branch whose basin holds q0 (most often the nearest); it never enumerates
-branches, which is what the closed forms are for.
+by the length scale ℓ, so metres and radians weigh alike. It converges to *one* configuration: the
+closed-form branch whose basin of attraction holds q0, which is the nearest branch when q0 is close
+to one but often not from far away (lecture 09 counts). It never enumerates branches: that is what
+the closed forms are for.
 """
 
 from __future__ import annotations
