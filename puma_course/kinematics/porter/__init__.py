@@ -148,11 +148,14 @@ class Porter(Robot):
         return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, why, self.name, method, REVOLUTE,
                            joints=self.joint_symbols)  # fmt: skip
 
-    def ik(self, T: Any, near: Any = None, *, method: str = "explicit", tol: float = TOL) -> IKSolutions:
+    def ik(
+        self, T: Any, near: Any = None, *, method: str = "explicit", tol: float = TOL, planes: str = "front"
+    ) -> IKSolutions:
         """Every configuration reaching T, by Ver.1 (``"explicit"``) or Ver.2 (``"geometric"``).
 
         Ver.1 gives four configurations in general position (front/back arm plane x sign of c4),
-        Ver.2 the two of the front plane (one for parallel planes). Singular poses return one
+        Ver.2 the two of the front plane (one for parallel planes), or with ``planes="both"`` the
+        front plane's and the back plane's (the plane turned by π about z0: all four). Singular poses return one
         representative per branch (nearest ``near`` when given; see :mod:`.families`) with a
         :class:`~..ik.SingularityWarning`; with a stroke limit an unreachable pose gives
         ``success`` False and the reason.
@@ -162,6 +165,9 @@ class Porter(Robot):
         'unreachable: every configuration needs q'
         """
         method = as_choice(method, "method", ("explicit", "geometric"))
+        planes = as_choice(planes, "planes", ("front", "both"))
+        if planes == "both" and method != "geometric":
+            raise ValueError('planes: "both" extends Ver.2 (method="geometric"); Ver.1 always gives both planes')
         tol = as_tol(tol, "tol")
         Tm = self._check_poses(T)
         if Tm.shape[0] != 1:
@@ -170,10 +176,12 @@ class Porter(Robot):
         if method == "explicit":
             rows, keys, labels = self._explicit_one(Tm[0], nr, tol)
         else:
-            found = construct(Tm[0], self._L, nr, tol)
-            rows = [q for q, _ in found]
-            keys = [k for _, k in found]
-            labels = [f"front/c4{'+' if np.cos(q[4]) >= 0 else '-'}" for q in rows]
+            found = [(q, k, "front") for q, k in construct(Tm[0], self._L, nr, tol)]
+            if planes == "both":
+                found += [(q, k, "back") for q, k in construct(Tm[0], self._L, nr, tol, plane="back")]
+            rows = [q for q, _, _ in found]
+            keys = [k for _, k, _ in found]
+            labels = [f"{side}/c4{'+' if np.cos(q[4]) >= 0 else '-'}" for q, _, side in found]
         Q = wrap_angle(np.array(rows)) * REVOLUTE + np.array(rows) * ~REVOLUTE
         if any(keys):  # a guard at singular poses: keep rows that really reach T, drop coinciding representatives
             err = np.abs(self.fk(Q) - Tm[0]).max(axis=(-2, -1)) / max(1.0, float(np.abs(Tm[0, :3, 3]).max()))
