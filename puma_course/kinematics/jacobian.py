@@ -18,7 +18,18 @@ from typing import Any
 
 import numpy as np
 
+from .._validate import MAX_MAGNITUDE
+
 __all__ = ["geometric_jacobian", "jacobian_from_axes"]
+
+
+def _as_real(value: Any, name: str) -> np.ndarray:
+    """A real float array (any shape), or ValueError naming the argument."""
+    arr = np.asarray(value) if not isinstance(value, (str, bytes)) and value is not None else None
+    real = arr is not None and (np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating))
+    if arr is None or arr.dtype == bool or not real:
+        raise ValueError(f"{name}: expected an array of real numbers, got {value!r}")
+    return arr.astype(float)
 
 
 def jacobian_from_axes(axes: np.ndarray, points: np.ndarray, pe: np.ndarray, revolute: Any) -> np.ndarray:
@@ -38,9 +49,7 @@ def jacobian_from_axes(axes: np.ndarray, points: np.ndarray, pe: np.ndarray, rev
            [0., 0.],
            [1., 0.]])
     """
-    z = np.asarray(axes, dtype=float)
-    p = np.asarray(points, dtype=float)
-    e = np.asarray(pe, dtype=float)
+    z, p, e = _as_real(axes, "axes"), _as_real(points, "points"), _as_real(pe, "pe")
     if z.ndim < 2 or z.shape[-1] != 3:
         raise ValueError(f"axes: expected joint axes of shape (..., n, 3), got an array of shape {z.shape}")
     if p.shape != z.shape:
@@ -50,8 +59,11 @@ def jacobian_from_axes(axes: np.ndarray, points: np.ndarray, pe: np.ndarray, rev
     rev = np.asarray(revolute)
     if rev.shape != (z.shape[-2],) or rev.dtype != bool:
         raise ValueError(f"revolute: expected a boolean mask of shape ({z.shape[-2]},), got {rev!r}")
-    if not (np.all(np.isfinite(z)) and np.all(np.isfinite(p)) and np.all(np.isfinite(e))):
-        raise ValueError("axes, points, pe: expected finite numbers, got NaN or infinity")
+    for arr, name in ((z, "axes"), (p, "points"), (e, "pe")):
+        if not np.all(np.isfinite(arr)) or np.any(np.abs(arr) > MAX_MAGNITUDE):
+            raise ValueError(f"{name}: expected finite numbers of magnitude at most {MAX_MAGNITUDE:g}, got {arr!r}")
+    if np.any(np.abs(np.linalg.norm(z, axis=-1) - 1.0) > 1e-9):
+        raise ValueError(f"axes: expected unit vectors (the joint axes' directions), got {z.tolist()}")
     r = rev[:, None]
     Jv = np.where(r, np.cross(z, e[..., None, :] - p), z)
     Jw = np.where(r, z, 0.0)

@@ -330,7 +330,9 @@ def joint_interpolation(q0: Any, q1: Any, n: int | None = None, *, s: Any = None
     array([170., 180., 190.])
     """
     a = as_array(q0, "q0", (None,), what="a joint vector of shape (m,)")
-    b = as_array(q1, "q1", (len(a),), what=f"a joint vector of shape ({len(a)},) like q0")
+    b = as_array(q1, "q1", (None,), what="a joint vector of shape (m,)")
+    if len(a) == 0 or a.shape != b.shape:
+        raise ValueError(f"q0, q1: expected two joint vectors of one shape (m,), m >= 1, got {a.shape} and {b.shape}")
     rev = np.ones(len(a), dtype=bool) if revolute is None else _mask(revolute, len(a))
     sv = _path_parameter(n, s)
     d = b - a
