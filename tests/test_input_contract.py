@@ -380,6 +380,21 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
         ],
     ),  # fmt: skip
     (
+        "trajectories.joint_interpolation",
+        tr.joint_interpolation,
+        [("q0", "q2", [0.0, 1.0]), ("q1", "q2", [1.0, 2.0]), ("n", "count", 5), ("revolute", "mask2", [True, False])],
+    ),  # fmt: skip
+    (
+        "jacobian.jacobian_from_axes",
+        jac.jacobian_from_axes,
+        [
+            ("axes", "path3", [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]),
+            ("points", "path3", [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]),
+            ("pe", "vec3", [2.0, 0.0, 0.0]),
+            ("revolute", "mask2", [True, False]),
+        ],
+    ),  # fmt: skip
+    (
         "trajectories.unwrap",
         tr.unwrap,
         [("q", "path2", [[3.0, 1.0], [-3.0, 2.0]]), ("revolute", "mask2", [True, False])],
@@ -435,7 +450,8 @@ def _call(fn: Callable[..., Any], args: list[Arg], values: list[Any]) -> Any:
 
 
 #: arguments whose documented default None is valid only together with another argument
-_NONE_NEEDS = {("trajectories.line_path", "n"): "s=...", ("trajectories.circle_path", "n"): "s=..."}
+_NONE_NEEDS = {("trajectories.line_path", "n"): "s=...", ("trajectories.circle_path", "n"): "s=...",
+               ("trajectories.joint_interpolation", "n"): "s=..."}
 
 
 @pytest.mark.parametrize("name, fn, args, k, bad", _cases())

@@ -5,9 +5,11 @@ from __future__ import annotations
 from .dh import DHChain, Link, mdh
 from .ik import IKBatch, IKSolutions, KinematicsWarning, SingularityWarning, joint_distance
 from .mk3 import MK3
+from .numerical import DLSResult, ik_dls
 from .porter import Porter
 from .puma560 import Puma560
 from .robot import MountedFk, Robot
+from .stations import arm_target, world_pose
 from .three_step import ThreeStepArm
 
 __all__ = [
@@ -25,4 +27,8 @@ __all__ = [
     "ThreeStepArm",
     "joint_distance",
     "mdh",
+    "arm_target",
+    "DLSResult",
+    "ik_dls",
+    "world_pose",
 ]

@@ -237,6 +237,45 @@ class IKSolutions(Sequence[np.ndarray]):
         object.__setattr__(new, "flags", tuple(self.flags[i] for i in order))
         return new
 
+    def within_limits(self, qlim: Any) -> IKSolutions:
+        """Only the solutions with every joint inside ``qlim`` ((n, 2): lower, upper; bounds included).
+
+        Revolute joints are compared as returned (wrapped to (-π, π]); a limit range wider than
+        that is met by the wrapped value. When no solution is left, ``success`` is False and
+        ``reason`` names the joints that stopped each branch.
+
+        >>> sol = IKSolutions(np.array([[0.5, 2.0], [0.5, -2.0]]), ("up", "down"))
+        >>> kept = sol.within_limits([[-1.0, 1.0], [-2.5, 0.0]])
+        >>> kept.labels, kept.success
+        (('down',), True)
+        >>> sol.within_limits([[-1.0, 1.0], [-1.0, 1.0]]).reason
+        'no solution within the joint limits (up: q2; down: q2)'
+        """
+        n = self.q.shape[1]
+        lim = as_array(qlim, "qlim", (n, 2), what=f"joint limits of shape ({n}, 2), lower then upper")
+        if np.any(lim[:, 0] > lim[:, 1]):
+            raise ValueError(f"qlim: expected each lower limit at most its upper limit, got {lim.tolist()}")
+        outside = (self.q < lim[:, 0]) | (self.q > lim[:, 1])
+        keep: np.ndarray = ~np.any(outside, axis=1)
+        if keep.all():
+            return self
+        new = object.__new__(IKSolutions)
+        for name, value in vars(self).items():
+            object.__setattr__(new, name, value)
+        q = self.q[keep]
+        q.setflags(write=False)
+        object.__setattr__(new, "q", q)
+        object.__setattr__(new, "labels", tuple(lb for lb, k in zip(self.labels, keep, strict=True) if k))
+        object.__setattr__(new, "flags", tuple(f for f, k in zip(self.flags, keep, strict=True) if k))
+        if not keep.any() and self.success:
+            stops = "; ".join(
+                f"{lb}: " + ", ".join(self.joints[j] for j in np.flatnonzero(row))
+                for lb, row in zip(self.labels, outside, strict=True)
+            )
+            object.__setattr__(new, "success", False)
+            object.__setattr__(new, "reason", f"no solution within the joint limits ({stops})")
+        return new
+
     # ---- display ------------------------------------------------------------------------
     def __repr__(self) -> str:
         what = f"{self.robot} " if self.robot else ""

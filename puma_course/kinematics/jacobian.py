@@ -18,7 +18,56 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["geometric_jacobian"]
+from .._validate import MAX_MAGNITUDE
+
+__all__ = ["geometric_jacobian", "jacobian_from_axes"]
+
+
+def _as_real(value: Any, name: str) -> np.ndarray:
+    """A real float array (any shape), or ValueError naming the argument."""
+    arr = np.asarray(value) if not isinstance(value, (str, bytes)) and value is not None else None
+    real = arr is not None and (np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating))
+    if arr is None or arr.dtype == bool or not real:
+        raise ValueError(f"{name}: expected an array of real numbers, got {value!r}")
+    return arr.astype(float)
+
+
+def jacobian_from_axes(axes: np.ndarray, points: np.ndarray, pe: np.ndarray, revolute: Any) -> np.ndarray:
+    """The 6 x n geometric Jacobian from the joint axes, a point on each and the reference point.
+
+    ``axes`` and ``points`` are (..., n, 3) in base coordinates (unit axes), ``pe`` (..., 3) the
+    point whose velocity ``v`` the first three rows give, ``revolute`` an (n,) boolean mask:
+    column i is [z_i × (p_e - o_i); z_i] for a revolute joint and [z_i; 0] for a prismatic one.
+
+    >>> z = np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]])
+    >>> o = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+    >>> jacobian_from_axes(z, o, np.array([2.0, 0.0, 0.0]), [True, False])[:, :] + 0.0
+    array([[0., 0.],
+           [2., 0.],
+           [0., 1.],
+           [0., 0.],
+           [0., 0.],
+           [1., 0.]])
+    """
+    z, p, e = _as_real(axes, "axes"), _as_real(points, "points"), _as_real(pe, "pe")
+    if z.ndim < 2 or z.shape[-1] != 3:
+        raise ValueError(f"axes: expected joint axes of shape (..., n, 3), got an array of shape {z.shape}")
+    if p.shape != z.shape:
+        raise ValueError(f"points: expected the shape of axes {z.shape}, got {p.shape}")
+    if e.shape != z.shape[:-2] + (3,):
+        raise ValueError(f"pe: expected a point of shape {z.shape[:-2] + (3,)}, got {e.shape}")
+    rev = np.asarray(revolute)
+    if rev.shape != (z.shape[-2],) or rev.dtype != bool:
+        raise ValueError(f"revolute: expected a boolean mask of shape ({z.shape[-2]},), got {rev!r}")
+    for arr, name in ((z, "axes"), (p, "points"), (e, "pe")):
+        if not np.all(np.isfinite(arr)) or np.any(np.abs(arr) > MAX_MAGNITUDE):
+            raise ValueError(f"{name}: expected finite numbers of magnitude at most {MAX_MAGNITUDE:g}, got {arr!r}")
+    if np.any(np.abs(np.linalg.norm(z, axis=-1) - 1.0) > 1e-9):
+        raise ValueError(f"axes: expected unit vectors (the joint axes' directions), got {z.tolist()}")
+    r = rev[:, None]
+    Jv = np.where(r, np.cross(z, e[..., None, :] - p), z)
+    Jw = np.where(r, z, 0.0)
+    return np.concatenate([np.swapaxes(Jv, -1, -2), np.swapaxes(Jw, -1, -2)], axis=-2)
 
 
 def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
@@ -41,8 +90,4 @@ def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
     F = F[..., : n + 1, :, :]  # drop a tool frame, if any
     z = F[..., 1:, :3, 2]  # joint axes z_1..z_n: (..., n, 3)
     p = F[..., 1:, :3, 3]  # points on them
-    pe = F[..., n, :3, 3][..., None, :]
-    rev = np.asarray(chain.revolute)[:, None]
-    Jv = np.where(rev, np.cross(z, pe - p), z)
-    Jw = np.where(rev, z, 0.0)
-    return np.concatenate([np.swapaxes(Jv, -1, -2), np.swapaxes(Jw, -1, -2)], axis=-2)
+    return jacobian_from_axes(z, p, F[..., n, :3, 3], np.asarray(chain.revolute, dtype=bool))

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from .._validate import MAX_MAGNITUDE, as_array, as_count, as_positive, as_rotation, as_transform
+from ..transforms import wrap_angle
 from .ik import SingularityWarning, joint_distance, nearest_index
 from .robot import Robot
 
@@ -32,6 +33,7 @@ __all__ = [
     "TimeScaling",
     "time_scaling",
     "joint_velocities",
+    "joint_interpolation",
 ]
 
 
@@ -335,3 +337,24 @@ def joint_velocities(q: Any, t: Any, revolute: Any = None) -> np.ndarray:
     if np.any(np.diff(tt) <= 0):
         raise ValueError("t: expected strictly increasing times, got a step that is zero or negative")
     return np.gradient(qq, tt, axis=0)
+
+
+def joint_interpolation(q0: Any, q1: Any, n: int | None = None, *, s: Any = None, revolute: Any = None) -> np.ndarray:
+    """n joint vectors (n, m) on the straight line from q0 to q1 in joint space: q(s) = q0 + s Δq.
+
+    Angles (``revolute``, a boolean mask, default all True) take the short way round: Δq is wrapped
+    to (-π, π], so 170° to -170° turns by 20°, not 340°. The result is not wrapped (it is continuous).
+    The hand does not follow a straight line: compare :func:`line_path` and :func:`follow`.
+
+    >>> np.degrees(joint_interpolation(np.radians([170.0]), np.radians([-170.0]), 3)[:, 0]).round(6)
+    array([170., 180., 190.])
+    """
+    a = as_array(q0, "q0", (None,), what="a joint vector of shape (m,)")
+    b = as_array(q1, "q1", (None,), what="a joint vector of shape (m,)")
+    if len(a) == 0 or a.shape != b.shape:
+        raise ValueError(f"q0, q1: expected two joint vectors of one shape (m,), m >= 1, got {a.shape} and {b.shape}")
+    rev = np.ones(len(a), dtype=bool) if revolute is None else _mask(revolute, len(a))
+    sv = _path_parameter(n, s)
+    d = b - a
+    d = np.where(rev, wrap_angle(d), d)
+    return a[None, :] + sv[:, None] * d[None, :]

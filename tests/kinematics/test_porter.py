@@ -480,3 +480,53 @@ def test_far_poses_keep_their_relative_accuracy(q2):
         assert err[:, :3, 3].max() / q2 < 1e-14 and err[:, :3, :3].max() < 1e-14
     with pytest.raises(ValueError, match="at most 1e\\+150"):
         ARM.ik(tf.homogeneous(np.eye(3), [1e154, 0.0, 0.0]))  # its square would overflow: refused
+
+
+# ---- issue 25 (1g): Ver.2 extended to the back plane, against Ver.1 ------------------------------------------------
+
+
+def test_ver2_on_both_planes_gives_ver1s_four_configurations():
+    from puma_course.kinematics.ik import joint_distance as jd
+
+    arm = Porter(1.0, 0.5, 0.3)
+    rng = np.random.default_rng(257)
+    for _ in range(30):
+        q = rng.uniform(-2.5, 2.5, 6)
+        q[2] = rng.uniform(0.2, 2.0)
+        T = arm.fk(q)
+        v1, v2 = arm.ik(T), arm.ik(T, method="geometric", planes="both")
+        assert len(v2) == len(v1) == 4 and sorted(v2.labels) == sorted(v1.labels)
+        for label, row in zip(v2.labels, v2, strict=True):
+            d = [float(jd(row, r)) for r in v1]
+            assert min(d) < 1e-9 and v1.labels[int(np.argmin(d))] == label  # the same row under the same name
+            assert np.allclose(arm.fk(row), T, atol=1e-10)
+        front = arm.ik(T, method="geometric")
+        assert np.allclose(front.q, v2.q[:2])  # the front plane is unchanged
+
+
+def test_ver2_back_plane_at_singular_poses_reaches_the_pose_or_adds_nothing():
+    import warnings
+
+    from puma_course.kinematics import SingularityWarning
+
+    arm = Porter(1.0, 0.5, 0.3)
+    T_par = arm.fk([0.3, 0.2, 1.0, 0.4, np.pi / 2, 0.6])  # c4 = 0: planes parallel
+    T_ax = arm.fk([0.0, 0.0, 0.3, 0.0, 0.0, 0.0])
+    T_ax[:3, 3] = [0.3, 0.0, 0.0]  # with x5 = x0, p4 = p5 - l4 x5 lies on the z0 axis
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SingularityWarning)
+        for T in (T_par, T_ax):
+            both = arm.ik(T, method="geometric", planes="both")
+            front = arm.ik(T, method="geometric")
+            assert both.success and all(np.allclose(arm.fk(r), T, atol=1e-9) for r in both)
+            assert len(both) >= len(front)
+        assert len(arm.ik(T_ax, method="geometric", planes="both")) == len(arm.ik(T_ax, method="geometric"))
+
+
+def test_planes_is_checked():
+    arm = Porter(1.0, 0.5, 0.3)
+    T = arm.fk([0.3, 0.2, 1.0, 0.4, 0.5, 0.6])
+    with pytest.raises(ValueError, match="planes"):
+        arm.ik(T, planes="both")  # Ver.1 has both already
+    with pytest.raises(ValueError, match="planes"):
+        arm.ik(T, method="geometric", planes="back")

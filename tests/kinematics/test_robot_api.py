@@ -148,3 +148,43 @@ def test_helpers_by_hand():
         True, False, True  # a length is not wrapped: 2 and 2 + 2π differ
     ]  # fmt: skip
     assert keys_from_bits(6, ("a", "b", "c")) == ("b", "c") and keys_from_bits(0, ("a",)) == ()
+
+
+# ---- issue 25: joint limits in IK selection ------------------------------------------------------------------------
+
+
+def test_within_limits_keeps_exactly_the_rows_inside_every_range():
+    from puma_course.kinematics import Puma560
+
+    arm = Puma560()
+    q0 = np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0])
+    sol = arm.ik(arm.fk(q0))
+    qlim = np.radians([[-160, 160], [-225, 45], [-45, 225], [-110, 170], [-100, 100], [-266, 266]])
+    kept = sol.within_limits(qlim)
+    inside = [bool(np.all((q >= qlim[:, 0]) & (q <= qlim[:, 1]))) for q in sol.q]  # the rule, row by row
+    assert len(kept) == sum(inside) and kept.labels == tuple(lb for lb, i in zip(sol.labels, inside, strict=True) if i)
+    assert any(np.allclose(q, q0) for q in kept)  # the configuration we started from is inside
+    for q in kept:
+        assert np.allclose(arm.fk(q), arm.fk(q0), atol=1e-9)
+
+
+def test_within_limits_with_nothing_left_is_a_failure_with_a_reason():
+    from puma_course.kinematics import Puma560
+
+    arm = Puma560()
+    sol = arm.ik(arm.fk(np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0])))
+    tight = np.zeros((6, 2))  # every joint must be exactly zero
+    none = sol.within_limits(tight)
+    assert not none.success and len(none) == 0 and "joint limits" in none.reason and "θ1" in none.reason
+    with pytest.raises(IndexError):
+        none[0]
+
+
+@pytest.mark.parametrize("bad", [np.zeros((5, 2)), [[1.0, 0.0]] * 6, [[0.0, np.nan]] * 6])
+def test_within_limits_rejects_bad_limits_naming_qlim(bad):
+    from puma_course.kinematics import Puma560
+
+    arm = Puma560()
+    sol = arm.ik(arm.fk(np.zeros(6) + 0.3))
+    with pytest.raises(ValueError, match="qlim"):
+        sol.within_limits(bad)

@@ -260,3 +260,56 @@ def test_joint_velocities_by_hand_and_across_the_wrap():
         tr.joint_velocities(q, np.zeros(21))
     with pytest.raises(ValueError, match="^t: expected times of shape \\(21,\\)"):
         tr.joint_velocities(q, t[:5])
+
+
+# ---- issue 25 (1h): joint-space interpolation beside the Cartesian line --------------------------------------------
+
+
+def test_joint_interpolation_ends_steps_and_short_way_round():
+    from puma_course.kinematics.trajectories import joint_interpolation
+
+    q0, q1 = np.array([*np.radians([170.0, 10.0]), 0.0]), np.array([*np.radians([-170.0, 40.0]), 0.5])
+    Q = joint_interpolation(q0, q1, 7, revolute=[True, True, False])
+    assert Q.shape == (7, 3) and np.allclose(Q[0], q0)
+    assert np.allclose(np.degrees(Q[-1, :2]), [190.0, 40.0]) and np.isclose(Q[-1, 2], 0.5)  # 190° is -170°
+    steps = np.diff(Q, axis=0)
+    assert np.allclose(steps, steps[0])  # equal steps: a straight line in joint space
+    assert np.allclose(np.degrees(steps[0, :2]), [20.0 / 6, 30.0 / 6])
+
+
+def test_the_hand_leaves_the_line_in_joint_space_but_not_in_cartesian():
+    from puma_course.kinematics import Puma560
+    from puma_course.kinematics.trajectories import follow, joint_interpolation, line_path
+
+    arm = Puma560()
+    q0 = arm.q("qn")
+    T0 = arm.fk(q0)
+    T1 = T0.copy()
+    T1[:3, 3] += [-0.3, 0.1, 0.1]
+    cart = follow(arm, line_path(T0, T1, 41), q0)
+    joint = joint_interpolation(cart.q[0], cart.q[-1], 41, revolute=arm.revolute)
+
+    def off_line(P):  # distance of each point from the segment's line, by hand
+        u = (T1[:3, 3] - T0[:3, 3]) / np.linalg.norm(T1[:3, 3] - T0[:3, 3])
+        d = P - T0[:3, 3]
+        return np.linalg.norm(d - np.outer(d @ u, u), axis=1)
+
+    assert np.allclose(arm.fk(joint[-1]), T1, atol=1e-9)  # same endpoints
+    assert off_line(arm.fk(cart.q)[:, :3, 3]).max() < 1e-9
+    assert off_line(arm.fk(joint)[:, :3, 3]).max() > 0.005  # the joint-space line bends the hand's path
+
+
+@pytest.mark.parametrize(
+    ("args", "kwargs", "name"),
+    [
+        (([0.0, 1.0], [0.0]), {"n": 3}, "q1"),
+        (([0.0], [np.nan]), {"n": 3}, "q1"),
+        (([0.0], [1.0]), {"n": 1}, "n"),
+        (([0.0, 0.0], [1.0, 1.0]), {"n": 3, "revolute": [True]}, "revolute"),
+    ],
+)
+def test_joint_interpolation_rejects_bad_input_naming_it(args, kwargs, name):
+    from puma_course.kinematics.trajectories import joint_interpolation
+
+    with pytest.raises(ValueError, match=name):
+        joint_interpolation(*args, **kwargs)

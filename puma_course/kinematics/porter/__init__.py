@@ -111,6 +111,25 @@ class Porter(Robot):
         """
         return frames_array(self.check_q(q), *self._L)
 
+    def jacobian(self, q: Any) -> np.ndarray:
+        """The geometric Jacobian [J_v; J_ω] of p5 (6, 6), or (N, 6, 6) for q (N, 6), scene coordinates.
+
+        The joint axes are read off the frames: α1 turns about z of F1, α2 about y of F2, q2 slides
+        along x of F2, α3 turns about y of F3, α4 about z of F4 and α5 about x of F5, each through
+        its frame's origin; columns as in :func:`~..jacobian.jacobian_from_axes`.
+
+        >>> J = Porter(1.0, 0.5, 0.3).jacobian([0, 0, 2, 0, 0, 0])
+        >>> J[:, 2] + 0.0  # the stroke q2 moves p5 along x2 = x0 and turns nothing
+        array([1., 0., 0., 0., 0., 0.])
+        """
+        from ..jacobian import jacobian_from_axes
+
+        F = self.frames(q)
+        pick = [(1, 2), (2, 1), (2, 0), (3, 1), (4, 2), (5, 0)]  # (frame, column) of each joint's axis
+        axes = np.stack([F[..., k, :3, c] for k, c in pick], axis=-2)
+        points = np.stack([F[..., k, :3, 3] for k, _ in pick], axis=-2)
+        return jacobian_from_axes(axes, points, F[..., 5, :3, 3], np.asarray(self.revolute, dtype=bool))
+
     # ---- inverse problem ------------------------------------------------------------------
     def classify(self, T: Any, *, tol: float = TOL) -> tuple[str, ...]:
         """The singular cases of the pose T that affect at least one Ver.1 branch (empty in general position).
@@ -129,11 +148,14 @@ class Porter(Robot):
         return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, why, self.name, method, REVOLUTE,
                            joints=self.joint_symbols)  # fmt: skip
 
-    def ik(self, T: Any, near: Any = None, *, method: str = "explicit", tol: float = TOL) -> IKSolutions:
+    def ik(
+        self, T: Any, near: Any = None, *, method: str = "explicit", tol: float = TOL, planes: str = "front"
+    ) -> IKSolutions:
         """Every configuration reaching T, by Ver.1 (``"explicit"``) or Ver.2 (``"geometric"``).
 
         Ver.1 gives four configurations in general position (front/back arm plane x sign of c4),
-        Ver.2 the two of the front plane (one for parallel planes). Singular poses return one
+        Ver.2 the two of the front plane (one for parallel planes), or with ``planes="both"`` the
+        front plane's and the back plane's (the plane turned by π about z0: all four). Singular poses return one
         representative per branch (nearest ``near`` when given; see :mod:`.families`) with a
         :class:`~..ik.SingularityWarning`; with a stroke limit an unreachable pose gives
         ``success`` False and the reason.
@@ -143,6 +165,9 @@ class Porter(Robot):
         'unreachable: every configuration needs q'
         """
         method = as_choice(method, "method", ("explicit", "geometric"))
+        planes = as_choice(planes, "planes", ("front", "both"))
+        if planes == "both" and method != "geometric":
+            raise ValueError('planes: "both" extends Ver.2 (method="geometric"); Ver.1 always gives both planes')
         tol = as_tol(tol, "tol")
         Tm = self._check_poses(T)
         if Tm.shape[0] != 1:
@@ -151,10 +176,12 @@ class Porter(Robot):
         if method == "explicit":
             rows, keys, labels = self._explicit_one(Tm[0], nr, tol)
         else:
-            found = construct(Tm[0], self._L, nr, tol)
-            rows = [q for q, _ in found]
-            keys = [k for _, k in found]
-            labels = [f"front/c4{'+' if np.cos(q[4]) >= 0 else '-'}" for q in rows]
+            found = [(q, k, "front") for q, k in construct(Tm[0], self._L, nr, tol)]
+            if planes == "both":
+                found += [(q, k, "back") for q, k in construct(Tm[0], self._L, nr, tol, plane="back")]
+            rows = [q for q, _, _ in found]
+            keys = [k for _, k, _ in found]
+            labels = [f"{side}/c4{'+' if np.cos(q[4]) >= 0 else '-'}" for q, _, side in found]
         Q = wrap_angle(np.array(rows)) * REVOLUTE + np.array(rows) * ~REVOLUTE
         if any(keys):  # a guard at singular poses: keep rows that really reach T, drop coinciding representatives
             err = np.abs(self.fk(Q) - Tm[0]).max(axis=(-2, -1)) / max(1.0, float(np.abs(Tm[0, :3, 3]).max()))

@@ -83,11 +83,13 @@ def _angle(v: Vec, w: Vec, n: Vec) -> float:
 
 
 def construct(
-    T: np.ndarray, L: tuple[float, float, float], near: np.ndarray | None, tol: float
+    T: np.ndarray, L: tuple[float, float, float], near: np.ndarray | None, tol: float, plane: str = "front"
 ) -> list[tuple[np.ndarray, tuple[str, ...]]]:
     """Ver.2 for one validated pose: [(configuration, singular keys), ...] (angles not yet wrapped).
 
-    p0 = 0 is kept in the formulas for readability.
+    p0 = 0 is kept in the formulas for readability. ``plane="back"`` builds the same plane P turned
+    the other way: α1 + π and the normal -n (so y1 = -n), which gives Ver.1's two back-plane
+    configurations; when p4 is on the z0 axis the plane is free and the back plane adds nothing ([]).
     """
     l1, l3, l4 = L
     t = T.tolist()
@@ -111,6 +113,10 @@ def construct(
     else:
         a1 = math.atan2(p4[1], p4[0])
         n = (n[0] / nn, n[1] / nn, n[2] / nn)
+    if plane == "back":
+        if keys:
+            return []
+        a1, n = a1 + math.pi, (-n[0], -n[1], -n[2])
     # each candidate elbow point is p3 = p4 + l3 u with u a unit vector kept as such: p3 - p4 is
     # then exactly l3 u, never the difference of two large coordinates (which loses the digits of
     # α3 and α5 when q2 is large)
