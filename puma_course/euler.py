@@ -57,8 +57,17 @@ def zyz_from_rotation(R: Any, *, psi: Any = 0.0) -> np.ndarray:
     theta = np.where(singular, np.where(up, 0.0, np.pi), np.arctan2(sin_t, R[..., 2, 2]))
     phi = np.arctan2(R[..., 1, 2], R[..., 0, 2])
     psi_out = np.arctan2(R[..., 2, 1], -R[..., 2, 0])
+    # φ + ψ (θ < π/2) or φ − ψ (θ > π/2) from well-conditioned entries, exactly for any θ:
+    # r11 + r22 = (1 + cθ) cos(φ + ψ), r21 − r12 = (1 + cθ) sin(φ + ψ),
+    # r22 − r11 = (1 − cθ) cos(φ − ψ), −r21 − r12 = (1 − cθ) sin(φ − ψ).
+    # Near gimbal lock φ and ψ alone come from entries of size sin θ (relative error eps / sin θ, 1e-7 just
+    # above the snap); only their difference (θ ~ 0) or sum (θ ~ π) may carry that error, which moves R by
+    # sin θ times it, so the well-conditioned combination is imposed, half on each angle.
+    r00, r01, r10, r11 = R[..., 0, 0], R[..., 0, 1], R[..., 1, 0], R[..., 1, 1]
+    total = np.where(up, np.arctan2(r10 - r01, r00 + r11), np.arctan2(-r10 - r01, r11 - r00))
+    half = wrap_angle(total - np.where(up, phi + psi_out, phi - psi_out)) / 2
+    phi, psi_out = wrap_angle(phi + half), wrap_angle(np.where(up, psi_out + half, psi_out - half))
     # gimbal lock: R = Rz(φ + ψ) (θ = 0) or Rz(φ - ψ) Ry(π) (θ = π); ψ is the representative given
-    total = np.where(up, np.arctan2(R[..., 1, 0], R[..., 0, 0]), np.arctan2(-R[..., 1, 0], -R[..., 0, 0]))
     phi = np.where(singular, wrap_angle(np.where(up, total - psi_rep, total + psi_rep)), phi)
     psi_out = np.where(singular, psi_rep, psi_out)
     return np.stack(np.broadcast_arrays(phi, theta, psi_out), axis=-1) + 0.0
@@ -95,9 +104,15 @@ def rpy_from_rotation(R: Any, *, roll: Any = 0.0) -> np.ndarray:
     pitch = np.where(singular, np.where(down, np.pi / 2, -np.pi / 2), np.arctan2(-R[..., 2, 0], cos_p))
     roll_out = np.arctan2(R[..., 2, 1], R[..., 2, 2])
     yaw = np.arctan2(R[..., 1, 0], R[..., 0, 0])
+    # yaw − roll (pitch > 0) or yaw + roll (pitch < 0) from well-conditioned entries, exactly for any pitch:
+    # r23 − r12 = (1 + sp) sin(y − r), r13 + r22 = (1 + sp) cos(y − r),
+    # −r23 − r12 = (1 − sp) sin(y + r), r22 − r13 = (1 − sp) cos(y + r); imposed as in zyz_from_rotation
+    r01, r02, r11, r12 = R[..., 0, 1], R[..., 0, 2], R[..., 1, 1], R[..., 1, 2]
+    diff = np.where(down, np.arctan2(r12 - r01, r02 + r11), np.arctan2(-r12 - r01, r11 - r02))
+    half = wrap_angle(diff - np.where(down, yaw - roll_out, yaw + roll_out)) / 2
+    yaw, roll_out = wrap_angle(yaw + half), wrap_angle(np.where(down, roll_out - half, roll_out + half))
     # gimbal lock: with pitch = +π/2, R = [[0, s(r-y), c(r-y)], [0, c(r-y), -s(r-y)], [-1, 0, 0]]
     # (so yaw - roll is fixed); with pitch = -π/2, yaw + roll is fixed
-    diff = np.where(down, np.arctan2(-R[..., 0, 1], R[..., 1, 1]), np.arctan2(-R[..., 0, 1], R[..., 1, 1]))
     yaw = np.where(singular, wrap_angle(np.where(down, roll_rep + diff, diff - roll_rep)), yaw)
     roll_out = np.where(singular, roll_rep, roll_out)
     return np.stack(np.broadcast_arrays(roll_out, pitch, yaw), axis=-1) + 0.0

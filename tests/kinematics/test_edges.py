@@ -398,3 +398,42 @@ def test_three_step_just_beyond_reach_gives_no_duplicate_pairs():
         d = _wrapped(rows[:, None, :] - rows[None, :, :]).max(axis=-1) + np.eye(len(rows))
         assert d.min() > 1e-6  # distinct
         assert np.abs(arm.fk(rows)[:, :3, 3] - Tb[:3, 3]).max() <= 1e-9 * 2.5 + beyond
+
+
+# ---------------------------------------------------------------------------------------------------- Euler angles
+LOCK_OFFSETS = st.sampled_from([1.01e-9, -1.01e-9, 1.5e-9, -2e-9, 5e-9, -1e-8, 1e-7, -1e-6, 1e-5])
+
+
+@settings(derandomize=True, max_examples=1000, deadline=None)
+@given(ANGLES, ANGLES, ANGLES, LOCK_OFFSETS, st.booleans())
+def test_euler_just_above_the_lock_snap_round_trips_on_products_of_rotations(a, b, c, d, other_end):
+    # issue 21: ZYZ/RPY just above the 1e-9 snap round-tripped only to 1.1e-7 when R is a product of rotations
+    # (its small entries then carry absolute, not relative, rounding); the truth is R itself
+    from puma_course.euler import rotation_from_rpy, rotation_from_zyz, rpy_from_rotation, zyz_from_rotation
+    from puma_course.transforms import rotx, roty, rotz
+
+    th = (math.pi if other_end else 0.0) + d
+    R = rotz(a) @ roty(b) @ roty(th - b) @ rotz(c)
+    assert np.abs(rotation_from_zyz(*zyz_from_rotation(R)) - R).max() <= 1e-14
+    p = (-math.pi / 2 if other_end else math.pi / 2) + d
+    R = rotz(a) @ roty(b) @ roty(p - b) @ rotx(c)
+    assert np.abs(rotation_from_rpy(*rpy_from_rotation(R)) - R).max() <= 1e-14
+
+
+@settings(derandomize=True, max_examples=300, deadline=None)
+@given(st.lists(ANGLES, min_size=6, max_size=6), LOCK_OFFSETS, st.booleans())
+def test_three_step_wrist_just_above_the_lock_keeps_the_pose(q, d, other_end):
+    # issue 21: ThreeStepArm.ik inherited the Euler error just above the wrist snap (pose error 1.6e-7)
+    from puma_course.kinematics import ThreeStepArm
+    from puma_course.transforms import roty, rotz
+
+    arm = ThreeStepArm(1.5, 1.0)
+    q = np.array(q)
+    q[4] = (math.pi if other_end else 0.0) + d
+    T = arm.fk(q)
+    T[:3, :3] = T[:3, :3] @ rotz(q[5]).T @ roty(0.7).T @ roty(0.7) @ rotz(q[5])  # rounding as a product has it
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = arm.ik(T, near=q)
+    rows = np.array(list(sol))
+    assert len(rows) and np.abs(arm.fk(rows) - T).max() <= 1e-9 * 2.5
