@@ -437,3 +437,29 @@ def test_three_step_wrist_just_above_the_lock_keeps_the_pose(q, d, other_end):
         sol = arm.ik(T, near=q)
     rows = np.array(list(sol))
     assert len(rows) and np.abs(arm.fk(rows) - T).max() <= 1e-9 * 2.5
+
+
+# ---------------------------------------------------------------------------------------------------- Porter ik/ik_batch
+@settings(derandomize=True, max_examples=400, deadline=None)
+@given(st.lists(ANGLES, min_size=6, max_size=6), NEAR_ZERO, st.booleans(), st.sampled_from([0.0, 0.3, 1.2]),
+       st.sampled_from([0.0, 0.05, 0.4]))  # fmt: skip
+def test_porter_ik_and_ik_batch_agree_with_near_on_both_sides_of_c4_zero(q, d4, back, q2, noise):
+    # issue 21: Porter's ik_batch ignored `near` at c4 = 0 (planes parallel), so ik and ik_batch differed there
+    from puma_course.kinematics import Porter
+
+    arm = Porter()
+    q = np.array(q)
+    q[2] = q2
+    q[4] = (-math.pi / 2 if back else math.pi / 2) + d4
+    T = arm.fk(q)
+    near = q + noise * np.sin(np.arange(6) + 1.0)
+    near[2] = abs(near[2])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = arm.ik(T, near=near)
+        b = arm.ik_batch(T[None], near=near[None])
+    rows = np.array(list(sol)).reshape(-1, 6)
+    brows = b.q[0][b.valid[0]]
+    assert len(brows) == len(rows)
+    for r in rows:
+        assert _wrapped(brows - r).max(axis=1).min() <= 1e-12
