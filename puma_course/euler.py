@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import as_rotation
+from ._validate import as_rotation, check_broadcast
 from .transforms import _angle, _rot, rotx, roty, rotz, wrap_angle  # noqa: F401  (the examples below use them)
 
 __all__ = ["rotation_from_zyz", "zyz_from_rotation", "rotation_from_rpy", "rpy_from_rotation", "EULER_SINGULAR_TOL"]
@@ -30,7 +30,9 @@ def rotation_from_zyz(phi: Any, theta: Any, psi: Any) -> np.ndarray:
     >>> np.allclose(rotation_from_zyz(0.1, 0.2, 0.3), rotz(0.1) @ roty(0.2) @ rotz(0.3))
     True
     """
-    return _rot(phi, 2, "phi") @ _rot(theta, 1, "theta") @ _rot(psi, 2, "psi")
+    Rs = _rot(phi, 2, "phi"), _rot(theta, 1, "theta"), _rot(psi, 2, "psi")
+    check_broadcast(**{n: R.shape[:-2] for n, R in zip(("phi", "theta", "psi"), Rs, strict=True)})
+    return Rs[0] @ Rs[1] @ Rs[2]
 
 
 #: sin θ below this counts as the gimbal-lock case of an Euler-angle set (then only φ ± ψ is defined).
@@ -51,6 +53,7 @@ def zyz_from_rotation(R: Any, *, psi: Any = 0.0) -> np.ndarray:
     """
     R = as_rotation(R, "R", batch=True)
     psi_rep = _angle(psi, "psi")
+    check_broadcast(R=R.shape[:-2], psi=psi_rep.shape)
     sin_t = np.hypot(R[..., 0, 2], R[..., 1, 2])
     singular = sin_t < EULER_SINGULAR_TOL
     up = R[..., 2, 2] > 0
@@ -80,7 +83,9 @@ def rotation_from_rpy(roll: Any, pitch: Any, yaw: Any) -> np.ndarray:
     >>> np.allclose(rotation_from_rpy(0.1, 0.2, 0.3), rotz(0.3) @ roty(0.2) @ rotx(0.1))
     True
     """
-    return _rot(yaw, 2, "yaw") @ _rot(pitch, 1, "pitch") @ _rot(roll, 0, "roll")
+    Rs = _rot(yaw, 2, "yaw"), _rot(pitch, 1, "pitch"), _rot(roll, 0, "roll")
+    check_broadcast(**{n: R.shape[:-2] for n, R in zip(("yaw", "pitch", "roll"), Rs, strict=True)})
+    return Rs[0] @ Rs[1] @ Rs[2]
 
 
 def rpy_from_rotation(R: Any, *, roll: Any = 0.0) -> np.ndarray:
@@ -98,6 +103,7 @@ def rpy_from_rotation(R: Any, *, roll: Any = 0.0) -> np.ndarray:
     """
     R = as_rotation(R, "R", batch=True)
     roll_rep = _angle(roll, "roll")
+    check_broadcast(R=R.shape[:-2], roll=roll_rep.shape)
     cos_p = np.hypot(R[..., 0, 0], R[..., 1, 0])
     singular = cos_p < EULER_SINGULAR_TOL
     down = R[..., 2, 0] < 0  # pitch = +π/2 when r31 = -sin(pitch) = -1

@@ -439,7 +439,7 @@ def test_three_step_wrist_just_above_the_lock_keeps_the_pose(q, d, other_end):
     assert len(rows) and np.abs(arm.fk(rows) - T).max() <= 1e-9 * 2.5
 
 
-# ---------------------------------------------------------------------------------------------------- Porter ik/ik_batch
+# ---------------------------------------------------------------------------------------------------- Porter ik_batch
 @settings(derandomize=True, max_examples=400, deadline=None)
 @given(st.lists(ANGLES, min_size=6, max_size=6), NEAR_ZERO, st.booleans(), st.sampled_from([0.0, 0.3, 1.2]),
        st.sampled_from([0.0, 0.05, 0.4]))  # fmt: skip
