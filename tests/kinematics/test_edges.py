@@ -463,3 +463,61 @@ def test_porter_ik_and_ik_batch_agree_with_near_on_both_sides_of_c4_zero(q, d4, 
     assert len(brows) == len(rows)
     for r in rows:
         assert _wrapped(brows - r).max(axis=1).min() <= 1e-12
+
+
+# ---------------------------------------------------------------------------------------------------- start kept
+NEAR_OFFSETS = st.sampled_from([0.0, 1e-12, -1e-12, 1e-9, -1e-9, 5e-8, -5e-8, 1e-7, -1e-7, 1e-6])
+
+
+@settings(derandomize=True, max_examples=3000, deadline=None)
+@given(st.lists(ANGLES, min_size=6, max_size=6), NEAR_OFFSETS, NEAR_OFFSETS, NEAR_OFFSETS, st.booleans(),
+       st.booleans(), st.booleans())  # fmt: skip
+def test_porter_keeps_the_start_at_compound_near_singular_poses(q, d4, dq2, d23, back, q2_small, planar):
+    # issue 21: with near=q0 and q0's pose, q0 was missing in 135 of 3,000 examples (worst 4 rad)
+    from puma_course.kinematics import Porter
+
+    arm = Porter()
+    q = np.array(q)
+    q[4] = (-math.pi / 2 if back else math.pi / 2) + d4  # c4 ~ 0: planes (nearly) parallel
+    q[2] = abs(dq2) if q2_small else abs(q[2])  # q2 ~ 0
+    if planar:
+        q[3] = -q[1] + d23
+    T = arm.fk(q)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = arm.ik(T, near=q)
+        b = arm.ik_batch(T[None], near=q[None])
+    rows = np.array(list(sol)).reshape(-1, 6)
+    assert np.abs(arm.fk(rows) - T).max() <= 1e-9 * max(1.0, float(np.abs(T[:3, 3]).max()))
+    d = np.abs(rows - q)
+    d[:, [0, 1, 3, 4, 5]] = _wrapped(d[:, [0, 1, 3, 4, 5]])
+    assert d.max(axis=1).min() <= 1e-12
+    brows = b.q[0][b.valid[0]]
+    assert len(brows) == len(rows)
+    for r in rows:
+        assert _wrapped(brows - r).max(axis=1).min() <= 1e-12
+
+
+@settings(derandomize=True, max_examples=3000, deadline=None)
+@given(st.lists(ANGLES, min_size=6, max_size=6), NEAR_OFFSETS, NEAR_OFFSETS, NEAR_OFFSETS, st.booleans(),
+       st.booleans(), st.booleans())  # fmt: skip
+def test_three_step_keeps_the_start_at_compound_near_singular_poses(q, d4, d2, d1, flipped, elbow, axis):
+    # issue 21: with near=q0 and q0's pose, q0 was missing in 160 of 3,000 examples (worst 4 rad)
+    from puma_course.kinematics import ThreeStepArm
+
+    arm = ThreeStepArm(1.5, 1.0)
+    q = np.array(q)
+    q[4] = (math.pi if flipped else 0.0) + d4  # the wrist near its lock
+    if elbow:
+        q[2] = d2  # the elbow near stretched
+    if axis:
+        q[1] = math.pi / 2 + d1  # the wrist centre near the base axis (with a stretched elbow)
+    T = arm.fk(q)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = arm.ik(T, near=q)
+        b = arm.ik_batch(T[None], near=q[None])
+    rows = np.array(list(sol)).reshape(-1, 6)
+    assert np.abs(arm.fk(rows) - T).max() <= 1e-9 * 2.5
+    assert _wrapped(rows - q).max(axis=1).min() <= 1e-12
+    assert b.valid.sum() == len(rows)

@@ -23,7 +23,7 @@ import numpy as np
 from ..._validate import as_choice, as_robot_length, as_tol
 from ...transforms import wrap_angle
 from .._ops import ARRAY, SCALAR
-from ..ik import IKBatch, IKSolutions, dedupe_mask
+from ..ik import IKBatch, IKSolutions, dedupe_mask, keep_start
 from ..robot import Robot
 from .explicit import BRANCH_LABELS, PLANE, SIGN, branch, pose_terms
 from .families import REVOLUTE, nearest_parallel, split_q2zero
@@ -159,6 +159,8 @@ class Porter(Robot):
         if isinstance(guarded, str):
             return self._none(guarded, method)
         Q, keys, labels = guarded
+        if nr is not None:  # the start configuration among the solutions at compound near-singular poses
+            Q = self._keep_start(Q[None], np.ones((1, len(Q)), dtype=bool), nr[None], Tm)[0]
         present = {k for f in keys for k in f}
         if self.q2_max is not None:
             over = Q[:, 2] > self.q2_max
@@ -172,6 +174,14 @@ class Porter(Robot):
         sol = IKSolutions(Q, tuple(labels), tuple(keys), {k: MESSAGES[k] for k in present}, True, "", self.name,
                           method, REVOLUTE, joints=self.joint_symbols)  # fmt: skip
         return self._finish(sol, nr)
+
+    def _keep_start(self, q: np.ndarray, valid: np.ndarray, nr: np.ndarray, Tb: np.ndarray) -> np.ndarray:
+        """:func:`~..ik.keep_start` for Porter: a start beyond the stroke limit is never put in."""
+        T_near = self.fk(nr).reshape(-1, 4, 4)
+        outside = (nr[:, 2] < 0) | (nr[:, 2] > (np.inf if self.q2_max is None else self.q2_max))
+        T_near = np.where(outside[:, None, None], np.nan, T_near)
+        size = max(1.0, float(np.abs(Tb[:, :3, 3]).max()))
+        return keep_start(q, valid, nr, Tb, T_near, REVOLUTE, size)
 
     def _guard(self, T: np.ndarray, rows: list, keys: list, labels: list,
                method: str) -> tuple[np.ndarray, list, list] | str:  # fmt: skip
@@ -258,6 +268,8 @@ class Porter(Robot):
                 q[i, j] = r
                 flags[i, j] = sum(1 << FLAG_KEYS.index(f) for f in k)
                 valid[i, j] = self.q2_max is None or r[2] <= self.q2_max
+        if nr is not None:
+            q = self._keep_start(q, valid, nr, Tb)
         q = np.where(valid[..., None], q, 0.0)
         flags = np.where(valid, flags, 0)
         for i in np.flatnonzero(~valid.any(axis=1) & (reason == "")):
