@@ -498,6 +498,13 @@ def test_the_valid_values_of_the_table_work(name, fn, args):
         warnings.simplefilter("ignore")
         out = _call(fn, args, [v for _, _, v in args])
     assert out is not None
+    # issue 21: no accepted input returns a non-finite value (arrays in the result or in its fields)
+    parts = [out, *(getattr(out, "__dict__", {}) or {}).values()]
+    for part in parts:
+        if isinstance(part, np.ndarray) and part.dtype.kind in "fc":
+            assert np.isfinite(part).all(), f"{name}: a non-finite value in the result"
+        elif isinstance(part, float):
+            assert np.isfinite(part), f"{name}: a non-finite value in the result"
 
 
 def _public(module: Any, prefix: str) -> set[str]:
