@@ -92,6 +92,85 @@ def main(n: int) -> None:
             err = max(err, float(np.abs(rodrigues(ax, ang) - Rk).max()))
         print(f"axis_angle θ = π - {delta:<8g} (round trip){'':25s} {200:6d} {err:15.3g}")
 
+    _euler_and_near_start(rng, n)
+
+
+def _start_case(arm: object, Q: np.ndarray, size: float, prismatic: int | None = None) -> tuple[float, float, int, int]:
+    """Worst pose error / size, worst distance of the start to its nearest solution, starts lost beyond 1e-12,
+    and ik/ik_batch mismatches (counts, or a row farther than 1e-12), with near=q0 and q0's pose."""
+    worst, far, lost, mismatch = 0.0, 0.0, 0, 0
+    for q in Q:
+        T = arm.fk(q)  # type: ignore[attr-defined]
+        sol = arm.ik(T, near=q)  # type: ignore[attr-defined]
+        b = arm.ik_batch(T[None], near=q[None])  # type: ignore[attr-defined]
+        rows = np.array(list(sol)).reshape(-1, 6)
+        worst = max(worst, float(np.abs(arm.fk(rows) - T).max()) / size)  # type: ignore[attr-defined]
+        d = _wrapped(rows - q)
+        if prismatic is not None:
+            d[:, prismatic] = np.abs(rows[:, prismatic] - q[prismatic])
+        m = float(d.max(axis=1).min())
+        far, lost = max(far, m), lost + int(m > 1e-12)
+        brows = b.q[0][b.valid[0]]
+        mismatch += int(len(brows) != len(rows) or any(_wrapped(brows - r).max(axis=1).min() > 1e-12 for r in rows))
+    return worst, far, lost, mismatch
+
+
+def _euler_and_near_start(rng: np.random.Generator, n: int) -> None:
+    from puma_course.euler import rotation_from_rpy, rotation_from_zyz, rpy_from_rotation, zyz_from_rotation
+    from puma_course.kinematics import Porter, ThreeStepArm
+    from puma_course.transforms import rotx, roty, rotz
+
+    for d in (1.01e-9, 2e-9, 1e-8, 1e-7, 1e-6):  # just above the 1e-9 lock snap, R a product of rotations
+        ez = er = 0.0
+        for _ in range(n):
+            a, b, c = rng.uniform(-3.1, 3.1, 3)
+            for base, pb in ((0.0, math.pi / 2), (math.pi, -math.pi / 2)):
+                s = rng.choice([-1.0, 1.0])
+                R = rotz(a) @ roty(b) @ roty(base + s * d - b) @ rotz(c)
+                ez = max(ez, float(np.abs(rotation_from_zyz(*zyz_from_rotation(R)) - R).max()))
+                R = rotz(a) @ roty(b) @ roty(pb + s * d - b) @ rotx(c)
+                er = max(er, float(np.abs(rotation_from_rpy(*rpy_from_rotation(R)) - R).max()))
+        print(f"Euler lock + {d:<8g} round trip ZYZ {ez:.3g}, RPY (value){'':15s} {2 * n:6d} {er:15.3g}")
+    print(f"{'near-singular, near=q0':58s} {'poses':>6s} {'worst err/size':>15s} {'start lost':>10s} {'ik!=batch':>9s}"
+          f" {'start dist':>10s}")  # fmt: skip
+    offs = np.array([0.0, 1e-12, -1e-12, 1e-9, -1e-9, 5e-8, -5e-8, 1e-7, -1e-7, 1e-6])
+    porter = Porter()
+    for label, q2small, planar in (("c4 ~ 0", False, False), ("c4 ~ 0, q2 ~ 0", True, False),
+                                   ("c4 ~ 0, q2 ~ 0, α2 + α3 ~ 0", True, True)):  # fmt: skip
+        Q = rng.uniform(-3.1, 3.1, (n, 6))
+        Q[:, 4] = rng.choice([-1.0, 1.0], n) * math.pi / 2 + rng.choice(offs, n)
+        Q[:, 2] = np.abs(rng.choice(offs, n)) if q2small else np.abs(Q[:, 2])
+        if planar:
+            Q[:, 3] = -Q[:, 1] + rng.choice(offs, n)
+        size = 1.0 + float(np.abs(Q[:, 2]).max())
+        w, far, lost, mm = _start_case(porter, Q, size, prismatic=2)
+        print(f"Porter {label:51s} {n:6d} {w:15.3g} {lost:10d} {mm:9d} {far:10.3g}")
+    ts = ThreeStepArm(1.5, 1.0)
+    for label, elbow, axis in (("wrist lock", False, False), ("wrist lock + stretched elbow", True, False),
+                               ("wrist lock + stretched elbow + base axis", True, True)):  # fmt: skip
+        Q = rng.uniform(-3.1, 3.1, (n, 6))
+        Q[:, 4] = rng.choice([0.0, math.pi], n) + rng.choice(offs, n)
+        if elbow:
+            Q[:, 2] = rng.choice(offs, n)
+        if axis:
+            Q[:, 1] = math.pi / 2 + rng.choice(offs, n)
+        w, far, lost, mm = _start_case(ts, Q, 2.5)
+        print(f"three-step {label:47s} {n:6d} {w:15.3g} {lost:10d} {mm:9d} {far:10.3g}")
+    for d4 in (0.0, 1e-12, 1e-9, -1e-9, 1e-7):  # Porter ik vs ik_batch with near away from q0, at c4 ~ 0
+        mism = 0
+        for _ in range(n // 4):
+            q = rng.uniform(-3.1, 3.1, 6)
+            q[2] = abs(q[2])
+            q[4] = math.pi / 2 + d4
+            near = q + rng.normal(0, 0.3, 6)
+            near[2] = abs(near[2])
+            T = porter.fk(q)
+            rows = np.array(list(porter.ik(T, near=near))).reshape(-1, 6)
+            b = porter.ik_batch(T[None], near=near[None])
+            brows = b.q[0][b.valid[0]]
+            mism += int(len(brows) != len(rows) or any(_wrapped(brows - r).max(axis=1).min() > 1e-12 for r in rows))
+        print(f"Porter ik vs ik_batch, near ≠ q0, c4 = 0 + {d4:<8g}{'':24s} {n // 4:6d} {'':15s} {'':10s} {mism:9d}")
+
 
 if __name__ == "__main__":
     main(int(sys.argv[1]) if len(sys.argv) > 1 else 2000)

@@ -24,6 +24,7 @@ import numpy as np
 
 __all__ = [
     "MAX_MAGNITUDE",
+    "check_broadcast",
     "as_array",
     "as_rotation",
     "as_transform",
@@ -376,3 +377,22 @@ def as_mask(value: Any, name: str, n: int) -> np.ndarray:
         got = f"dtype {arr.dtype} and shape {arr.shape}" if arr.dtype != object else describe(value)
         raise ValueError(f"{name}: expected a boolean mask of shape ({n},) (one True/False per joint), got {got}")
     return arr
+
+
+def check_broadcast(**shapes: tuple[int, ...]) -> tuple[int, ...]:
+    """The common batch shape of arguments that broadcast together, or a ``ValueError`` naming them
+    (not numpy's "operands could not be broadcast" three calls later; issue 21).
+
+    >>> check_broadcast(phi=(2,), theta=(), psi=(2,))
+    (2,)
+    >>> check_broadcast(phi=(2,), theta=(3,))
+    Traceback (most recent call last):
+    ...
+    ValueError: phi, theta: expected batch shapes that broadcast together, got phi (2,), theta (3,)
+    """
+    try:
+        return tuple(np.broadcast_shapes(*shapes.values()))
+    except ValueError:
+        names = ", ".join(shapes)
+        got = ", ".join(f"{n} {tuple(s)}" for n, s in shapes.items())
+        raise ValueError(f"{names}: expected batch shapes that broadcast together, got {got}") from None

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import as_rotation
+from ._validate import as_rotation, check_broadcast
 from .transforms import _angle, _rot, rotx, roty, rotz, wrap_angle  # noqa: F401  (the examples below use them)
 
 __all__ = ["rotation_from_zyz", "zyz_from_rotation", "rotation_from_rpy", "rpy_from_rotation", "EULER_SINGULAR_TOL"]
@@ -30,7 +30,9 @@ def rotation_from_zyz(phi: Any, theta: Any, psi: Any) -> np.ndarray:
     >>> np.allclose(rotation_from_zyz(0.1, 0.2, 0.3), rotz(0.1) @ roty(0.2) @ rotz(0.3))
     True
     """
-    return _rot(phi, 2, "phi") @ _rot(theta, 1, "theta") @ _rot(psi, 2, "psi")
+    Rs = _rot(phi, 2, "phi"), _rot(theta, 1, "theta"), _rot(psi, 2, "psi")
+    check_broadcast(**{n: R.shape[:-2] for n, R in zip(("phi", "theta", "psi"), Rs, strict=True)})
+    return Rs[0] @ Rs[1] @ Rs[2]
 
 
 #: sin θ below this counts as the gimbal-lock case of an Euler-angle set (then only φ ± ψ is defined).
@@ -51,14 +53,24 @@ def zyz_from_rotation(R: Any, *, psi: Any = 0.0) -> np.ndarray:
     """
     R = as_rotation(R, "R", batch=True)
     psi_rep = _angle(psi, "psi")
+    check_broadcast(R=R.shape[:-2], psi=psi_rep.shape)
     sin_t = np.hypot(R[..., 0, 2], R[..., 1, 2])
     singular = sin_t < EULER_SINGULAR_TOL
     up = R[..., 2, 2] > 0
     theta = np.where(singular, np.where(up, 0.0, np.pi), np.arctan2(sin_t, R[..., 2, 2]))
     phi = np.arctan2(R[..., 1, 2], R[..., 0, 2])
     psi_out = np.arctan2(R[..., 2, 1], -R[..., 2, 0])
+    # φ + ψ (θ < π/2) or φ − ψ (θ > π/2) from well-conditioned entries, exactly for any θ:
+    # r11 + r22 = (1 + cθ) cos(φ + ψ), r21 − r12 = (1 + cθ) sin(φ + ψ),
+    # r22 − r11 = (1 − cθ) cos(φ − ψ), −r21 − r12 = (1 − cθ) sin(φ − ψ).
+    # Near gimbal lock φ and ψ alone come from entries of size sin θ (relative error eps / sin θ, 1e-7 just
+    # above the snap); only their difference (θ ~ 0) or sum (θ ~ π) may carry that error, which moves R by
+    # sin θ times it, so the well-conditioned combination is imposed, half on each angle.
+    r00, r01, r10, r11 = R[..., 0, 0], R[..., 0, 1], R[..., 1, 0], R[..., 1, 1]
+    total = np.where(up, np.arctan2(r10 - r01, r00 + r11), np.arctan2(-r10 - r01, r11 - r00))
+    half = wrap_angle(total - np.where(up, phi + psi_out, phi - psi_out)) / 2
+    phi, psi_out = wrap_angle(phi + half), wrap_angle(np.where(up, psi_out + half, psi_out - half))
     # gimbal lock: R = Rz(φ + ψ) (θ = 0) or Rz(φ - ψ) Ry(π) (θ = π); ψ is the representative given
-    total = np.where(up, np.arctan2(R[..., 1, 0], R[..., 0, 0]), np.arctan2(-R[..., 1, 0], -R[..., 0, 0]))
     phi = np.where(singular, wrap_angle(np.where(up, total - psi_rep, total + psi_rep)), phi)
     psi_out = np.where(singular, psi_rep, psi_out)
     return np.stack(np.broadcast_arrays(phi, theta, psi_out), axis=-1) + 0.0
@@ -71,7 +83,9 @@ def rotation_from_rpy(roll: Any, pitch: Any, yaw: Any) -> np.ndarray:
     >>> np.allclose(rotation_from_rpy(0.1, 0.2, 0.3), rotz(0.3) @ roty(0.2) @ rotx(0.1))
     True
     """
-    return _rot(yaw, 2, "yaw") @ _rot(pitch, 1, "pitch") @ _rot(roll, 0, "roll")
+    Rs = _rot(yaw, 2, "yaw"), _rot(pitch, 1, "pitch"), _rot(roll, 0, "roll")
+    check_broadcast(**{n: R.shape[:-2] for n, R in zip(("yaw", "pitch", "roll"), Rs, strict=True)})
+    return Rs[0] @ Rs[1] @ Rs[2]
 
 
 def rpy_from_rotation(R: Any, *, roll: Any = 0.0) -> np.ndarray:
@@ -89,15 +103,22 @@ def rpy_from_rotation(R: Any, *, roll: Any = 0.0) -> np.ndarray:
     """
     R = as_rotation(R, "R", batch=True)
     roll_rep = _angle(roll, "roll")
+    check_broadcast(R=R.shape[:-2], roll=roll_rep.shape)
     cos_p = np.hypot(R[..., 0, 0], R[..., 1, 0])
     singular = cos_p < EULER_SINGULAR_TOL
     down = R[..., 2, 0] < 0  # pitch = +π/2 when r31 = -sin(pitch) = -1
     pitch = np.where(singular, np.where(down, np.pi / 2, -np.pi / 2), np.arctan2(-R[..., 2, 0], cos_p))
     roll_out = np.arctan2(R[..., 2, 1], R[..., 2, 2])
     yaw = np.arctan2(R[..., 1, 0], R[..., 0, 0])
+    # yaw − roll (pitch > 0) or yaw + roll (pitch < 0) from well-conditioned entries, exactly for any pitch:
+    # r23 − r12 = (1 + sp) sin(y − r), r13 + r22 = (1 + sp) cos(y − r),
+    # −r23 − r12 = (1 − sp) sin(y + r), r22 − r13 = (1 − sp) cos(y + r); imposed as in zyz_from_rotation
+    r01, r02, r11, r12 = R[..., 0, 1], R[..., 0, 2], R[..., 1, 1], R[..., 1, 2]
+    diff = np.where(down, np.arctan2(r12 - r01, r02 + r11), np.arctan2(-r12 - r01, r11 - r02))
+    half = wrap_angle(diff - np.where(down, yaw - roll_out, yaw + roll_out)) / 2
+    yaw, roll_out = wrap_angle(yaw + half), wrap_angle(np.where(down, roll_out - half, roll_out + half))
     # gimbal lock: with pitch = +π/2, R = [[0, s(r-y), c(r-y)], [0, c(r-y), -s(r-y)], [-1, 0, 0]]
     # (so yaw - roll is fixed); with pitch = -π/2, yaw + roll is fixed
-    diff = np.where(down, np.arctan2(-R[..., 0, 1], R[..., 1, 1]), np.arctan2(-R[..., 0, 1], R[..., 1, 1]))
     yaw = np.where(singular, wrap_angle(np.where(down, roll_rep + diff, diff - roll_rep)), yaw)
     roll_out = np.where(singular, roll_rep, roll_out)
     return np.stack(np.broadcast_arrays(roll_out, pitch, yaw), axis=-1) + 0.0

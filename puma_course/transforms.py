@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import MAX_MAGNITUDE, as_array, as_rotation, as_tol, as_transform
+from ._validate import MAX_MAGNITUDE, as_array, as_rotation, as_tol, as_transform, check_broadcast
 
 __all__ = [
     "rotx",
@@ -275,6 +275,7 @@ def trot(axis: Any, angle: Any, point: Any = (0.0, 0.0, 0.0)) -> np.ndarray:
     """
     R = rodrigues(axis, angle)
     c = as_array(point, "point", (3,), batch=True, max_magnitude=MAX_MAGNITUDE)
+    check_broadcast(**{"axis, angle": R.shape[:-2], "point": c.shape[:-1]})
     p = c - np.einsum("...ij,...j->...i", R, c)
     return homogeneous(R, p)
 
@@ -307,9 +308,11 @@ def compose_moving(*transforms: Any) -> np.ndarray:
     """
     if not transforms:
         raise ValueError("transforms: expected at least one transform, got none")
-    out = as_transform(transforms[0], "transforms[0]", batch=True)
-    for k, T in enumerate(transforms[1:], start=1):
-        out = out @ as_transform(T, f"transforms[{k}]", batch=True)
+    checked = [as_transform(T, f"transforms[{k}]", batch=True) for k, T in enumerate(transforms)]
+    check_broadcast(**{f"transforms[{k}]": T.shape[:-2] for k, T in enumerate(checked)})
+    out = checked[0]
+    for T in checked[1:]:
+        out = out @ T
     return out
 
 
@@ -328,6 +331,7 @@ def compose_fixed(*transforms: Any) -> np.ndarray:
     if not transforms:
         raise ValueError("transforms: expected at least one transform, got none")
     checked = [as_transform(T, f"transforms[{k}]", batch=True) for k, T in enumerate(transforms)]
+    check_broadcast(**{f"transforms[{k}]": T.shape[:-2] for k, T in enumerate(checked)})
     out = checked[-1]
     for T in checked[-2::-1]:
         out = out @ T

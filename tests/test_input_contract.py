@@ -401,6 +401,45 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
     ),  # fmt: skip
 ]
 
+# issue 21: the three-step procedure itself (int8 lengths overflowed to "l1 + l2 = -56")
+from puma_course.kinematics.three_step import procedure as ts_procedure  # noqa: E402
+
+TABLE.append(
+    (
+        "procedure.solve_three_steps",
+        ts_procedure.solve_three_steps,
+        [("w", "vec3", [1.0, 0.5, 0.8]), ("target", "rotation", np.eye(3)), ("l1", "robot_positive", 1.5),
+         ("l2", "robot_positive", 1.0), ("elbow", "elbow", "up"), ("start", "start", None)],
+    )
+)  # fmt: skip
+
+#: calls whose array arguments broadcast together: shapes that do not broadcast must give a ValueError
+#: naming one of the arguments, not numpy's "operands could not be broadcast" (issue 21)
+BROADCAST = [
+    ("euler.rotation_from_zyz", euler.rotation_from_zyz, ([0.1, 0.2], [0.1, 0.2, 0.3], 0.3), ("phi", "theta")),
+    ("euler.rotation_from_rpy", euler.rotation_from_rpy, ([0.1, 0.2], [0.1, 0.2, 0.3], 0.3), ("roll", "pitch")),
+    ("euler.zyz_from_rotation", lambda R, psi: euler.zyz_from_rotation(R, psi=psi),
+     (np.stack([np.eye(3)] * 2), [0.1, 0.2, 0.3]), ("R", "psi")),
+    ("euler.rpy_from_rotation", lambda R, roll: euler.rpy_from_rotation(R, roll=roll),
+     (np.stack([np.eye(3)] * 2), [0.1, 0.2, 0.3]), ("R", "roll")),
+    ("transforms.trot", transforms.trot, ([[0, 0, 1.0]] * 2, [0.1, 0.2], [[1.0, 0, 0]] * 3), ("angle", "point")),
+    ("transforms.compose_moving", transforms.compose_moving, (np.stack([np.eye(4)] * 2), np.stack([np.eye(4)] * 3)),
+     ("transforms[0]", "transforms[1]")),
+    ("transforms.compose_fixed", transforms.compose_fixed, (np.stack([np.eye(4)] * 2), np.stack([np.eye(4)] * 3)),
+     ("transforms[0]", "transforms[1]")),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("name, fn, values, names", [pytest.param(*r, id=r[0]) for r in BROADCAST])
+def test_shapes_that_do_not_broadcast_raise_a_value_error_naming_the_arguments(name, fn, values, names):
+    with pytest.raises(ValueError) as err:
+        out = fn(*values)
+        pytest.fail(f"{name} returned {out!r} for shapes that do not broadcast")
+    msg = str(err.value)
+    assert "could not be broadcast" not in msg, f"{name}: numpy's message, not ours: {msg}"
+    assert any(n in msg.split(":", 1)[0] for n in names), f"{name}: the message names none of {names}: {msg}"
+
+
 #: public names that are not swept, and why
 EXEMPT = {
     "transforms.wrap_angle": "no validation by design: it sits on the solvers' hot paths; callers validate",
@@ -487,6 +526,13 @@ def test_the_valid_values_of_the_table_work(name, fn, args):
         warnings.simplefilter("ignore")
         out = _call(fn, args, [v for _, _, v in args])
     assert out is not None
+    # issue 21: no accepted input returns a non-finite value (arrays in the result or in its fields)
+    parts = [out, *(getattr(out, "__dict__", {}) or {}).values()]
+    for part in parts:
+        if isinstance(part, np.ndarray) and part.dtype.kind in "fc":
+            assert np.isfinite(part).all(), f"{name}: a non-finite value in the result"
+        elif isinstance(part, float):
+            assert np.isfinite(part), f"{name}: a non-finite value in the result"
 
 
 def _public(module: Any, prefix: str) -> set[str]:
@@ -512,6 +558,7 @@ def test_every_public_function_is_swept():
         | _public(sdh, "standard_dh")
         | _public(ts, "three_step") | _public(tr, "trajectories")
         | {f"porter.{n}" for n in ("angle",)}
+        | _public(ts_procedure, "procedure") - {f"procedure.{n}" for n in ts.__all__}
     )  # fmt: skip
     robots = {"Puma560": Puma560, "MK3": MK3, "Porter": Porter, "ThreeStepArm": ThreeStepArm}
     methods = {f"{r}.{m}" for r, cls in robots.items() for m in ("fk", "ik", "ik_batch") if hasattr(cls, m)}

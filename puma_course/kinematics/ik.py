@@ -98,6 +98,34 @@ def nearest_index(Q: np.ndarray, q_ref: np.ndarray, revolute: np.ndarray, valid:
     return np.argmin(cost, axis=-1)
 
 
+def keep_start(q: np.ndarray, valid: np.ndarray, near: np.ndarray, T: np.ndarray, T_near: np.ndarray,
+               revolute: np.ndarray, size: float) -> np.ndarray:  # fmt: skip
+    """Rows q (N, k, n) with, for each pose whose ``near`` (N, n) reaches T to rounding (pose T_near), the valid
+    row nearest ``near`` replaced by ``near`` itself (angles wrapped).
+
+    At compound near-singular poses the closed forms fix only sums or differences of some angles well
+    (their split is conditioned by 1 / sin of a tiny angle), so the start configuration could be missing
+    with ``near`` given (issue 21). When ``near`` reproduces T to 1e-12 (rotation entries; positions to
+    1e-12 x the robot's size) it *is* that solution, and the nearest representative is replaced by it.
+
+    >>> q = np.array([[[0.0, 3.0], [1.0, 1.0]]]); ok = np.ones((1, 2), bool); T = np.eye(4)[None]
+    >>> keep_start(q, ok, np.array([[0.1, 1.0]]), T, T, np.array([True, True]), 1.0)[0].tolist()
+    [[0.0, 3.0], [0.1, 1.0]]
+    """
+    err = np.maximum(np.abs(T_near[:, :3, :3] - T[:, :3, :3]).max(axis=(-2, -1)),
+                     np.abs(T_near[:, :3, 3] - T[:, :3, 3]).max(axis=-1) / size)  # fmt: skip
+    D = near[:, None, :] - q
+    D = np.where(revolute, wrap_angle(D), D)
+    dist = np.where(valid, np.abs(D).max(axis=-1), np.inf)
+    j = np.argmin(dist, axis=1)
+    rows = np.flatnonzero((err <= 1e-12) & valid.any(axis=1))
+    out = q.copy()
+    nr = near[rows]
+    inside = (nr > -np.pi) & (nr <= np.pi)  # already wrapped: kept bit for bit (wrapping may round)
+    out[rows, j[rows]] = np.where(revolute & ~inside, wrap_angle(nr), nr)
+    return out
+
+
 def dedupe_mask(Q: np.ndarray, revolute: np.ndarray, tol: float = 1e-9) -> np.ndarray:
     """Mask of the rows of Q (k, n) that do not repeat an earlier row (within ``tol``, angles wrapped).
 

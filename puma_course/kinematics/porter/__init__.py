@@ -23,7 +23,7 @@ import numpy as np
 from ..._validate import as_choice, as_robot_length, as_tol
 from ...transforms import wrap_angle
 from .._ops import ARRAY, SCALAR
-from ..ik import IKBatch, IKSolutions, dedupe_mask
+from ..ik import IKBatch, IKSolutions, dedupe_mask, keep_start
 from ..robot import Robot
 from .explicit import BRANCH_LABELS, PLANE, SIGN, branch, pose_terms
 from .families import REVOLUTE, nearest_parallel, split_q2zero
@@ -182,15 +182,12 @@ class Porter(Robot):
             rows = [q for q, _, _ in found]
             keys = [k for _, k, _ in found]
             labels = [f"{side}/c4{'+' if np.cos(q[4]) >= 0 else '-'}" for q, _, side in found]
-        Q = wrap_angle(np.array(rows)) * REVOLUTE + np.array(rows) * ~REVOLUTE
-        if any(keys):  # a guard at singular poses: keep rows that really reach T, drop coinciding representatives
-            err = np.abs(self.fk(Q) - Tm[0]).max(axis=(-2, -1)) / max(1.0, float(np.abs(Tm[0, :3, 3]).max()))
-            keep = np.flatnonzero(err < 1e-8)
-            if len(keep) == 0:  # never silently "success" with nothing: say the solver failed
-                why = f"the {method} solver found no configuration reaching T (pose error {err.min():.3g})"
-                return self._none(why + ": please report", method)
-            keep = keep[dedupe_mask(Q[keep], REVOLUTE)]
-            Q, keys, labels = Q[keep], [keys[i] for i in keep], [labels[i] for i in keep]
+        guarded = self._guard(Tm[0], rows, keys, labels, method)
+        if isinstance(guarded, str):
+            return self._none(guarded, method)
+        Q, keys, labels = guarded
+        if nr is not None:  # the start configuration among the solutions at compound near-singular poses
+            Q = self._keep_start(Q[None], np.ones((1, len(Q)), dtype=bool), nr[None], Tm)[0]
         present = {k for f in keys for k in f}
         if self.q2_max is not None:
             over = Q[:, 2] > self.q2_max
@@ -204,6 +201,29 @@ class Porter(Robot):
         sol = IKSolutions(Q, tuple(labels), tuple(keys), {k: MESSAGES[k] for k in present}, True, "", self.name,
                           method, REVOLUTE, joints=self.joint_symbols)  # fmt: skip
         return self._finish(sol, nr)
+
+    def _keep_start(self, q: np.ndarray, valid: np.ndarray, nr: np.ndarray, Tb: np.ndarray) -> np.ndarray:
+        """:func:`~..ik.keep_start` for Porter: a start beyond the stroke limit is never put in."""
+        T_near = self.fk(nr).reshape(-1, 4, 4)
+        outside = (nr[:, 2] < 0) | (nr[:, 2] > (np.inf if self.q2_max is None else self.q2_max))
+        T_near = np.where(outside[:, None, None], np.nan, T_near)
+        size = max(1.0, float(np.abs(Tb[:, :3, 3]).max()))
+        return keep_start(q, valid, nr, Tb, T_near, REVOLUTE, size)
+
+    def _guard(self, T: np.ndarray, rows: list, keys: list, labels: list,
+               method: str) -> tuple[np.ndarray, list, list] | str:  # fmt: skip
+        """Rows wrapped; at singular poses keep rows that really reach T and drop coinciding representatives
+        (shared by ``ik`` and ``ik_batch`` so that both answer the same); a reason when none is left."""
+        Q = wrap_angle(np.array(rows)) * REVOLUTE + np.array(rows) * ~REVOLUTE
+        if any(keys):
+            err = np.abs(self.fk(Q) - T).max(axis=(-2, -1)) / max(1.0, float(np.abs(T[:3, 3]).max()))
+            keep = np.flatnonzero(err < 1e-8)
+            if len(keep) == 0:  # never silently "success" with nothing: say the solver failed
+                why = f"the {method} solver found no configuration reaching T (pose error {err.min():.3g})"
+                return why + ": please report"
+            keep = keep[dedupe_mask(Q[keep], REVOLUTE)]
+            Q, keys, labels = Q[keep], [keys[i] for i in keep], [labels[i] for i in keep]
+        return Q, keys, labels
 
     def _explicit_one(self, T: np.ndarray, near: np.ndarray | None, tol: float) -> tuple[list, list, list]:
         """Ver.1 for one pose in plain floats: the four branches, then the nearest family members."""
@@ -261,9 +281,25 @@ class Porter(Robot):
             if self.q2_max is not None:
                 ok = ok & (q[sl, :, 2] <= self.q2_max)
             valid[sl] = ok
+        # singular poses (rare): the same per-pose path as ``ik`` (family members nearest ``near``, the guard),
+        # so that ik and ik_batch agree on both sides of every threshold (issue 21)
+        for i in np.flatnonzero(flags.any(axis=1)):
+            rows, keys, labels = self._explicit_one(Tb[i], None if nr is None else nr[i], tol)
+            guarded = self._guard(Tb[i], rows, keys, labels, "explicit")
+            valid[i] = False
+            if isinstance(guarded, str):
+                reason[i] = guarded
+                continue
+            for r, k, lab in zip(*guarded, strict=True):
+                j = BRANCH_LABELS.index(lab)
+                q[i, j] = r
+                flags[i, j] = sum(1 << FLAG_KEYS.index(f) for f in k)
+                valid[i, j] = self.q2_max is None or r[2] <= self.q2_max
+        if nr is not None:
+            q = self._keep_start(q, valid, nr, Tb)
         q = np.where(valid[..., None], q, 0.0)
         flags = np.where(valid, flags, 0)
-        for i in np.flatnonzero(~valid.any(axis=1)):
+        for i in np.flatnonzero(~valid.any(axis=1) & (reason == "")):
             reason[i] = f"unreachable: every configuration needs q2 > q2_max = {self.q2_max:g}"
         return IKBatch(q, valid, BRANCH_LABELS, flags, FLAG_KEYS, MESSAGES, reason.astype(str), self.name,
                        "explicit", REVOLUTE, joints=self.joint_symbols)  # fmt: skip

@@ -24,7 +24,7 @@ from ...euler import EULER_SINGULAR_TOL, zyz_from_rotation
 from ...transforms import wrap_angle
 from .._ops import ARRAY, SCALAR
 from ..dh import frame_array, split_q
-from ..ik import IKBatch, IKSolutions
+from ..ik import IKBatch, IKSolutions, keep_start
 from ..robot import Robot
 from .geometry import base_angle, points_eq1, triangle
 from .procedure import ThreeStepSolution, solve_three_steps
@@ -234,5 +234,7 @@ class ThreeStepArm(Robot):
             "from the shoulder",
         ).astype(str)  # fmt: skip
         del l3s
+        if nr is not None:  # the start configuration among the solutions at compound near-singular poses
+            q = keep_start(q, valid, nr, Tb, self.fk(nr), np.asarray(self.revolute), l1 + l2)
         return IKBatch(q, valid, BRANCH_LABELS, flags, FLAG_KEYS, MESSAGES, reason, self.name, "closed form",
                        self.revolute, joints=self.joint_symbols)  # fmt: skip
