@@ -23,16 +23,22 @@ from .ex05_porter_fk import PUBLIC_L, PUBLIC_Q
 
 PUBLIC_T = ref.porter_fk(PUBLIC_Q, *PUBLIC_L)
 PARALLEL_Q = np.array([0.7, 0.3, 1.2, 0.4, np.pi / 2, 0.5])
+#: A second parallel-planes pose, where Porter's configuration has negative angles (α5 < 0).
+PARALLEL_Q_BACK = np.array([-2.0, 0.3, 0.8, -2.2, np.pi / 2, -1.0])
 
 
 def _angle_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (v, w, axis): the first with a positive angle, the others negative (where an unsigned angle
+    is wrong), so the unsigned reading passes at most 2 of the 7 cases with the public ones."""
     out = []
-    for axis in unit_vectors(rng, n):
+    for k, axis in enumerate(unit_vectors(rng, n)):
         u = np.cross(axis, rng.normal(size=3))
         u /= np.linalg.norm(u)
+        t = float(rng.uniform(-np.pi, np.pi))
+        beta = float(rng.uniform(0.2, 3.0)) * (1.0 if k == 0 else -1.0)
         v, w = (
-            float(s) * (np.cos(t) * u + np.sin(t) * np.cross(axis, u))
-            for s, t in zip(rng.uniform(0.3, 2.0, 2), rng.uniform(-np.pi, np.pi, 2), strict=True)
+            float(s) * (np.cos(a) * u + np.sin(a) * np.cross(axis, u))
+            for s, a in zip(rng.uniform(0.3, 2.0, 2), (t, t + beta), strict=True)
         )
         out.append((v, w, axis))
     return out
@@ -103,8 +109,9 @@ EXERCISE = Exercise(
             mistakes=(
                 matches(
                     "unsigned_angle",
-                    "your angle is never negative: |v × w| is the unsigned reading of Porter's "
-                    "angle(); the sign comes from the component of v × w along the axis (lecture 07 step 4)",
+                    "your angle is the unsigned one, atan2(|v × w|, v · w), where the angle asked for is "
+                    "negative: |v × w| is the unsigned reading of Porter's angle(); the sign comes from the "
+                    "component of v × w along the axis (lecture 07 step 4)",
                     _unsigned,
                 ),
                 matches(
@@ -122,7 +129,10 @@ EXERCISE = Exercise(
             "porter_parallel_planes",
             4,
             "Porter's configuration when the planes are parallel",
-            public=((ref.porter_fk(PARALLEL_Q, *PUBLIC_L), *PUBLIC_L),),
+            public=(
+                (ref.porter_fk(PARALLEL_Q, *PUBLIC_L), *PUBLIC_L),
+                (ref.porter_fk(PARALLEL_Q_BACK, *PUBLIC_L), *PUBLIC_L),
+            ),
             hidden=lambda rng: ref.porter_parallel_cases(rng, 4),
             reference=ref.porter_parallel_expected,
             judge_with=stroke_judge(),
