@@ -127,7 +127,7 @@ EXERCISE = Exercise(
             "rail_table",
             5,
             "the DH table of the MK3 on a rail, from its picture",
-            public=((450.0, 360.0, 135.0, 250.0, 215.0, 100.0),),
+            public=((450.0, 360.0, 135.0, 250.0, 215.0, 100.0), (700.0, 360.0, 135.0, 250.0, 215.0, 100.0)),
             hidden=lambda rng: [(float(c), *ref.mk3_cases(rng, 1)[0][1:]) for c in rng.uniform(200.0, 800.0, 3)],
             reference=ref.mk3_rail_expected,
             judge_with=table_judge(ref.table_fk, ref.standard_table_fk),

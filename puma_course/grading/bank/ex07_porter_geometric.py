@@ -19,9 +19,10 @@ from . import _keys as keys
 from ._formulas import porter_elbows, porter_normal
 from ._inputs import unit_vectors
 from ._reference import porter_chain as ref
-from .ex05_porter_fk import PUBLIC_L, PUBLIC_Q
+from .ex05_porter_fk import PUBLIC_L, PUBLIC_L2, PUBLIC_Q, PUBLIC_Q2
 
 PUBLIC_T = ref.porter_fk(PUBLIC_Q, *PUBLIC_L)
+PUBLIC_T2 = ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2)
 PARALLEL_Q = np.array([0.7, 0.3, 1.2, 0.4, np.pi / 2, 0.5])
 #: A second parallel-planes pose, where Porter's configuration has negative angles (α5 < 0).
 PARALLEL_Q_BACK = np.array([-2.0, 0.3, 0.8, -2.2, np.pi / 2, -1.0])
@@ -58,7 +59,7 @@ EXERCISE = Exercise(
             "arm_plane_normal",
             2,
             "the unit normal of the arm plane, pointing along y1",
-            public=((PUBLIC_T, 1.0, 0.3),),
+            public=((PUBLIC_T, 1.0, 0.3), (PUBLIC_T2, PUBLIC_L2[0], PUBLIC_L2[2])),
             hidden=lambda rng: [(T, l1, l4) for T, l1, _, l4 in ref.porter_poses(rng, 4)],
             reference=porter_normal,
             mistakes=(
@@ -78,7 +79,7 @@ EXERCISE = Exercise(
             "elbow_candidates",
             3,
             "the two candidates for the elbow point p3",
-            public=((PUBLIC_T, *PUBLIC_L),),
+            public=((PUBLIC_T, *PUBLIC_L), (PUBLIC_T2, *PUBLIC_L2)),
             hidden=lambda rng: ref.porter_poses(rng, 4),
             reference=porter_elbows,
             compare=compare_solution_set([]),
