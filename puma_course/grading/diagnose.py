@@ -79,6 +79,7 @@ TITLES: dict[str, str] = {
     "offset_sign": "an offset with the wrong sign",
     "not_minimal": "not Porter's minimal stroke",
     "back_plane": "the arm plane entered from the back",
+    "frame_coordinates": "a vector or point written in another frame's coordinates than the one asked for",
 }
 
 #: ``check(got, expected, args, reference)``: a message for the student if ``got`` is this mistake, else None.

@@ -205,10 +205,16 @@ def test_the_printed_normal_and_the_printed_rod_length():
     assert_named(judge(name, "q1", -n, T, 1.0, 0.3), "printed_formula", "-y1")
     assert_named(judge(name, "q1", 3 * n, T, 1.0, 0.3), "unnormalised")
     p4, x5 = T[:3, 3] - 0.3 * T[:3, 0], T[:3, 0]
-    z4 = np.cross(n, x5) / np.linalg.norm(np.cross(n, x5))
-    assert judge(name, "q2", [p4 - 0.5 * z4, p4 + 0.5 * z4], T, *L).passed  # any order
-    assert_named(judge(name, "q2", [p4 + 0.3 * z4, p4 - 0.3 * z4], T, *L), "printed_formula", "l4")
-    assert_named(judge(name, "q2", [p4 + 0.5 * z4, p4 + 0.5 * z4], T, *L), "duplicates")
+    z4 = np.cross(T[:3, :3] @ n, x5) / np.linalg.norm(np.cross(T[:3, :3] @ n, x5))  # n is in F5's coordinates
+
+    def in_hand(points):  # the question asks for the points in the hand frame F5
+        return (np.asarray(points) - T[:3, 3]) @ T[:3, :3]
+
+    assert judge(name, "q2", in_hand([p4 - 0.5 * z4, p4 + 0.5 * z4]), T, *L).passed  # any order
+    assert_named(judge(name, "q2", in_hand([p4 + 0.3 * z4, p4 - 0.3 * z4]), T, *L), "printed_formula", "l4")
+    assert_named(judge(name, "q2", in_hand([p4 + 0.5 * z4, p4 + 0.5 * z4]), T, *L), "duplicates")
+    assert_named(judge(name, "q2", [p4 - 0.5 * z4, p4 + 0.5 * z4], T, *L), "frame_coordinates", "hand frame")
+    assert_named(judge(name, "q1", T[:3, :3] @ n, T, 1.0, 0.3), "frame_coordinates", "R05ᵀ")
 
 
 def test_the_unsigned_angle():
@@ -260,7 +266,7 @@ def test_the_parallel_planes_representative():
     # the same construction with the elbow on the far side of the circle: a longer stroke
     x5, z5 = T[:3, 0], T[:3, 2]
     p2, p4 = np.array([0, 0, 1.0]), T[:3, 3] - 0.3 * x5
-    n = right(name, "q1", T, 1.0, 0.3)
+    n = T[:3, :3] @ right(name, "q1", T, 1.0, 0.3)  # q1 answers in the hand frame F5
     p3 = p4 - 0.5 * (p2 - p4) / np.linalg.norm(p2 - p4)
 
     def ang(v, w, a):

@@ -45,6 +45,23 @@ def _angle_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     return out
 
 
+def normal_in_hand(T: Any, l1: float, l4: float) -> np.ndarray:
+    """The arm plane's unit normal (along y1) written in the hand frame F5: ⁵n = R05ᵀ n."""
+    return np.asarray(T, dtype=float)[:3, :3].T @ porter_normal(T, l1, l4)
+
+
+def elbows_in_hand(T: Any, l1: float, l3: float, l4: float, rod: float | None = None) -> np.ndarray:
+    """The two elbow candidates written in the hand frame F5: ⁵p3 = R05ᵀ (p3 - p5) (``rod``: the printed l4)."""
+    T = np.asarray(T, dtype=float)
+    return (porter_elbows(T, l1, l3, l4, rod) - T[:3, 3]) @ T[:3, :3]
+
+
+IN_BASE = (
+    "these are the base frame's coordinates; the question asks for them in the hand frame F5 (its origin p5, "
+    "its axes the columns of R05): ⁵v = R05ᵀ v for a direction, R05ᵀ (p - p5) for a point (lecture 01 §5)"
+)
+
+
 def _unsigned(v: Any, w: Any, axis: Any) -> float:
     v, w = np.asarray(v, dtype=float), np.asarray(w, dtype=float)
     return float(np.arctan2(np.linalg.norm(np.cross(v, w)), v @ w))
@@ -58,16 +75,17 @@ EXERCISE = Exercise(
             "q1",
             "arm_plane_normal",
             2,
-            "the unit normal of the arm plane, pointing along y1",
+            "the unit normal of the arm plane, pointing along y1, in the hand frame",
             public=((PUBLIC_T, 1.0, 0.3), (PUBLIC_T2, PUBLIC_L2[0], PUBLIC_L2[2])),
             hidden=lambda rng: [(T, l1, l4) for T, l1, _, l4 in ref.porter_poses(rng, 4)],
-            reference=porter_normal,
+            reference=normal_in_hand,
             mistakes=(
+                matches("frame_coordinates", IN_BASE, porter_normal),
                 matches(
                     "printed_formula",
                     "your normal points along -y1: that is the printed order of the cross "
                     "product (lecture 07 step 2); the angles are measured about +y1",
-                    lambda T, l1, l4: -porter_normal(T, l1, l4),
+                    lambda T, l1, l4: -normal_in_hand(T, l1, l4),
                 ),
                 unit_axis_out(3),
             ),
@@ -78,17 +96,18 @@ EXERCISE = Exercise(
             "q2",
             "elbow_candidates",
             3,
-            "the two candidates for the elbow point p3",
+            "the two candidates for the elbow point p3, in the hand frame",
             public=((PUBLIC_T, *PUBLIC_L), (PUBLIC_T2, *PUBLIC_L2)),
             hidden=lambda rng: ref.porter_poses(rng, 4),
-            reference=porter_elbows,
+            reference=elbows_in_hand,
             compare=compare_solution_set([]),
             mistakes=(
+                matches_set("frame_coordinates", IN_BASE, porter_elbows),
                 matches_set(
                     "printed_formula",
                     "your points are l4 from p4, as eq. (18) is printed; the rod from p3 to "
                     "p4 is l3 long (lecture 07 step 3)",
-                    lambda T, l1, l3, l4: porter_elbows(T, l1, l3, l4, l4),
+                    lambda T, l1, l3, l4: elbows_in_hand(T, l1, l3, l4, l4),
                 ),
                 DUPLICATES,
             ),
