@@ -100,7 +100,7 @@ def startup_cost(box: Sandbox, repeat: int = 15) -> tuple[float, float]:
     with Stage([EXERCISES["ex01_rotations"]]) as stage:
         lib = stage.libs["ex01_rotations"]
         plain = [box.python, "-I", "-S", "-B", "-c", "pass"]
-        boxed = [box.binary, *box.bwrap_args(lib, stage.bin), "--", *plain]
+        boxed = [box.binary, *box.bwrap_args(lib, stage.bin), "--", box.seen(box.python), *plain[1:]]
         best = {"plain": float("inf"), "boxed": float("inf")}
         for _ in range(repeat):
             for key, cmd in (("plain", plain), ("boxed", boxed)):

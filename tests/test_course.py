@@ -22,7 +22,10 @@ def _outside_any_course(tmp_path: Path) -> Path:
     """tmp_path itself, unless some folder above it happens to be a course (then the test cannot run here)."""
     here = tmp_path.resolve()
     if any(is_course(f) for f in (here, *here.parents)):
-        pytest.skip(f"a folder above {here} holds {' or '.join(MARKERS)}")
+        pytest.skip(
+            "not run: the test needs a folder outside any course, "
+            f"and a folder above {here} holds {' or '.join(MARKERS)}"
+        )
     return here
 
 

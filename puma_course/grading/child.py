@@ -94,8 +94,19 @@ def _kill(proc: subprocess.Popen[bytes]) -> None:
         pass
 
 
-def run(cmd: Sequence[str], payload: bytes, *, cwd: str | None, env: dict[str, str], timeout: float) -> ChildResult:
-    """Run ``cmd`` with ``payload`` on its stdin for at most ``timeout`` seconds; collect its events."""
+def run(
+    cmd: Sequence[str],
+    payload: bytes,
+    *,
+    cwd: str | None,
+    env: dict[str, str],
+    timeout: float,
+    pass_fds: Sequence[int] = (),
+) -> ChildResult:
+    """Run ``cmd`` with ``payload`` on its stdin for at most ``timeout`` seconds; collect its events.
+
+    ``pass_fds`` are descriptors the process inherits (bubblewrap's ``--args`` file).
+    """
     start = time.monotonic()
     result = ChildResult()
     proc = subprocess.Popen(
@@ -107,6 +118,7 @@ def run(cmd: Sequence[str], payload: bytes, *, cwd: str | None, env: dict[str, s
         env=env,
         start_new_session=os.name == "posix",
         close_fds=True,
+        pass_fds=tuple(pass_fds),
     )
     try:
         if os.name == "posix":

@@ -10,14 +10,20 @@ does not have is ignored, and only the first answer to a case counts.
 
 from __future__ import annotations
 
+import time
 from typing import Any
 
+from .bounds import check_answer
 from .child import ChildResult
 from .model import Exercise, NotebookResult, Question, Verdict, reconcile, score_question
 from .text import quoted
 from .worker import NOT_ATTEMPTED
 
-__all__ = ["apply", "malformed_note", "call_verdict", "cell_note"]
+__all__ = ["apply", "malformed_note", "call_verdict", "cell_note", "JUDGING_SECONDS"]
+
+#: The time the grader spends judging one notebook's answers, at most; cases after it are not judged.
+#: (Each answer is bounded before it is judged, so an honest notebook's judging takes milliseconds.)
+JUDGING_SECONDS = 10.0
 
 _MALFORMED = {
     "json": "not a readable notebook (not valid JSON: line {line}, column {column})",
@@ -82,6 +88,9 @@ def call_verdict(
         return Verdict(reasons.get(_text(error), "the call failed"))
     if "value" not in event:
         return Verdict("no value came back")
+    refused = check_answer(event["value"], expected)  # measured before anything is built from it
+    if refused is not None:
+        return Verdict(refused)
     try:
         return q.judge(event["value"], expected, args)
     except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the grading
@@ -128,10 +137,15 @@ def apply(
         if e.get("kind") == "call" and isinstance(e.get("qid"), str) and isinstance(e.get("case"), int):
             got.setdefault((e["qid"], e["case"]), e)
     judged: dict[str, list[tuple[str, Verdict]]] = {q.qid: [] for q in exercise.questions}
+    budget = time.perf_counter() + JUDGING_SECONDS
     for item in plan:
         q = exercise.question(item["qid"])
         kind = "public case" if item["case"] < len(q.public) else "hidden case"
-        verdict = call_verdict(q, got.get((q.qid, item["case"])), item["expected"], item.get("call_args", ()), limits)
+        if time.perf_counter() > budget:  # a second line behind the answers' bounds (bounds.check_answer)
+            verdict = Verdict(f"not judged: judging this notebook's answers took longer than {JUDGING_SECONDS:g} s")
+        else:
+            event = got.get((q.qid, item["case"]))
+            verdict = call_verdict(q, event, item["expected"], item.get("call_args", ()), limits)
         judged[q.qid].append((f"{kind} {item['case'] + 1}", verdict))
     outcomes: dict[str, list[tuple[str, str | None]]] = {}
     for qid, pairs in judged.items():

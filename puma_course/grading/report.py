@@ -35,6 +35,7 @@ __all__ = [
     "write_csv",
     "csv_rows",
     "safe_name",
+    "replace_atomically",
 ]
 
 _COUNT_LINE = re.compile(r"^\d+/\d+ cases pass$")
@@ -171,7 +172,7 @@ def safe_name(name: str) -> str:
     return file_stem(name)
 
 
-def _replace_atomically(path: Path, text: str) -> None:
+def replace_atomically(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` through a fresh temporary file and a rename: whole or not at all, and a
     link planted at ``path`` is replaced, never followed."""
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:50]}.", suffix=".tmp", dir=path.parent)
@@ -185,16 +186,27 @@ def _replace_atomically(path: Path, text: str) -> None:
         raise
 
 
+_replace_atomically = replace_atomically  # the name other modules import
+
+
 def write_feedback(
-    folder: str | os.PathLike[str], results: Sequence[NotebookResult], seed: int, unsandboxed: str | None = None
+    folder: str | os.PathLike[str],
+    results: Sequence[NotebookResult],
+    seed: int,
+    unsandboxed: str | None = None,
+    reserved: Sequence[str] = (),
 ) -> dict[str, Path]:
-    """One Markdown file per student in ``folder`` (created); returns the file of each student."""
+    """One Markdown file per student in ``folder`` (created); returns the file of each student.
+
+    ``reserved`` are file stems no student gets (the grades file's and the class summary's, when they are
+    written into the same folder): a student whose folder has such a name gets ``NAME_2.md``.
+    """
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
     by_student: dict[str, list[NotebookResult]] = {}
     for r in results:
         by_student.setdefault(r.student, []).append(r)
-    used: set[str] = set()
+    used: set[str] = {r.lower() for r in reserved}
     files = {}
     for student, mine in by_student.items():
         stem = base = file_stem(student)
@@ -203,7 +215,7 @@ def write_feedback(
             stem, k = f"{base}_{k}", k + 1
         used.add(stem.lower())
         files[student] = out / f"{stem}.md"
-        _replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed))
+        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed))
     return files
 
 
@@ -213,6 +225,7 @@ def csv_rows(
     seed: int | None = None,
     sandbox: str = "",
     late: Collection[tuple[str, str]] | None = None,
+    limits: str = "",
 ) -> list[list[str]]:
     """The CSV's rows, header first (see :func:`write_csv`)."""
     qids: list[str] = []
@@ -220,7 +233,9 @@ def csv_rows(
         for q in EXERCISES[name].questions:
             if q.qid not in qids:
                 qids.append(q.qid)
-    rows = [["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "seed", "notes"]]
+    rows = [
+        ["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "limits", "seed", "notes"]
+    ]
     if late is not None:
         rows[0].append("late")
     for r in results:
@@ -228,7 +243,7 @@ def csv_rows(
         bonus = sum(r.scores.get(q.qid, 0.0) for q in ex.questions if q.bonus) if ex is not None else 0.0
         row = [csv_safe(r.student), r.exercise, f"{r.score:g}", f"{r.max_score:g}", f"{round(bonus, 2):g}"]
         row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
-        row += [r.status, sandbox, "" if seed is None else str(seed)]
+        row += [r.status, sandbox, limits, "" if seed is None else str(seed)]
         row.append(csv_safe(one_line(" | ".join(r.notes), 500)))
         if late is not None:
             row.append("late" if (r.student, r.exercise) in late else "")
@@ -244,20 +259,22 @@ def write_csv(
     seed: int | None = None,
     sandbox: str = "",
     late: Collection[tuple[str, str]] | None = None,
+    limits: str = "",
 ) -> None:
     """Write the grades: student, exercise, score, max_score, bonus, one column per question id, status,
-    sandbox, seed, notes.
+    sandbox, limits, seed, notes.
 
     ``bonus`` is the part of the score that bonus questions earned (it counts in ``score``, not in
     ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none") and ``seed`` which
-    hidden inputs they got; with ``late`` (the (student, exercise) pairs a platform marked late), a last
-    column ``late`` says "late" for those. A text cell that a spreadsheet would read as a formula starts with
-    ``'``. The file is written under a fresh temporary name and moved into place, so it appears
-    whole or not at all.
+    hidden inputs they got; ``limits`` how the notebook's memory, processes and CPU were limited (per
+    notebook by a control group, or per process only, and why); with ``late`` (the (student, exercise)
+    pairs a platform marked late), a last column ``late`` says "late" for those. A text cell that a
+    spreadsheet would read as a formula starts with ``'``. The file is written under a fresh temporary
+    name and moved into place, so it appears whole or not at all.
     """
     out = Path(output)
     if out.parent and not out.parent.exists():
         out.parent.mkdir(parents=True, exist_ok=True)
     buffer = io.StringIO()
-    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, late))
-    _replace_atomically(out, buffer.getvalue())
+    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, late, limits=limits))
+    replace_atomically(out, buffer.getvalue())

@@ -21,21 +21,21 @@ import copy
 import json
 import os
 import secrets
-import sys
 import tempfile
 import time
 import warnings
 import zlib
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from . import child, events
+from . import child, events, limits
 from .collect import Collected
 from .model import EXERCISES, Exercise, NotebookResult
 from .report import write_csv, write_feedback
+from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
 from .sandbox import Sandbox, child_env, choose
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
@@ -44,6 +44,7 @@ from .text import quoted
 __all__ = [
     "GradingIntegrityWarning",
     "SandboxWarning",
+    "LimitsWarning",
     "make_plan",
     "grade_notebook",
     "grade",
@@ -68,9 +69,8 @@ class SandboxWarning(UserWarning):
     """The notebooks are graded without the operating-system sandbox."""
 
 
-def _package_digest() -> dict[str, bytes]:
-    """The bytes of every module of the package, by path inside it."""
-    return {p.relative_to(_PACKAGE_DIR).as_posix(): p.read_bytes() for p in sorted(_PACKAGE_DIR.rglob("*.py"))}
+class LimitsWarning(UserWarning):
+    """The notebooks are graded with per-process limits only: no control group per notebook (:mod:`.limits`)."""
 
 
 def _jsonable(value: Any) -> Any:
@@ -116,12 +116,6 @@ def make_plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
     return calls
 
 
-def _positive(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 or value == float("inf"):
-        raise ValueError(f"{name}: expected a positive number of seconds, got {value!r}")
-    return float(value)
-
-
 def _box(sandbox: str | Sandbox) -> Sandbox:
     return sandbox if isinstance(sandbox, Sandbox) else choose(sandbox)
 
@@ -158,14 +152,27 @@ def _run_worker(
     timeout_cell: float,
     timeout: float,
     private: Sequence[Path],
+    groups: limits.Run | None = None,
 ) -> child.ChildResult:
-    """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one."""
+    """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one.
+
+    With ``groups`` (the run's control groups, :mod:`.limits`) the worker starts inside a fresh group of its
+    own, and whatever of its process tree is left when it ends is killed with the group.
+    """
 
     def launch(work: str | None) -> child.ChildResult:
         lib, _, seen_work = box.paths(stage.libs[exercise.name], stage.bin, Path(work or "."))
-        payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.sites], box.kind == "bwrap") + data
-        cmd = box.command(stage.libs[exercise.name], stage.bin, private)
-        return child.run(cmd, payload, cwd=work, env=child_env(seen_work), timeout=timeout)
+        payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.seen_sites], box.kind == "bwrap") + data
+        # fd: bubblewrap's --args file; cwd "/": the launcher's shell would export the grader's folder as PWD
+        cmd, fd = box.launch(stage.libs[exercise.name], stage.bin, private)
+        try:
+            with groups.notebook() if groups is not None else contextlib.nullcontext() as group:
+                cmd = group.wrap(cmd) if group is not None else cmd
+                fds: dict[str, Any] = {"pass_fds": (fd,)} if fd >= 0 else {}
+                return child.run(cmd, payload, cwd=work or "/", env=child_env(seen_work), timeout=timeout, **fds)
+        finally:
+            if fd >= 0:
+                os.close(fd)
 
     if box.kind == "bwrap":
         return launch(None)
@@ -184,13 +191,14 @@ def _grade_data(
     timeout: float,
     stop_note: str,
     private: Sequence[Path] = (),
+    groups: limits.Run | None = None,
 ) -> NotebookResult:
     start = time.perf_counter()
     result = NotebookResult.blank(student, exercise)
-    outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+    outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private, groups)
     if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
         # the worker never started (the sandbox could not be set up, say): not the student's doing; once more
-        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private)
+        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private, groups)
         if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
             said = outcome.stderr.decode("utf-8", "replace").strip().splitlines()
             result.status = "grader-error"
@@ -203,18 +211,6 @@ def _grade_data(
     events.apply(result, exercise, plan, outcome, timeout_cell=timeout_cell, stop_note=stop_note)
     result.seconds = time.perf_counter() - start
     return result
-
-
-def _stop_note(seconds: float, by_student: bool) -> str:
-    if by_student:
-        return (
-            f"stopped after {seconds:g} s: the total time for all of this student's notebooks ran out; "
-            "answers that came back before that were graded"
-        )
-    return (
-        f"the notebook ran longer than {seconds:g} s in total and was stopped; "
-        "answers that came back before that were graded"
-    )
 
 
 def grade_notebook(
@@ -252,37 +248,6 @@ def grade_notebook(
         )
 
 
-@contextlib.contextmanager
-def _undumpable(on: bool) -> Iterator[None]:
-    """Linux, without the OS sandbox: make the grader's memory unreachable through /proc and ptrace for its workers."""
-    libc = None
-    if on and sys.platform.startswith("linux"):
-        try:
-            import ctypes
-
-            libc = ctypes.CDLL(None, use_errno=True)
-            libc.prctl(4, 0, 0, 0, 0)  # PR_SET_DUMPABLE = 4
-        except (OSError, AttributeError):
-            libc = None
-    try:
-        yield
-    finally:
-        if libc is not None:
-            libc.prctl(4, 1, 0, 0, 0)
-
-
-def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[str, float]) -> None:
-    if not submissions.is_dir():
-        raise ValueError(f"submissions: expected a folder with one sub-folder per student, got {str(submissions)!r}")
-    for name in names:
-        if name not in EXERCISES:
-            raise ValueError(f"exercises: expected names among {sorted(EXERCISES)}, got {name!r}")
-    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
-        raise ValueError(f"jobs: expected a whole number of notebooks at a time, at least 1, got {jobs!r}")
-    for key, value in times.items():
-        _positive(key, value)
-
-
 def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
     return NotebookResult.blank(student, ex, state if state != "read" else "grader-error", note)
 
@@ -301,6 +266,7 @@ def grade(
     sandbox: str | Sandbox = "auto",
     timeout_student: float = 120.0,
     private: Sequence[str | os.PathLike[str]] = (),
+    cgroups: bool | limits.Run = True,
     collected: Collected | None = None,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
@@ -310,6 +276,9 @@ def grade(
     none with a :class:`SandboxWarning`), "bwrap", "none", or a :class:`~.sandbox.Sandbox` chosen
     earlier; ``timeout_student`` caps the time of all of a student's notebooks together;
     ``private`` names more folders the sandbox must hide (the course's ``solutions/``, say).
+    ``cgroups`` True puts each notebook in a control group of its own with limits for its whole process
+    tree (:mod:`.limits`; where that cannot be done here: a :class:`LimitsWarning` and the CSV's ``limits``
+    column say so), False does not try, or a :class:`~.limits.Run` opened earlier is used (and not closed).
     ``collected`` is a platform's download read by :func:`~.collect.collect` (``submissions`` is then
     its folder): its students are graded instead of the folder's sub-folders, and the CSV gains a
     ``late`` column. Returns the results (sorted by student, exercise).
@@ -322,6 +291,48 @@ def grade(
     box = _box(sandbox)
     if box.kind != "bwrap":
         warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
+    groups = cgroups if isinstance(cgroups, limits.Run) else limits.open_run(enabled=bool(cgroups))
+    try:
+        return _grade_class(
+            sub_dir,
+            output,
+            feedback,
+            jobs,
+            timeout_cell,
+            timeout_total,
+            seed,
+            names,
+            progress,
+            box,
+            timeout_student,
+            private,
+            groups,
+            collected,
+        )
+    finally:
+        if not isinstance(cgroups, limits.Run):
+            groups.close()
+
+
+def _grade_class(
+    sub_dir: Path,
+    output: str | os.PathLike[str],
+    feedback: str | os.PathLike[str] | None,
+    jobs: int,
+    timeout_cell: float,
+    timeout_total: float,
+    seed: int,
+    names: list[str],
+    progress: Callable[[NotebookResult], None] | None,
+    box: Sandbox,
+    timeout_student: float,
+    private: Sequence[str | os.PathLike[str]],
+    groups: limits.Run,
+    collected: Collected | None,
+) -> list[NotebookResult]:
+    if not groups.enforced:
+        warnings.warn(f"notebook limits: {groups.label}", LimitsWarning, stacklevel=3)
+    groups.share(jobs)
 
     def read(s: StudentFolder) -> StudentFiles:
         return read_student(sub_dir, s, names) if collected is None else collected.read(s, names)
@@ -331,7 +342,7 @@ def grade(
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     plans = {name: make_plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
-    package_before = _package_digest()
+    package_before = package_digest(_PACKAGE_DIR)
     hidden = [_PACKAGE_DIR, PACKAGE_PARENT / "solutions", sub_dir, Path(output), *(Path(p) for p in private)]
     hidden += [Path(feedback)] if feedback is not None else []
     with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
@@ -372,7 +383,7 @@ def grade(
                         limit = min(timeout_total, left)
                         note = _stop_note(limit, limit < timeout_total)
                         res = _grade_data(
-                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden
+                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden, groups
                         )
                 except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
                     why = f"{type(exc).__name__}: {exc}"[:300]
@@ -387,7 +398,7 @@ def grade(
             results = [r for batch in pool.map(work, students) for r in batch]
         changed = [f"grading stage: {p}" for p in stage.changed()]
     results.sort(key=lambda r: (r.student, r.exercise))
-    package_after = _package_digest()
+    package_after = package_digest(_PACKAGE_DIR)
     changed += sorted(
         k for k in set(package_before) | set(package_after) if package_before.get(k) != package_after.get(k)
     )
@@ -400,7 +411,8 @@ def grade(
             stacklevel=2,
         )
     late = None if collected is None else collected.late()
-    write_csv(output, results, names, seed=seed, sandbox=box.label, late=late)
+    write_csv(output, results, names, seed=seed, sandbox=box.label, late=late, limits=groups.label)
     if feedback is not None:
-        write_feedback(feedback, results, seed, unsandboxed=box.reason if box.kind != "bwrap" else None)
+        unsandboxed = box.reason if box.kind != "bwrap" else None
+        write_feedback(feedback, results, seed, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
     return results

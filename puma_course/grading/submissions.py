@@ -29,7 +29,16 @@ from pathlib import Path
 
 from .text import display_name, quoted
 
-__all__ = ["StudentFolder", "Notebook", "scan", "read_student", "read_path", "MAX_NOTEBOOK_BYTES"]
+__all__ = [
+    "StudentFolder",
+    "Notebook",
+    "scan",
+    "read_student",
+    "read_path",
+    "handed_in",
+    "exercises_to_grade",
+    "MAX_NOTEBOOK_BYTES",
+]
 
 MAX_NOTEBOOK_BYTES = 20_000_000
 _NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
@@ -93,6 +102,61 @@ def scan(folder: Path) -> list[StudentFolder]:
         used.add(shown)
         student.name = shown
     return found
+
+
+def handed_in(folder: Path, exercises: Sequence[str]) -> list[str]:
+    """The exercises of ``exercises`` (in their order) that some student's folder holds an entry for.
+
+    An entry named ``<exercise>.ipynb`` counts whatever it is (a link or a folder is refused when
+    graded, but it was handed in); student folders that are links, or that cannot be listed, are
+    not looked into. Nothing is opened but the folders.
+    """
+    found: set[str] = set()
+    wanted = {f"{name}.ipynb": name for name in exercises}
+    for student in scan(folder):
+        if student.refused is not None:
+            continue
+        try:
+            names = os.listdir(folder / student.raw)
+        except OSError:
+            continue
+        found.update(wanted[n] for n in names if n in wanted)
+    return [name for name in exercises if name in found]
+
+
+def exercises_to_grade(folder: Path, submissions: Path, known: Sequence[str]) -> tuple[list[str], list[str], list[str]]:
+    """What ``puma-course grade`` grades by default: the exercises ``folder/*.ipynb`` (the course's
+    ``exercises/``) that the grader knows (``known``) and some student handed in.
+
+    Returns (graded, unknown to the grader, handed in by nobody). Raises ``ValueError`` when that
+    leaves nothing to grade. A ``submissions`` that is not a folder is left for the grader to refuse.
+    """
+    names = sorted(p.stem for p in folder.glob("*.ipynb"))
+    if not names:
+        raise ValueError(
+            f"exercise: expected --exercise NAME or a course that hands out exercises, got none in {str(folder)!r}"
+        )
+    unknown = [name for name in names if name not in known]
+    names = [name for name in names if name in known]
+    if not names:
+        raise ValueError(
+            f"exercise: expected exercises the grader knows ({', '.join(sorted(known))}) in {str(folder)!r}, "
+            f"got only {', '.join(unknown)}"
+        )
+    if not submissions.is_dir():
+        return names, unknown, []
+    try:
+        graded = handed_in(submissions, names)
+    except OSError as exc:
+        raise ValueError(
+            f"submissions: expected a readable folder, got {str(submissions)!r} ({exc.strerror})"
+        ) from None
+    if not graded:
+        raise ValueError(
+            f"submissions: expected <student>/<exercise>.ipynb files named after the course's exercises "
+            f"({', '.join(names)}), got none in {str(submissions)!r}"
+        )
+    return graded, unknown, [name for name in names if name not in graded]
 
 
 def _refusal(mode: int) -> str | None:

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from .diagnose import TITLES
 from .model import EXERCISES, NotebookResult, Question
-from .report import verdict
+from .report import replace_atomically, verdict
 from .text import one_line
 
 __all__ = ["QuestionSummary", "question_summaries", "class_summary", "write_summary", "summary_path"]
@@ -156,10 +156,12 @@ def write_summary(
 
     The text names the file and the ``lines`` questions with the lowest share of students passing,
     each with its commonest diagnosed mistake. ``unmatched`` lists the files of a platform's download
-    that were not graded (see :mod:`.collect`); the summary ends with them.
+    that were not graded (see :mod:`.collect`); the summary ends with them. The file is written like the
+    CSV and the feedback (a fresh temporary name moved into place), and :func:`~puma_course.grading.grade`
+    keeps its name free of any student's feedback file.
     """
     path = summary_path(output)
-    path.write_text(class_summary(results, unmatched), encoding="utf-8")
+    replace_atomically(path, class_summary(results, unmatched))  # whole or not at all; a planted link is replaced
     hard = sorted((s for s in question_summaries(results) if s.submitted), key=lambda s: s.passed / s.submitted)
     text = [f"class summary: {path}"]
     for s in hard[:lines]:

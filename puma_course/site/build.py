@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 import io
 import re
 import shutil
@@ -12,7 +13,10 @@ from pathlib import Path
 
 from ..course import find_course
 
-__all__ = ["SiteReport", "build_site", "MATHJAX_FILE", "MATHJAX_VERSION"]
+__all__ = ["SiteReport", "build_site", "repository_url", "MATHJAX_FILE", "MATHJAX_VERSION", "ARCHIVE"]
+
+#: the student edition's archive, at the site's root and linked from the landing page
+ARCHIVE = "puma-course-student.zip"
 
 #: MathJax 3.2.2's single-file component: TeX input with every extension, SVG output. It draws glyphs
 #: as SVG paths, so the page fetches no font and nothing else at view time (2.2 MB, served locally).
@@ -41,6 +45,12 @@ def _readme_sections(readme: str) -> dict[str, str]:
     return out
 
 
+def first_commands(readme: str, key: str) -> str | None:
+    """The fenced block that follows ``<!-- first-commands: KEY -->`` in ``readme`` (README's Start), or None."""
+    m = re.search(rf"<!-- first-commands: {re.escape(key)} -->\s*```[\w-]*\n(.*?)```", readme, re.S)
+    return m.group(1).strip() if m else None
+
+
 def _title(nb_path: Path) -> str:
     import nbformat
 
@@ -53,18 +63,83 @@ def _title(nb_path: Path) -> str:
     return nb_path.stem.replace("_", " ")
 
 
-def _landing_page(root: Path, lectures: list[Path], exercises: list[Path]) -> str:
+def repository_url(root: Path) -> str | None:
+    """The course's repository address from ``pyproject.toml``: ``[tool.puma-course] repository``, else
+    ``[project.urls]`` ``Repository`` (or ``Source``, ``Homepage``); None when there is none."""
+    import importlib
+
+    try:  # the standard library's since Python 3.11 (3.10: no repository from pyproject.toml)
+        tomllib = importlib.import_module("tomllib")
+    except ModuleNotFoundError:  # pragma: no cover
+        return None
+    try:
+        data = tomllib.loads((root / "pyproject.toml").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    url = data.get("tool", {}).get("puma-course", {}).get("repository")
+    urls = data.get("project", {}).get("urls", {})
+    for key in ("Repository", "Source", "Homepage"):
+        url = url or urls.get(key)
+    return str(url) if url else None
+
+
+# STAND-IN, to be replaced at merge by the student edition's writer (`puma-course edition DIR`, written
+# by another branch): the site's archive must hold exactly what that command hands a student. Until
+# then this copies what a student gets: the index, lectures, exercises, figures, the package (without
+# the grader's question bank), pyproject.toml, README.md, LICENSE; never solutions/.
+def _edition_tree(course: Path, dest: Path) -> None:
+    """Write the student edition of the course at ``course`` into the new folder ``dest``."""
+    junk = shutil.ignore_patterns("__pycache__", "*.pyc", ".ipynb_checkpoints", "bank")
+    dest.mkdir(parents=True)
+    for name in ("START_HERE.ipynb", "pyproject.toml", "README.md", "LICENSE"):
+        if (course / name).is_file():
+            shutil.copy2(course / name, dest / name)
+    for name in ("notebooks", "exercises", "figures", "puma_course"):
+        if (course / name).is_dir():
+            shutil.copytree(course / name, dest / name, ignore=junk)
+
+
+def _edition_archive(course: Path, dest_dir: Path) -> Path:
+    """The student edition as ``dest_dir/ARCHIVE``, one top folder ``puma-course/`` inside."""
+    with tempfile.TemporaryDirectory(prefix="puma-edition-") as tmp:
+        tree = Path(tmp) / "puma-course"
+        _edition_tree(course, tree)
+        dest_dir.mkdir(parents=True, exist_ok=True)
+        made = shutil.make_archive(str(dest_dir / ARCHIVE.removesuffix(".zip")), "zip", tmp, "puma-course")
+    return Path(made)
+
+
+def _get_the_course(repo_url: str | None) -> list[str]:
+    """The landing page's "Get the course" section: the archive, and the repository when known."""
+    lines = ["## Get the course", "",
+             f'<a class="puma-archive" href="{ARCHIVE}" download>Download the course ({ARCHIVE})</a>: '
+             "the lectures, the exercises, the index START_HERE.ipynb and the `puma_course` package the "
+             "notebooks run on, in one folder (no solutions). Unpack it and follow *Read, then run* below "
+             "from the folder it makes.", ""]  # fmt: skip
+    if repo_url:
+        shown = html.escape(repo_url, quote=True)
+        lines += [f'Or take it from its repository: <a class="puma-repository" href="{shown}">{html.escape(repo_url)}'
+                  "</a>.", ""]  # fmt: skip
+    return lines
+
+
+def _landing_page(root: Path, lectures: list[Path], exercises: list[Path], repo_url: str | None = None) -> str:
     sections = _readme_sections((root / "README.md").read_text(encoding="utf-8"))
     intro = sections["_intro"].split("\n", 1)[1].strip()  # without the "# puma-course" title
     start = sections.get("Start", "")
     command = re.search(r"```bash\n(.*?)```", start, re.S)
-    install = command.group(1).strip() if command else 'python -m pip install -e ".[dev]" && puma-course lab'
-    lines = ["# puma-course: kinematics of robot manipulators", "", intro, "", "## Read, then run", "",
+    unix = first_commands(start, "linux-macos")
+    windows = first_commands(start, "windows")
+    install = unix or (command.group(1).strip() if command else 'python -m pip install -e ".[lab]" && puma-course lab')
+    lines = ["# puma-course: kinematics of robot manipulators", "", intro, "", *_get_the_course(repo_url),
+             "## Read, then run", "",
              "Every page of this site is a notebook of the course, shown with the outputs it had when it was "
              "last run: figures, tables, animations that play, and a picture of each 3-D panel. Nothing here "
              "runs code; to change the numbers and turn the arms, install the course (Python 3.10 or newer) "
-             "and open it in JupyterLab, from the course folder:", "", "```bash", install, "```", "",
-             "Each lecture page has a download button (top right) for its notebook.", "",
+             "and open it in JupyterLab, from the course folder (Linux and macOS):", "", "```bash", install, "```", "",
+             *(["On Windows:", "", "```bat", windows, "```", ""] if windows else []),
+             "Each lecture page has a download button (top right) for its notebook; it runs in the "
+             "course, which the archive above holds.", "",
              "## Lectures", ""]  # fmt: skip
     for nb in lectures:
         lines.append(f"- [{_title(nb)}](notebooks/{nb.name})")
@@ -118,6 +193,7 @@ exclude_patterns = ["_build", "**/.ipynb_checkpoints"]
 html_theme = "sphinx_book_theme"
 html_title = "puma-course"
 html_static_path = ["../assets"]
+html_extra_path = ["../extra"]
 html_theme_options = {{
     "use_download_button": True,
     "use_fullscreen_button": False,
@@ -158,16 +234,26 @@ _CSS = """@media (min-width: 960px) {
 """
 
 
-def build_site(course: str | Path | None = None, out: str | Path | None = None) -> SiteReport:
+def build_site(
+    course: str | Path | None = None, out: str | Path | None = None, repo_url: str | None = None
+) -> SiteReport:
     """Build the website of the course at ``course`` (default: the course around the current folder).
 
-    ``out`` (default ``<course>/_site``) receives the HTML; it is replaced. Returns a
-    :class:`SiteReport`. Raises ``ValueError`` when the folder is not a course.
+    ``out`` (default ``<course>/_site``) receives the HTML; it is replaced. ``repo_url`` is the
+    repository the landing page points to (default: :func:`repository_url` of the course's
+    ``pyproject.toml``; none, when it names none). The landing page also links the student
+    edition's archive (:data:`ARCHIVE`), built here. Everything else the build writes (Sphinx's
+    doctrees, MyST-NB's ``jupyter_execute/``) stays in a temporary folder, so the course is left as
+    it was. Returns a :class:`SiteReport`. Raises ``ValueError`` when the folder is not a course.
     """
     from sphinx.application import Sphinx
 
     root = find_course(course)
     out_dir = Path(out) if out is not None else root / "_site"
+    if repo_url is None:
+        repo_url = repository_url(root)
+    if repo_url is not None and not re.fullmatch(r"https?://[^\s\"'<>]+", repo_url):
+        raise ValueError(f"repo_url: expected an http:// or https:// address, got {repo_url!r}")
     lectures = sorted((root / "notebooks").glob("[0-9][0-9]_*.ipynb"))
     exercises = sorted((root / "exercises").glob("ex*.ipynb"))
     if not lectures:
@@ -184,17 +270,23 @@ def build_site(course: str | Path | None = None, out: str | Path | None = None) 
             shutil.copy2(nb, src / "exercises" / nb.name)
         if (root / "figures").is_dir():
             shutil.copytree(root / "figures", src / "figures", ignore=shutil.ignore_patterns("*.py", "__pycache__"))
-        (src / "index.md").write_text(_landing_page(root, lectures, exercises), encoding="utf-8")
+        (src / "index.md").write_text(_landing_page(root, lectures, exercises, repo_url), encoding="utf-8")
         (src / "conventions.md").write_text(_conventions_page(root), encoding="utf-8")
         (src / "conf.py").write_text(_CONF.format(mathjax=MATHJAX_FILE), encoding="utf-8")
         _copy_mathjax(base / "assets" / "mathjax")
         (base / "assets" / "puma.css").write_text(_CSS, encoding="utf-8")
-        if out_dir.exists():
-            shutil.rmtree(out_dir)
+        _edition_archive(root, base / "extra")
         warnings = io.StringIO()
-        app = Sphinx(str(src), str(src), str(out_dir), str(base / "doctrees"), "html",
+        # built inside the temporary folder (MyST-NB writes jupyter_execute/ next to Sphinx's output
+        # folder), then moved to out_dir
+        html_dir = base / "html"
+        app = Sphinx(str(src), str(src), str(html_dir), str(base / "doctrees"), "html",
                      status=io.StringIO(), warning=warnings, freshenv=True)  # fmt: skip
         app.build()
+        if out_dir.exists():
+            shutil.rmtree(out_dir)
+        out_dir.parent.mkdir(parents=True, exist_ok=True)
+        shutil.move(str(html_dir), str(out_dir))
     for source_map in out_dir.glob("_static/**/*.map"):  # the theme's 3 MB of source maps serve no reader
         source_map.unlink()
     pages = tuple(sorted(str(p.relative_to(out_dir)) for p in out_dir.rglob("*.html") if "_static" not in p.parts))

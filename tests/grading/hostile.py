@@ -10,6 +10,10 @@ says how to run it::
     # modes: bwrap none              (sandboxes to run it under; "none" only where that is harmless)
     # expect: zero                   (the attacker's score: zero, or "earned" for what the content earns)
     # timeout_total: 20              (optional: the per-notebook limit for this run)
+    # memory_mb: 1024                (optional: the notebook's control-group memory limit; needs control groups)
+    # classmate: slowish             (optional: a fourth student, right but slow: each call burns CPU first)
+    # base: solutions                (optional: the attack is appended to the solution, not the exercise)
+    # expect: without q2             (the attacker earns full marks but for the questions named)
 
 Placeholders in the code are filled in before grading, so an attack knows what a real attacker could find
 out: ``{{SUBMISSIONS}}``, ``{{OUTPUT}}``, ``{{FEEDBACK}}``, ``{{ROOT}}`` (the course checkout),
@@ -48,6 +52,7 @@ import nbformat
 import pytest
 
 from puma_course.grading import EXERCISES, NotebookResult, grade
+from puma_course.grading.limits import Usage, open_run
 from puma_course.grading.sandbox import Sandbox, choose
 from puma_course.grading.text import csv_safe
 from tests.support import ROOT
@@ -59,7 +64,7 @@ PRELUDE = (
     "    '''The attack found what it should not: say so through the exit code.'''\n"
     "    _os._exit(97)\n"
 )
-CATEGORIES = ("answer-key", "isolation", "persistence", "crash", "slow", "forging")
+CATEGORIES = ("answer-key", "isolation", "persistence", "crash", "slow", "forging", "limits")
 LIMITS = {"timeout_cell": 2.0, "timeout_total": 5.0, "timeout_student": 10.0}
 
 
@@ -76,6 +81,7 @@ class Fixture:
     cells: list[str] = field(default_factory=list)
     layout: Any = None
     limits: dict[str, float] = field(default_factory=dict)
+    head: dict[str, str] = field(default_factory=dict)
 
     def __str__(self) -> str:
         return self.name
@@ -102,6 +108,7 @@ def _make(name: str, head: dict[str, str], doc: str, **kw: Any) -> Fixture:
         head.get("expect", "zero"),
         doc,
         limits=limits,
+        head=head,
         **kw,
     )
 
@@ -149,7 +156,7 @@ def sandbox_for(mode: str) -> Sandbox:
         return choose("none")
     box = bwrap()
     if box.kind != "bwrap":
-        pytest.skip(f"bubblewrap cannot run here: {box.reason}")
+        pytest.skip(f"grading under the sandbox not run: bubblewrap cannot run here ({box.reason})")
     return box
 
 
@@ -205,6 +212,7 @@ class AttackRun:
     before: dict[str, Any]
     connections: list[str]
     seconds: float
+    usages: list[Usage] = field(default_factory=list)
 
     def of(self, student: str) -> list[NotebookResult]:
         return [r for r in self.results if r.student == student]
@@ -217,7 +225,8 @@ def _fill(code: str, values: dict[str, str]) -> str:
 
 
 def _notebook(fx: Fixture, exercise: str, values: dict[str, str]) -> nbformat.NotebookNode:
-    nb = nbformat.read(ROOT / "exercises" / f"{exercise}.ipynb", as_version=4)
+    base = "solutions" if fx.head.get("base") == "solutions" else "exercises"
+    nb = nbformat.read(ROOT / base / f"{exercise}.ipynb", as_version=4)
     nb.cells.append(nbformat.v4.new_code_cell(PRELUDE))
     for cell in fx.cells:
         nb.cells.append(nbformat.v4.new_code_cell(_fill(cell, {**values, "EXERCISE": exercise})))
@@ -288,22 +297,72 @@ def run_attack(fx: Fixture, mode: str, tmp_path: Path, monkeypatch: pytest.Monke
         for ex in fx.exercises:
             nbformat.write(_notebook(fx, ex, values), subs / "attacker" / f"{ex}.ipynb")
         attackers = {"attacker": fx.expect}
+    if fx.head.get("classmate") == "slowish":
+        (subs / "b_slowish").mkdir()  # graded beside the attacker (jobs=2, students in name order)
+        for ex in fx.exercises:
+            nb = nbformat.read(ROOT / "solutions" / f"{ex}.ipynb", as_version=4)
+            nb.cells.append(nbformat.v4.new_code_cell(SLOWISH.format(functions=_functions(ex))))
+            nbformat.write(nb, subs / "b_slowish" / f"{ex}.ipynb")
+        attackers["b_slowish"] = "earned"
+    groups = None
+    if "memory_mb" in fx.head or fx.category == "limits":
+        groups = open_run(memory=int(float(fx.head.get("memory_mb", 4096)) * (1 << 20)))
+        if not groups.enforced:
+            listener.close()
+            pytest.skip(f"NO CONTROL GROUPS here, the per-notebook limits cannot be tested: {groups.reason}")
     before = {"subs": _digest(subs), "watched": watched()}
     monkeypatch.setenv("PUMA_HOSTILE_SECRET", mark)
     limits = {**LIMITS, **fx.limits}
     started = time.time()
     t0 = time.perf_counter()
     try:
-        results = grade(subs, out, feedback=fb, jobs=2, seed=7, exercises=fx.exercises, sandbox=box, **limits)
+        results = grade(
+            subs,
+            out,
+            feedback=fb,
+            jobs=2,
+            seed=7,
+            exercises=fx.exercises,
+            sandbox=box,
+            cgroups=groups or True,
+            **limits,
+        )
     finally:
         seconds = time.perf_counter() - t0
+        if groups is not None:
+            groups.close()
         time.sleep(0.3)  # a daemon that outlived its notebook would act now
         connections = listener.close()
     with open(out, newline="", encoding="utf-8") as fh:
         rows = list(csv.DictReader(fh))
+    usages = list(groups.usages) if groups is not None else []
     return AttackRun(
-        fx, mode, root, subs, out, fb, mark, started, attackers, results, rows, before, connections, seconds
+        fx, mode, root, subs, out, fb, mark, started, attackers, results, rows, before, connections, seconds, usages
     )
+
+
+#: A cell for the slowish classmate: every graded function burns 0.05 s of CPU before it answers.
+SLOWISH = """
+import time as _time
+
+
+def _slowly(fn):
+    def wrapper(*args, **kwargs):
+        end = _time.process_time() + 0.05
+        while _time.process_time() < end:
+            pass
+        return fn(*args, **kwargs)
+
+    return wrapper
+
+
+for _name in {functions!r}:
+    globals()[_name] = _slowly(globals()[_name])
+"""
+
+
+def _functions(exercise: str) -> list[str]:
+    return list(dict.fromkeys(q.function for q in EXERCISES[exercise].questions))
 
 
 def _digest(folder: Path) -> dict[str, str]:
@@ -369,6 +428,9 @@ def check_run(run: AttackRun) -> None:
         for r in mine:
             assert not any("exit code 97" in n for n in r.notes), (name, r.exercise, "LEAK", r.notes)
             wanted = 0 if expect == "zero" else full[r.exercise]
+            if expect.startswith("without "):
+                lost = expect.split()[1:]
+                wanted = full[r.exercise] - sum(q.points for q in EXERCISES[r.exercise].questions if q.qid in lost)
             assert r.score == wanted, (name, r.exercise, r.status, r.score, r.notes, r.question_notes)
     # nothing outside the worker's folder changed, nothing outlived the run, nothing connected
     assert _digest(run.subs) == run.before["subs"]

@@ -87,7 +87,8 @@ def test_check_prints_through_the_same_formatter(capsys, right_rotation):
 
 def test_csv_columns(tmp_path):
     out = tmp_path / "sub" / "grades.csv"
-    write_csv(out, [_result(), _result("missing")], [EX.name], seed=12, sandbox="bwrap")
+    limits = "per notebook (cgroup v1): 4 GiB, 64 processes, 1 CPU"
+    write_csv(out, [_result(), _result("missing")], [EX.name], seed=12, sandbox="bwrap", limits=limits)
     with open(out, newline="", encoding="utf-8") as fh:
         rows = list(csv.reader(fh))
     assert rows[0] == [
@@ -103,10 +104,27 @@ def test_csv_columns(tmp_path):
         "q5",
         "status",
         "sandbox",
+        "limits",
         "seed",
         "notes",
     ]
-    assert rows[1] == ["ann", "ex01_rotations", "3", "13", "0", "2", "1", "0", "0", "0", "ok", "bwrap", "12", ""]
+    assert rows[1] == [
+        "ann",
+        "ex01_rotations",
+        "3",
+        "13",
+        "0",
+        "2",
+        "1",
+        "0",
+        "0",
+        "0",
+        "ok",
+        "bwrap",
+        limits,
+        "12",
+        "",
+    ]
     assert list(tmp_path.glob("sub/*")) == [out]  # no temporary file left behind
 
 

@@ -68,7 +68,7 @@ def _worker(cells, calls, exercise=EX, sandbox: Sandbox | None = None, timeout=3
     box = sandbox or choose("none")
     with Stage([exercise]) as stage:
         lib, _, _ = box.paths(stage.libs[exercise.name], stage.bin, Path("."))
-        job = {"calls": calls, "timeout_cell": 10, "path": [lib, *box.sites], "filename": "nb.ipynb"}
+        job = {"calls": calls, "timeout_cell": 10, "path": [lib, *box.seen_sites], "filename": "nb.ipynb"}
         payload = json.dumps(job).encode() + b"\n" + nbformat.writes(nb).encode()
         cwd = None if box.kind == "bwrap" else str(stage.root)
         env = child_env("/puma/work" if box.kind == "bwrap" else str(stage.root))
@@ -82,7 +82,9 @@ def test_a_worker_that_cannot_start_is_the_graders_error_not_the_students(tmp_pa
     nbformat.write(nbformat.v4.new_notebook(), sub)
     broken = Sandbox("bwrap", "/bin/sh", sites=choose("none").sites)
     monkeypatch.setattr(
-        Sandbox, "bwrap_args", lambda self, *a, **k: ["-c", "echo 'bwrap: no user namespaces' >&2; exit 1"]
+        Sandbox,
+        "launch",
+        lambda self, *a, **k: (["/bin/sh", "-c", "echo 'bwrap: no user namespaces' >&2; exit 1"], -1),
     )
     r = grade_notebook(sub, EX, "s", sandbox=broken)
     assert r.status == "grader-error" and "could not start (exit code 1): `bwrap: no user namespaces`" in r.notes[0]
@@ -187,7 +189,7 @@ def test_child_times_out_and_caps_what_it_keeps():
 
 
 def test_the_tamper_check_covers_every_module_of_the_package():
-    digest = runner._package_digest()
+    digest = runner.package_digest(runner._PACKAGE_DIR)
     modules = {"__init__.py", "grading/runner.py", "grading/worker/__init__.py", "grading/bank/_reference/__init__.py"}
     assert modules <= set(digest)
     assert all(not key.startswith("/") for key in digest)

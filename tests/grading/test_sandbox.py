@@ -60,8 +60,8 @@ def test_the_command_line_isolates_and_hides(tmp_path):
         "--dev /dev",
     ):
         assert option in text, option
-    assert f"--ro-bind {tmp_path / 'python'} {tmp_path / 'python'}" in text
-    assert f"--tmpfs {secret} --remount-ro {secret}" in text  # inside a mount: covered
+    assert f"--ro-bind {tmp_path / 'python'} /python/0" in text  # at a neutral name, not its host path
+    assert "--tmpfs /python/0/solutions --remount-ro /python/0/solutions" in text  # inside a mount: covered
     assert str(tmp_path / "elsewhere") not in text  # outside every mount: nothing to hide
     assert f"--size {sb.WORK_BYTES} --tmpfs {MOUNT}/work" in text
     pairs = list(zip(cmd, cmd[1:], strict=False))
@@ -79,7 +79,7 @@ def _inside(program: str, private=(), timeout=60) -> dict:
     """Run ``program`` (which sets ``result``) as the worker inside the sandbox; return its result."""
     box = _box()
     if box.kind != "bwrap":
-        pytest.skip(f"bubblewrap cannot run here: {box.reason}")
+        pytest.skip(f"sandbox check not run: bubblewrap cannot run here ({box.reason})")
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -150,18 +150,20 @@ def test_inside_everything_is_read_only_but_a_small_work_folder():
 
 def test_inside_the_course_and_private_folders_are_not_there(tmp_path):
     secret = Path(_box().sites[0]) / "puma_course"  # a non-editable install keeps the package here
+    seen = _box().seen(str(secret))  # where the worker would see it
     got = _inside(
         f"""
         import os
         result["root"] = os.path.exists({str(ROOT / "solutions")!r})
         result["package"] = os.path.exists({str(ROOT / "puma_course" / "transforms.py")!r})
         result["tmp"] = os.path.exists({str(tmp_path)!r})
-        result["private"] = os.listdir({str(secret)!r}) if os.path.isdir({str(secret)!r}) else []
+        result["private"] = os.listdir({seen!r}) if os.path.isdir({seen!r}) else []
         result["home"] = os.path.exists(os.path.expanduser("~/.ssh"))
+        result["site"] = os.path.isdir({_box().seen_sites[0]!r})
     """,
         private=[secret],
     )
-    assert got == {"root": False, "package": False, "tmp": False, "private": [], "home": False}
+    assert got == {"root": False, "package": False, "tmp": False, "private": [], "home": False, "site": True}
 
 
 def test_the_cli_names_the_sandbox_and_records_it(tmp_path, capsys):

@@ -60,7 +60,10 @@ def test_an_unreadable_folder_or_file_is_reported_not_raised(tmp_path, monkeypat
     assert got.notebooks[EX].state == "unreadable" and "Permission denied" in got.notebooks[EX].note
 
 
-@pytest.mark.skipif(os.geteuid() == 0, reason="root reads a folder of mode 000 anyway")
+@pytest.mark.skipif(
+    os.geteuid() == 0,
+    reason="not run as root: the unreadable-folder case needs a user who cannot read a folder of mode 000",
+)
 def test_a_folder_of_mode_000_is_unreadable(tmp_path):
     (tmp_path / "s").mkdir()
     os.chmod(tmp_path / "s", 0)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import html
 import re
+import sys
 from pathlib import Path
 
 import pytest
@@ -17,7 +18,7 @@ from puma_course.cli import main
 from puma_course.course import CourseNotFoundError
 from tests.support import ROOT
 
-pytest.importorskip("myst_nb", reason="the site's tools are in the 'site' extra")
+pytest.importorskip("myst_nb", reason="website build not tested: MyST-NB is missing (pip install -e '.[site]')")
 
 
 @pytest.fixture(scope="module")
@@ -94,3 +95,94 @@ def test_a_tagged_display_with_a_matrix_is_not_wrapped_in_split(built):
     tagged = [b for b in blocks if "\\tag{" in b and "\\\\" in b]
     assert tagged, "lecture 08 lost its tagged matrix display"
     assert not [b for b in tagged if "\\begin{split}" in b]
+
+
+def _anchors(page: str) -> list[dict[str, str | None]]:
+    from html.parser import HTMLParser
+
+    found: list[dict[str, str | None]] = []
+
+    class Anchors(HTMLParser):
+        def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+            if tag == "a":
+                found.append(dict(attrs))
+
+    Anchors().feed(page)
+    return found
+
+
+def test_the_landing_page_links_the_student_edition_and_it_holds_no_solutions(built):
+    import zipfile
+
+    from puma_course.site.build import ARCHIVE
+
+    out, _ = built
+    hrefs = [a.get("href") for a in _anchors((out / "index.html").read_text(encoding="utf-8"))]
+    assert ARCHIVE in hrefs, "the landing page does not link the course's archive"
+    with zipfile.ZipFile(out / ARCHIVE) as z:
+        names = z.namelist()
+    tops = {n.split("/")[1] for n in names if n.count("/") >= 2 or not n.endswith("/")}
+    assert {"START_HERE.ipynb", "notebooks", "exercises", "puma_course", "pyproject.toml", "README.md"} <= tops
+    assert all(n.startswith("puma-course/") for n in names)
+    assert not [n for n in names if "/solutions/" in n or n.rstrip("/").endswith("/solutions")], "solutions/ shipped"
+    assert not [n for n in names if "/grading/bank/" in n], "the grader's question bank shipped"
+    for nb in (ROOT / "exercises").glob("ex*.ipynb"):
+        assert f"puma-course/exercises/{nb.name}" in names
+
+
+def test_the_repository_link_is_the_one_given_else_the_pyproject_one_else_none(tmp_path, built):
+    from puma_course.site.build import _get_the_course, repository_url
+
+    out, _ = built
+    # this course's pyproject names no repository: the landing page offers the archive alone
+    assert repository_url(ROOT) is None
+    assert not [
+        a for a in _anchors((out / "index.html").read_text(encoding="utf-8")) if a.get("class") == "puma-repository"
+    ]
+    url = "https://git.example.org/robotics/puma-course"
+    page = "\n".join(_get_the_course(url))
+    assert [a.get("href") for a in _anchors(page) if a.get("class") == "puma-repository"] == [url]
+    if sys.version_info < (3, 11):
+        pytest.skip("reading the repository from pyproject.toml not checked: Python 3.10 has no tomllib")
+    (tmp_path / "pyproject.toml").write_text(f'[tool.puma-course]\nrepository = "{url}"\n', encoding="utf-8")
+    assert repository_url(tmp_path) == url
+    (tmp_path / "pyproject.toml").write_text(f'[project]\nname = "x"\n[project.urls]\nRepository = "{url}/2"\n')
+    assert repository_url(tmp_path) == url + "/2"
+
+
+def test_the_site_command_takes_a_repository_link(tmp_path, monkeypatch):
+    from puma_course import site
+
+    seen = {}
+
+    def fake(course, out, repo_url=None):
+        seen["repo_url"] = repo_url
+        raise ValueError("stop here")
+
+    monkeypatch.setattr(site, "build_site", fake)
+    assert main(["site", "--course", str(ROOT), "-o", str(tmp_path / "s"), "--repo-url", "https://x.example/c"]) == 2
+    assert seen == {"repo_url": "https://x.example/c"}
+
+
+def test_a_repository_link_that_is_not_a_web_address_is_refused(tmp_path, capsys):
+    for bad in ("javascript:alert(1)", "git@example.org:c.git", 'https://x.example/"><script>'):
+        assert main(["site", "--course", str(ROOT), "-o", str(tmp_path / "s"), "--repo-url", bad]) == 2
+        assert "repo_url: expected an http:// or https:// address" in capsys.readouterr().err
+    assert not (tmp_path / "s").exists()
+
+
+@pytest.mark.slow
+def test_building_the_site_in_a_clean_clone_leaves_git_status_clean(tmp_path):
+    """`puma-course site` with its defaults (output _site/ in the course) changes nothing git tracks or sees."""
+    import subprocess
+
+    clone = tmp_path / "course"
+    subprocess.run(["git", "clone", "-q", "--no-hardlinks", str(ROOT), str(clone)], check=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, "-m", "puma_course.cli", "site"], cwd=clone, capture_output=True, text=True, timeout=600
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert (clone / "_site" / "index.html").is_file()
+    status = subprocess.run(["git", "status", "--porcelain", "--ignored=no"], cwd=clone, capture_output=True, text=True)
+    assert status.stdout == "", f"the build left files git sees:\n{status.stdout}"
+    assert not (clone / "jupyter_execute").exists()

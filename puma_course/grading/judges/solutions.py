@@ -69,6 +69,11 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
             # a mistaken pose out of reach: its (empty) set of solutions is the mistaken answer
             named = [(key, why) for key, why, rows in expected.get("wrong_sets", ()) if len(rows) == 0]
             return Verdict(message, "missing_solutions", (*named, ("missing_solutions", message)), message)
+        if len(arr) > 4 * k:  # far more rows than solutions: said before any other work (a bounded cost)
+            return Verdict(
+                f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
+                "duplicates",
+            )
         why = _not_reaching(arr, expected, expected["T"])
         if why is not None:
             return why
@@ -81,11 +86,16 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
                 "negative_stroke",
             )
         D = _dist(arr[:, None, :], arr[None, :, :], rev)
-        twice = np.argwhere(np.triu(D < 1e-7, k=1))
+        twice = np.argwhere(np.triu(D < match_tol, k=1))  # the same tolerance as a match: one solution, once
         if twice.size:
             i, j = (int(v) + 1 for v in twice[0])
             return Verdict(
                 f"rows {i} and {j} are the same configuration: list each solution once (there are {k} here)",
+                "duplicates",
+            )
+        if len(arr) > k:  # more rows than solutions, none two within the match tolerance (reference rows that close)
+            return Verdict(
+                f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
                 "duplicates",
             )
         M = _dist(sols[:, None, :], arr[None, :, :], rev) < match_tol

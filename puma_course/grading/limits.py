@@ -1,0 +1,382 @@
+"""Limits per notebook, enforced by the system: one control group per graded notebook.
+
+The worker's own ``setrlimit`` caps are per *process*: 4 GiB of address space each, times every process
+the notebook forks. A control group holds the notebook's whole process tree, whatever it forks or however
+it detaches (``setsid``, double forks), so the limits below hold for the notebook as a whole:
+
+* memory (with swap, where the kernel accounts it) :data:`MEMORY` bytes: past it the kernel's OOM killer
+  ends a process of that notebook, never a classmate's or the grader;
+* at most :data:`PROCESSES` processes and threads;
+* CPU: at most :data:`CPUS` cores (a CFS quota), and an equal share against every other notebook graded
+  at the same time (the groups have equal weights, and the kernel's per-session autogroups, which gave a
+  notebook's sixty ``setsid`` children sixty shares, apply only outside control groups); the run's folder
+  weighs as many ordinary processes as notebooks are graded at once (:meth:`Run.share`). A slowish
+  classmate's calls are timed on the wall clock, but its share of the CPU cannot be taken.
+
+:func:`open_run` makes a folder for the grading run in each controller's hierarchy, under the grader's own
+group (so limits set on the grader, by systemd or a container, still hold above), in the first layout
+that works here: the unified hierarchy (cgroup v2: ``memory.max``, ``memory.swap.max``, ``pids.max``,
+``cpu.weight``, ``cpu.max``) where it has the controllers, else the v1 controllers of a hybrid hierarchy
+(``memory.limit_in_bytes`` and ``memory.memsw.limit_in_bytes``, ``pids.max``, ``cpu.shares``,
+``cpu.cfs_quota_us``). It needs to be root, or a delegated subtree (systemd's ``Delegate=yes``; for a user,
+``systemd-run --user --scope -p Delegate=yes puma-course grade ...``). Where it cannot, it says why, and
+the grader says so loudly (terminal, CSV ``limits`` column) and falls back to the per-process limits.
+
+:meth:`Run.notebook` makes the group of one notebook; :meth:`Group.wrap` prefixes the worker's command
+with a tiny ``/bin/sh`` launcher that writes its own process id into the group's ``cgroup.procs`` and
+then ``exec``'s the worker, so the notebook's first instruction already runs inside its group; at the end
+every process still in the group is killed and the group removed (:meth:`Group.close`, which also reads
+the group's peak memory and CPU time).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import secrets
+import signal
+import time
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["MEMORY", "PROCESSES", "CPUS", "ROOT", "Run", "Group", "Usage", "open_run", "describe"]
+
+#: The notebook's memory, all of its processes together (plus the worker's in-memory folder's pages).
+MEMORY = 4 << 30
+#: The notebook's processes and threads, together.
+PROCESSES = 64
+#: The notebook's CPU cores, together (a CFS quota: ``CPUS`` x the period, per period).
+CPUS = 1.0
+#: Where the control-group file systems are mounted.
+ROOT = "/sys/fs/cgroup"
+_PERIOD_US = 100_000
+#: The launcher: joins every ``cgroup.procs`` given before ``--``, then becomes the worker.
+JOIN = 'while [ "$1" != -- ]; do echo $$ > "$1" || exit 125; shift; done; shift; exec "$@"'
+
+
+@dataclass
+class Usage:
+    """What one notebook's group used: peak memory (bytes, 0 if unknown), CPU seconds, and whether it hit a limit."""
+
+    peak_memory: int = 0
+    cpu_seconds: float = 0.0
+    oom_kills: int = 0
+    pids_refused: int = 0
+
+
+@dataclass
+class Group:
+    """The control group(s) of one notebook: one folder per v1 hierarchy, or one v2 folder."""
+
+    version: int
+    folders: dict[str, Path]
+    usage: Usage = field(default_factory=Usage)
+
+    @property
+    def procs(self) -> list[str]:
+        """The ``cgroup.procs`` files a process joins (one per distinct folder)."""
+        return [str(p / "cgroup.procs") for p in dict.fromkeys(self.folders.values())]
+
+    def wrap(self, cmd: Sequence[str]) -> list[str]:
+        """``cmd`` started inside this group (see the module docstring)."""
+        return ["/bin/sh", "-c", JOIN, "puma-join", *self.procs, "--", *cmd]
+
+    def members(self) -> list[int]:
+        out: set[int] = set()
+        for procs in self.procs:
+            with contextlib.suppress(OSError, ValueError):
+                out |= {int(x) for x in Path(procs).read_text().split()}
+        return sorted(out)
+
+    def kill_all(self, wait: float = 5.0) -> None:
+        """Kill every process in the group (``cgroup.kill`` where v2 has it), until none is left or ``wait`` passes."""
+        folder = self.folders.get("memory") or next(iter(self.folders.values()))
+        if self.version == 2 and (folder / "cgroup.kill").exists():
+            with contextlib.suppress(OSError):
+                (folder / "cgroup.kill").write_text("1")
+        end = time.monotonic() + wait
+        while True:
+            pids = self.members()
+            if not pids or time.monotonic() > end:
+                return
+            for pid in pids:
+                with contextlib.suppress(OSError):
+                    os.kill(pid, signal.SIGKILL)
+            time.sleep(0.01)
+
+    def read_usage(self) -> Usage:
+        u = Usage()
+        f = self.folders
+        if self.version == 1:
+            u.peak_memory = _int(f["memory"] / "memory.max_usage_in_bytes")
+            u.peak_memory = max(u.peak_memory, _int(f["memory"] / "memory.memsw.max_usage_in_bytes"))
+            u.cpu_seconds = _int(f["cpuacct"] / "cpuacct.usage") / 1e9 if "cpuacct" in f else 0.0
+            u.oom_kills = _key(f["memory"] / "memory.oom_control", "oom_kill")
+            u.pids_refused = _key(f["pids"] / "pids.events", "max")
+        else:
+            folder = f["memory"]
+            u.peak_memory = _int(folder / "memory.peak")
+            u.cpu_seconds = _key(folder / "cpu.stat", "usage_usec") / 1e6
+            u.oom_kills = _key(folder / "memory.events", "oom_kill")
+            u.pids_refused = _key(folder / "pids.events", "max")
+        return u
+
+    def close(self) -> Usage:
+        """Kill what is left, read the usage, remove the group's folders."""
+        self.kill_all()
+        self.usage = self.read_usage()
+        for folder in dict.fromkeys(reversed(list(self.folders.values()))):
+            _rmdir(folder)
+        return self.usage
+
+
+@dataclass
+class Run:
+    """The grading run's folder in each hierarchy (``version`` 1 or 2), or ``version`` 0 and the ``reason``."""
+
+    version: int
+    folders: dict[str, Path] = field(default_factory=dict)
+    reason: str = ""
+    memory: int = MEMORY
+    processes: int = PROCESSES
+    cpus: float = CPUS
+    #: what each notebook's group used, in the order they ended
+    usages: list[Usage] = field(default_factory=list)
+    _count: int = 0
+
+    @property
+    def enforced(self) -> bool:
+        return self.version > 0
+
+    @property
+    def label(self) -> str:
+        """What the CSV's ``limits`` column says."""
+        return describe(self)
+
+    @contextlib.contextmanager
+    def notebook(self) -> Iterator[Group | None]:
+        """A fresh group for one notebook with the run's limits (None when limits are not enforced here)."""
+        if not self.enforced:
+            yield None
+            return
+        self._count += 1
+        name = f"nb-{self._count}-{secrets.token_hex(3)}"
+        group = Group(self.version, {c: p / name for c, p in self.folders.items()})
+        try:
+            for folder in dict.fromkeys(group.folders.values()):
+                folder.mkdir()
+            _set_limits(group, self.memory, self.processes, self.cpus)
+        except OSError:
+            for folder in dict.fromkeys(group.folders.values()):
+                _rmdir(folder)
+            raise
+        try:
+            yield group
+        finally:
+            self.usages.append(group.close())
+
+    def share(self, notebooks: int) -> None:
+        """Weigh the run's folder as ``notebooks`` ordinary processes against the rest of the machine (each of
+        the notebooks graded at once then competes as one process would, however many it forks)."""
+        if not self.enforced:
+            return
+        n = max(1, int(notebooks))
+        with contextlib.suppress(OSError):
+            if self.version == 1:
+                _write(self.folders["cpu"] / "cpu.shares", str(min(262144, 1024 * n)))
+            else:
+                _write(self.folders["cpu"] / "cpu.weight", str(min(10000, 100 * n)))
+
+    def close(self) -> None:
+        for folder in dict.fromkeys(self.folders.values()):
+            _rmdir(folder)
+
+
+def describe(run: Run) -> str:
+    """The limits as they hold, in a few words (the CSV's ``limits`` column, the terminal).
+
+    >>> describe(Run(1, memory=4 << 30, processes=64, cpus=1.0))
+    'per notebook (cgroup v1): 4 GiB, 64 processes, 1 CPU'
+    >>> describe(Run(0, reason="not root"))
+    'PER PROCESS ONLY (no control group: not root)'
+    """
+    if run.enforced:
+        return f"per notebook (cgroup v{run.version}): {_gib(run.memory)}, {run.processes} processes, {run.cpus:g} CPU"
+    return f"PER PROCESS ONLY (no control group: {run.reason})"
+
+
+def _gib(n: int) -> str:
+    return f"{n / (1 << 30):g} GiB" if n >= 1 << 30 else f"{n / (1 << 20):g} MiB"
+
+
+def _int(path: Path) -> int:
+    try:
+        return int(path.read_text().split()[0])
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
+def _key(path: Path, key: str) -> int:
+    try:
+        for line in path.read_text().splitlines():
+            parts = line.split()
+            if len(parts) == 2 and parts[0] == key:
+                return int(parts[1])
+    except (OSError, ValueError):
+        pass
+    return 0
+
+
+def _rmdir(folder: Path) -> None:
+    for _ in range(100):  # a killed process leaves its group a moment after it is reaped
+        try:
+            folder.rmdir()
+            return
+        except FileNotFoundError:
+            return
+        except OSError as exc:
+            if exc.errno != errno.EBUSY:
+                return
+            time.sleep(0.02)
+
+
+def _write(path: Path, value: str) -> None:
+    with open(path, "w", encoding="ascii") as fh:
+        fh.write(value)
+
+
+def _set_limits(group: Group, memory: int, processes: int, cpus: float) -> None:
+    f = group.folders
+    quota = max(1000, int(cpus * _PERIOD_US))
+    if group.version == 1:
+        _write(f["memory"] / "memory.limit_in_bytes", str(memory))
+        if (f["memory"] / "memory.memsw.limit_in_bytes").exists():
+            _write(f["memory"] / "memory.memsw.limit_in_bytes", str(memory))  # no swapping past the limit
+        _write(f["pids"] / "pids.max", str(processes))
+        _write(f["cpu"] / "cpu.shares", "1024")
+        _write(f["cpu"] / "cpu.cfs_period_us", str(_PERIOD_US))
+        _write(f["cpu"] / "cpu.cfs_quota_us", str(quota))
+    else:
+        folder = f["memory"]
+        _write(folder / "memory.max", str(memory))
+        if (folder / "memory.swap.max").exists():
+            _write(folder / "memory.swap.max", "0")
+        _write(folder / "pids.max", str(processes))
+        _write(folder / "cpu.weight", "100")
+        _write(folder / "cpu.max", f"{quota} {_PERIOD_US}")
+
+
+def _own_groups(proc_cgroup: str) -> dict[str, str]:
+    """The grader's own group by controller ("" for v2's unified line), from ``/proc/self/cgroup``."""
+    out: dict[str, str] = {}
+    try:
+        text = Path(proc_cgroup).read_text()
+    except OSError:
+        return out
+    for line in text.splitlines():
+        parts = line.split(":", 2)
+        if len(parts) == 3:
+            for controller in parts[1].split(","):
+                out[controller] = parts[2]
+    return out
+
+
+def _v2_mount(root: Path) -> Path | None:
+    for candidate in (root, root / "unified"):
+        if (candidate / "cgroup.controllers").exists():
+            return candidate
+    return None
+
+
+def _try_v2(root: Path, own: dict[str, str], name: str) -> Run | str:
+    mount = _v2_mount(root)
+    if mount is None:
+        return "no cgroup2 mount"
+    try:
+        available = set((mount / "cgroup.controllers").read_text().split())
+    except OSError as exc:
+        return f"cannot read {mount}/cgroup.controllers ({exc.strerror})"
+    missing = {"memory", "pids", "cpu"} - available
+    if missing:
+        return f"the unified hierarchy ({mount}) has no {', '.join(sorted(missing))} controller"
+    parent = mount / own.get("", "/").lstrip("/")
+    try:
+        _write(parent / "cgroup.subtree_control", "+memory +pids +cpu")
+        run = parent / name
+        run.mkdir()
+    except OSError as exc:
+        return f"cannot make a group under {parent} ({exc.strerror}; run as root or in a delegated scope)"
+    try:
+        _write(run / "cgroup.subtree_control", "+memory +pids +cpu")
+    except OSError as exc:
+        _rmdir(run)
+        return f"cannot enable the controllers in {run} ({exc.strerror})"
+    return Run(2, {"memory": run, "pids": run, "cpu": run})
+
+
+def _try_v1(root: Path, own: dict[str, str], name: str) -> Run | str:
+    folders: dict[str, Path] = {}
+    for controller in ("memory", "pids", "cpu", "cpuacct"):
+        mount = next(
+            (
+                root / m
+                for m in (controller, "cpu,cpuacct", "cpuacct,cpu")
+                if controller in m.split(",") and (root / m).is_dir() and (root / m / "cgroup.procs").exists()
+            ),
+            None,
+        )
+        if mount is None:
+            if controller == "cpuacct":
+                continue  # only the CPU time figure is lost
+            return f"no cgroup v1 {controller} controller under {root}"
+        parent = mount / own.get(controller, "/").lstrip("/")
+        run = parent / name
+        try:
+            if run not in folders.values():
+                run.mkdir()
+        except OSError as exc:
+            for made in dict.fromkeys(folders.values()):
+                _rmdir(made)
+            return f"cannot make a group under {parent} ({exc.strerror}; run as root or in a delegated scope)"
+        folders[controller] = run
+    return Run(1, folders)
+
+
+def open_run(
+    memory: int = MEMORY,
+    processes: int = PROCESSES,
+    cpus: float = CPUS,
+    *,
+    root: str | os.PathLike[str] = ROOT,
+    proc_cgroup: str = "/proc/self/cgroup",
+    enabled: bool = True,
+) -> Run:
+    """The grading run's groups (v2, else v1), or a :class:`Run` with ``version`` 0 and the reason why not.
+
+    ``root`` and ``proc_cgroup`` are for tests (a fake hierarchy). ``enabled`` False (or the environment
+    variable ``PUMA_GRADING_CGROUPS=0``) turns them off on purpose.
+    """
+    if not enabled or os.environ.get("PUMA_GRADING_CGROUPS", "1") == "0":
+        return Run(0, reason="turned off (PUMA_GRADING_CGROUPS=0)")
+    base = Path(root)
+    if not base.is_dir():
+        return Run(0, reason=f"no control-group file system at {base} (not Linux, or not mounted)")
+    own = _own_groups(proc_cgroup)
+    name = f"puma-grading-{os.getpid()}-{secrets.token_hex(4)}"
+    why = []
+    for attempt in (_try_v2, _try_v1):
+        got = attempt(base, own, name)
+        if isinstance(got, Run):
+            got.memory, got.processes, got.cpus = memory, processes, cpus
+            try:  # a group that cannot take the limits is no group
+                with got.notebook():
+                    pass
+            except OSError as exc:
+                got.close()
+                why.append(f"cgroup v{got.version}: cannot set the limits ({exc.strerror})")
+                continue
+            return got
+        why.append(got)
+    return Run(0, reason="; ".join(why))
