@@ -79,6 +79,7 @@ TITLES: dict[str, str] = {
     "offset_sign": "an offset with the wrong sign",
     "not_minimal": "not Porter's minimal stroke",
     "back_plane": "the arm plane entered from the back",
+    "time_scaling": "another time scaling than the one asked for (linear, cubic, t not divided by the duration)",
     "frame_coordinates": "a vector or point written in another frame's coordinates than the one asked for",
 }
 

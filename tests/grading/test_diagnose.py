@@ -466,3 +466,16 @@ def test_every_mistake_the_graders_name_has_a_crafted_case_in_this_file():
     source = Path(__file__).read_text(encoding="utf-8")
     untested = [key for key in TITLES if f'"{key}"' not in source]
     assert not untested, untested
+
+
+def test_the_quintic_time_scaling_and_the_short_way_round():
+    name = "ex10_trajectories"
+    q0, q1, T, t = EXERCISES[name].question("q4").public[1]
+    dq, tau = np.angle(np.exp(1j * (q1 - q0))), t / T
+    quintic = q0 + (10 * tau**3 - 15 * tau**4 + 6 * tau**5)[:, None] * dq  # worked from lecture 10 §5
+    assert judge(name, "q4", quintic, q0, q1, T, t).passed
+    assert judge(name, "q4", np.angle(np.exp(1j * quintic)), q0, q1, T, t).passed  # angles a whole turn away
+    assert_named(judge(name, "q4", q0 + tau[:, None] * dq, q0, q1, T, t), "time_scaling", "constant speed")
+    assert_named(judge(name, "q4", q0 + (3 * tau**2 - 2 * tau**3)[:, None] * dq, q0, q1, T, t), "time_scaling", "cubic")
+    unwrapped = q0 + (10 * tau**3 - 15 * tau**4 + 6 * tau**5)[:, None] * (q1 - q0)
+    assert_named(judge(name, "q4", unwrapped, q0, q1, T, t), "unwrapped_distance", "wrap")
