@@ -6,7 +6,7 @@ writes ``rrp_arm.png`` (exercise 2), ``puma_pedestal.png`` (3), ``mk3_rail.png``
 ``porter_chain.png`` (5). Each shows the mechanism in two configurations with its base frame {0}, its
 tool frame, and every joint axis as an arrow in the joint's positive sense (right-hand rule for a
 turning joint, the direction of motion for a sliding one). The tool frames are those of the question
-bank's references (``puma_course.grading.bank._reference``), so a picture shows what is graded; the
+bank's references (the course's ``bank/_reference/``), so a picture shows what is graded; the
 intermediate frames are not drawn, since choosing them is the question. Run it after changing a
 mechanism in the bank, and commit the pictures with the solutions.
 """
@@ -25,10 +25,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from puma_course import MK3, Porter, Puma560  # noqa: E402
-from puma_course.grading.bank._reference import chains, porter_chain  # noqa: E402
+from puma_course.grading import load_bank  # noqa: E402
+
+load_bank(Path(__file__).resolve().parents[1])  # the course's question bank, imported as puma_course_bank
 from puma_course.kinematics import Robot  # noqa: E402
 from puma_course.transforms import rotz, transl, troty, trotz  # noqa: E402
 from puma_course.viz import draw_robot, set_equal  # noqa: E402
+from puma_course_bank._reference import chains, porter_chain  # noqa: E402
 
 FIGURES = ("rrp_arm", "puma_pedestal", "mk3_rail", "porter_chain")
 Axis = tuple[np.ndarray, np.ndarray, str]  # a point on the axis, its positive direction, its label

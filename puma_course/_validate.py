@@ -29,6 +29,8 @@ __all__ = [
     "as_transform",
     "as_positive",
     "as_length",
+    "as_robot_length",
+    "ROBOT_LENGTHS",
     "as_tol",
     "as_count",
     "as_choice",
@@ -261,11 +263,39 @@ def as_length(value: Any, name: str, *, positive: bool = False, what: str | None
     return x
 
 
-def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2) -> float:
-    """Return ``value`` as a tolerance: a finite number with 0 < tol <= ``upper``.
+#: Sizes accepted for a closed-form robot's non-zero lengths: its solvers form fourth powers of lengths
+#: (and of coordinates of that size), which must neither overflow nor underflow in float64.
+ROBOT_LENGTHS = (1e-50, 1e50)
+
+
+def as_robot_length(value: Any, name: str, *, positive: bool = False, what: str | None = None) -> float:
+    """A robot's length: :func:`as_length`, and zero or between 1e-50 and 1e50 in size.
+
+    >>> as_robot_length(1.5e100, "l1")
+    Traceback (most recent call last):
+    ...
+    ValueError: l1: expected 0 or a size from 1e-50 to 1e+50 (its 4th power must stay finite), got 1.5e+100
+    """
+    x = as_length(value, name, positive=positive, what=what)
+    lo, hi = ROBOT_LENGTHS
+    if x != 0.0 and not lo <= abs(x) <= hi:
+        why = "its 4th power must stay finite"
+        raise ValueError(f"{name}: expected 0 or a size from {lo:g} to {hi:g} ({why}), got {x:g}")
+    return x
+
+
+def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2, lower: float = 0.0) -> float:
+    """Return ``value`` as a tolerance: a finite number with ``lower`` < tol <= ``upper`` (``lower`` = 0)
+    or ``lower`` <= tol <= ``upper``.
 
     A tolerance decides what counts as singular or equal; NaN, negative or huge values would
-    silently switch those decisions off or on for every input, so they are refused.
+    silently switch those decisions off or on for every input, so they are refused; so is a
+    tolerance below ``lower``, what float64 rounding of the quantity it is compared with can honour.
+
+    >>> as_tol(1e-16, lower=1e-12)
+    Traceback (most recent call last):
+    ...
+    ValueError: tol: expected a tolerance with 1e-12 <= tol <= 0.01 (float64 cannot honour less), got 1e-16
 
     >>> as_tol(1e-9)
     1e-09
@@ -274,16 +304,23 @@ def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2) -> float:
     ...
     ValueError: tol: expected finite numbers, got NaN or infinity in inf
     """
-    if type(value) is float and 0.0 < value <= upper:
+    if type(value) is float and 0.0 < value <= upper and value >= lower:
         return value  # the common case, checked in plain floats
     x = float(as_array(value, name, (), what=f"a small positive tolerance (0 < {name} <= {upper:g})"))
     if not 0.0 < x <= upper:
         raise ValueError(f"{name}: expected a small positive tolerance (0 < {name} <= {upper:g}), got {x:g}")
+    if x < lower:
+        why = "float64 cannot honour less"
+        raise ValueError(f"{name}: expected a tolerance with {lower:g} <= {name} <= {upper:g} ({why}), got {x:g}")
     return x
 
 
-def as_count(value: Any, name: str, *, minimum: int = 0) -> int:
-    """Return ``value`` as an integer >= ``minimum``; a fractional number is refused, not truncated.
+#: Largest count accepted (samples, steps, bins): larger ones cannot be held in memory anyway.
+MAX_COUNT = 10**8
+
+
+def as_count(value: Any, name: str, *, minimum: int = 0, maximum: int = MAX_COUNT) -> int:
+    """Return ``value`` as an integer in [``minimum``, ``maximum``]; a fractional number is refused, not truncated.
 
     >>> as_count(5, "n", minimum=2)
     5
@@ -303,6 +340,8 @@ def as_count(value: Any, name: str, *, minimum: int = 0) -> int:
         n = int(x)
     if n < minimum:
         raise ValueError(f"{name}: expected a whole number >= {minimum}, got {n}")
+    if n > maximum:
+        raise ValueError(f"{name}: expected a whole number from {minimum} to {maximum:g}, got {n:g}")
     return n
 
 

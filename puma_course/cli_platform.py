@@ -185,9 +185,10 @@ def write_gradebooks(args: argparse.Namespace, results: Sequence[Any], names: Se
 
 def gradescope(args: argparse.Namespace, course: Path) -> int:
     """``puma-course gradescope``: build the zip."""
-    from .grading import EXERCISES
+    from .grading import EXERCISES, load_bank
     from .grading.gradescope import build_autograder
 
+    load_bank(course)  # the questions of the course the zip is built from (its bank/ goes into the zip)
     if args.exercise not in EXERCISES:
         raise ValueError(f"exercise: expected one of {sorted(EXERCISES)}, got {args.exercise!r}")
     report = build_autograder(course, args.exercise, args.output)

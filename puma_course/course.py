@@ -16,9 +16,11 @@ Standard library only (base layer).
 from __future__ import annotations
 
 import os
+import sys
+from collections.abc import Sequence
 from pathlib import Path
 
-__all__ = ["MARKERS", "INDEX", "CourseNotFoundError", "is_course", "find_course", "course_root"]
+__all__ = ["MARKERS", "INDEX", "CourseNotFoundError", "is_course", "find_course", "course_root", "course_exercises"]
 
 #: A folder is a course when it holds one of these folders.
 MARKERS: tuple[str, ...] = ("solutions", "notebooks")
@@ -56,11 +58,12 @@ def is_course(path: str | os.PathLike[str]) -> bool:
     return any((folder / marker).is_dir() for marker in MARKERS)
 
 
-def find_course(start: str | os.PathLike[str] | None = None) -> Path:
+def find_course(start: str | os.PathLike[str] | None = None, fallback: bool = False) -> Path:
     """The course root at or above ``start`` (default: the current directory), as an absolute path.
 
     Walks up from ``start`` to the first folder holding ``solutions/`` or ``notebooks/``; raises
-    :class:`CourseNotFoundError` naming every folder it searched when there is none.
+    :class:`CourseNotFoundError` naming every folder it searched when there is none (with ``fallback``,
+    it looks from the current directory then: a notebook outside any course, checked in a course).
 
     >>> import tempfile
     >>> with tempfile.TemporaryDirectory() as tmp:
@@ -83,6 +86,8 @@ def find_course(start: str | os.PathLike[str] | None = None) -> Path:
         searched.append(folder)
         if is_course(folder):
             return folder
+    if fallback and start is not None:
+        return find_course()
     raise CourseNotFoundError(
         f"start: expected a folder inside a course (a folder holding {_WHAT} at or above it), got {str(origin)!r}; "
         f"searched {', '.join(repr(str(f)) for f in searched)}",
@@ -116,3 +121,26 @@ def course_root(course: str | os.PathLike[str] | None = None, start: str | os.Pa
         f"course: expected a course folder (one holding {_WHAT}), got {str(folder)!r}, {why}",
         searched=(resolved,),
     )
+
+
+def course_exercises(root: Path, known: Sequence[str]) -> list[str]:
+    """The exercises the course at ``root`` hands out (``exercises/*.ipynb``) that the grader knows.
+
+    Names the ones it does not know on stderr; raises ValueError when none is left.
+    """
+    folder = root / "exercises"
+    names = sorted(p.stem for p in folder.glob("*.ipynb"))
+    if not names:
+        raise ValueError(
+            f"exercise: expected --exercise NAME or a course that hands out exercises, got none in {str(folder)!r}"
+        )
+    unknown = [name for name in names if name not in known]
+    if unknown:
+        print(f"not graded (the grader has no questions for them): {', '.join(unknown)}", file=sys.stderr)
+    graded = [name for name in names if name in known]
+    if not graded:
+        raise ValueError(
+            f"exercise: expected exercises the grader knows ({', '.join(sorted(known))}) in {str(folder)!r}, "
+            f"got only {', '.join(unknown)}"
+        )
+    return graded

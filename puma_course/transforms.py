@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import MAX_MAGNITUDE, as_array, as_rotation, as_transform
+from ._validate import MAX_MAGNITUDE, as_array, as_rotation, as_tol, as_transform
 
 __all__ = [
     "rotx",
@@ -118,13 +118,17 @@ def rodrigues(axis: Any, angle: Any) -> np.ndarray:
     """
     a = as_array(axis, "axis", (3,), batch=True)
     t = _angle(angle)
-    norm = np.linalg.norm(a, axis=-1, keepdims=True)
-    if np.any(norm < 1e-12):
+    # scaled by its largest entry before squaring (issue 21: [1e200, 0, 0] squared to inf gave the identity)
+    big = np.max(np.abs(a), axis=-1, keepdims=True)
+    if np.any(big == 0.0):
         raise ValueError("axis: expected a non-zero 3-vector (the rotation axis), got a zero vector")
-    K = skew(a / norm)
+    a = a / big
+    k = a / np.sqrt(a[..., 0:1] ** 2 + a[..., 1:2] ** 2 + a[..., 2:3] ** 2)
+    K = skew(k)
     s = np.sin(t)[..., None, None]
     c = np.cos(t)[..., None, None]
-    return np.eye(3) + s * K + (1.0 - c) * (K @ K)
+    # [k]x² = k kᵀ - I, elementwise (no `@`: a BLAS kernel would decide the last bit)
+    return c * np.eye(3) + s * K + (1.0 - c) * (k[..., :, None] * k[..., None, :])
 
 
 def axis_angle(R: Any) -> tuple[np.ndarray, Any]:
@@ -144,11 +148,13 @@ def axis_angle(R: Any) -> tuple[np.ndarray, Any]:
     w = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], axis=-1)
     sin_t = np.linalg.norm(w, axis=-1) / 2.0
     angle = np.arctan2(sin_t, cos_t)
-    # Away from a half turn the antisymmetric part w = 2 sin(θ) k is accurate, even for tiny θ.
-    from_w = (sin_t > 0.0) & ((cos_t > 0.0) | (sin_t > 1e-6))
+    # Below a quarter turn the antisymmetric part w = 2 sin(θ) k gives k to eps / sin θ, even for tiny θ;
+    # above it the symmetric part gives k to eps / (1 - cos θ) <= eps (w's eps / sin θ grows towards π).
+    from_w = (sin_t > 0.0) & (cos_t > 0.0)
     k_w = w / np.where(from_w, 2.0 * sin_t, 1.0)[..., None]
-    # (near) half turn: R + I ≈ 2 k k^T; take its largest column, signed like w.
-    B = (R + np.eye(3)) / 2.0
+    # (near) half turn: the symmetric part (R + R^T)/2 - cos θ I = (1 - cos θ) k k^T exactly (R + I would
+    # keep sin θ [k]x, off by 5e-7 at θ = π - 1e-6, issue 21); take its largest column, signed like w.
+    B = (R + np.swapaxes(R, -1, -2)) / 2.0 - cos_t[..., None, None] * np.eye(3)
     col = np.argmax(np.diagonal(B, axis1=-2, axis2=-1), axis=-1)
     k_b = np.take_along_axis(B, col[..., None, None], axis=-1)[..., 0]
     k_b = k_b / np.maximum(np.linalg.norm(k_b, axis=-1, keepdims=True), 1e-300)
@@ -334,6 +340,7 @@ def is_rotation(R: Any, tol: float = 1e-9) -> bool:
     >>> is_rotation(rotz(0.3)), is_rotation(np.diag([1.0, 1.0, -1.0]))
     (True, False)
     """
+    tol = as_tol(tol, "tol", upper=1.0)  # a NaN tolerance made every comparison pass (issue 21)
     try:
         as_rotation(R, "R", batch=True, tol=tol)
     except ValueError:
@@ -359,6 +366,8 @@ def wrap_angle(angle: Any) -> Any:
     if isinstance(angle, float):
         w = _PI - (_PI - angle) % _TWO_PI
         return w + _TWO_PI if w <= -_PI else w  # rounding may land on -π itself
+    if angle is None or isinstance(angle, (str, bytes)):  # np.asarray(None, float) is NaN (issue 21)
+        raise ValueError(f"angle: expected angles in radians (numbers), got {angle!r}")
     a = np.asarray(angle, dtype=float)
     wa = _PI - np.mod(_PI - a, _TWO_PI)
     return np.where(wa <= -_PI, wa + _TWO_PI, wa)

@@ -35,6 +35,7 @@ def course_copy(tmp_path):
         shutil.copy(ROOT / sub / "ex01_rotations.ipynb", root / sub)
     (root / "notebooks").mkdir()
     shutil.copy(ROOT / INDEX, root)
+    shutil.copytree(ROOT / "bank", root / "bank", ignore=shutil.ignore_patterns("__pycache__"))  # its questions
     return root.resolve()
 
 
@@ -197,7 +198,8 @@ def test_grade_grades_the_exercises_the_course_hands_out(course_copy, capsys, mo
     (course_copy / "subs" / "ben").mkdir(parents=True)
     (course_copy / "subs" / "ben" / "ex01_rotations.ipynb").write_text("{}", encoding="utf-8")
     monkeypatch.chdir(course_copy)
-    assert main(["grade", "subs", "-o", "g.csv", "--quiet", "--seed", "1"]) == 0
+    # ann's folder is empty: graded (the CSV says missing), and the run exits 4 (no notebook found anywhere)
+    assert main(["grade", "subs", "-o", "g.csv", "--quiet", "--seed", "1"]) == 4
     with open(course_copy / "g.csv", newline="", encoding="utf-8") as fh:
         rows = list(csv.DictReader(fh))
     assert [(r["student"], r["exercise"], r["status"]) for r in rows] == [
@@ -206,6 +208,7 @@ def test_grade_grades_the_exercises_the_course_hands_out(course_copy, capsys, mo
     ]
     err = capsys.readouterr().err
     assert "not graded" in err and "ex99_mine" in err
+    assert "no notebook found" in err and "<student>/<exercise>.ipynb" in err
 
 
 def test_grade_of_a_class_that_handed_in_no_exercise_exits_2(course_copy, capsys, monkeypatch):
@@ -308,7 +311,7 @@ def test_grade_warns_and_exits_3_when_the_package_changes_during_grading(tmp_pat
     from puma_course.grading import runner
 
     digests = iter([{"a.py": b"1"}, {"a.py": b"2"}])
-    monkeypatch.setattr(runner, "package_digest", lambda _package: next(digests))
+    monkeypatch.setattr(runner, "package_digest", lambda *_: next(digests))
     (tmp_path / "subs" / "ann").mkdir(parents=True)
     code = main(
         ["grade", str(tmp_path / "subs"), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations", "--quiet"]
@@ -495,3 +498,16 @@ def test_lab_serves_the_course_root_and_opens_the_index_first(tmp_path):
         except subprocess.TimeoutExpired:
             server.kill()
             server.wait()
+
+
+def test_a_command_whose_extra_is_missing_says_which_to_install(monkeypatch, capsys):
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "jupyterlab" else real(name, *a))
+    assert main(["lab", "--print-command", "--course", str(ROOT)]) == 2
+    err = capsys.readouterr().err
+    assert "jupyterlab" in err and "'lab' extra" in err and "pip install '.[lab]'" in err
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "nbformat" else real(name, *a))
+    assert main(["release", "--check", "--course", str(ROOT)]) == 2
+    assert "'grader' extra" in capsys.readouterr().err

@@ -67,8 +67,13 @@ BAD: dict[str, list[Any]] = {
     "q6": [*_REAL, [0.0] * 5, [0.0] * 5 + [np.nan], [0.0] * 5 + [1j], [], np.zeros((2, 5))],
     "q5": [*_REAL, [0.0] * 6, [0.0] * 4 + [np.inf], [0.0] * 4 + [1j], []],
     "q2": [*_REAL, [0.0] * 3, [0.0, np.nan], [0.0, 1j], []],
-    "count": ["5", None, True, 2.5, -1, float("nan"), 1j],
+    "count": ["5", None, True, 2.5, -1, float("nan"), 1j, 1e300, 10**12],  # 1e300: not numpy's "Maximum size"
     "tol": ["1e-9", None, True, float("nan"), float("inf"), -1e-9, 0.0, 0.5, 1j],
+    # issue 21: what the closed-form solvers cannot honour (fourth powers of lengths, tolerances below rounding)
+    "robot_length": [*_REAL, 1e300, 1e100, -1e100, 1e-100, [1.0, 2.0]],
+    "robot_positive": [*_REAL, 1e300, 1e100, 1e-100, 0.0, -1.0, [1.0, 2.0]],
+    "ik_tol": ["1e-9", None, True, float("nan"), float("inf"), -1e-9, 0.0, 0.5, 1j, 1e-16, 1e-13],
+    "duration": [*_REAL, 1e300, 0.0, -1.0, [1.0, 2.0], 1e-200, 1e100],
     "elbow": ["left", None, 1, np.array(["up", "down"])],
     "method": ["numeric", None, 1, np.array(["explicit"])],
     "name": [None, 1, np.array([]), "nope"],
@@ -171,36 +176,46 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
     (
         "Puma560",
         Puma560,
-        [("a2", "positive", 0.43), ("a3", "length", 0.02), ("d3", "length", 0.15), ("d4", "length", 0.43)],
+        [
+            ("a2", "robot_positive", 0.43),
+            ("a3", "robot_length", 0.02),
+            ("d3", "robot_length", 0.15),
+            ("d4", "robot_length", 0.43),
+        ],  # fmt: skip
     ),  # fmt: skip
     ("Puma560.fk", PUMA.fk, [("q", "q6", np.zeros(6))]),
     ("Puma560.frames", PUMA.frames, [("q", "q6", np.zeros(6))]),
     ("Puma560.points", PUMA.points, [("q", "q6", np.zeros(6))]),
-    ("Puma560.ik", PUMA.ik, [("T", "transform", T_PUMA), ("near", "q6", np.zeros(6)), ("tol", "tol", 1e-7)]),
+    ("Puma560.ik", PUMA.ik, [("T", "transform", T_PUMA), ("near", "q6", np.zeros(6)), ("tol", "ik_tol", 1e-7)]),
     (
         "Puma560.ik_batch",
         PUMA.ik_batch,
-        [("T", "poses", T_PUMA[None]), ("near", "q6", np.zeros(6)), ("tol", "tol", 1e-7)],
+        [("T", "poses", T_PUMA[None]), ("near", "q6", np.zeros(6)), ("tol", "ik_tol", 1e-7)],
     ),  # fmt: skip
     ("Puma560.q", PUMA.q, [("name", "name", "qn")]),
     (
         "MK3",
         MK3,
         [
-            ("d1", "length", 360.0),
-            ("a1", "length", 135.0),
-            ("a2", "positive", 250.0),
-            ("a3", "positive", 215.0),
-            ("d5", "length", 100.0),
+            ("d1", "robot_length", 360.0),
+            ("a1", "robot_length", 135.0),
+            ("a2", "robot_positive", 250.0),
+            ("a3", "robot_positive", 215.0),
+            ("d5", "robot_length", 100.0),
         ],
     ),  # fmt: skip
     ("MK3.fk", MK3_.fk, [("q", "q5", np.zeros(5))]),
-    ("MK3.ik", MK3_.ik, [("T", "transform", T_MK3), ("near", "q5", np.zeros(5)), ("tol", "tol", 1e-9)]),
-    ("MK3.ik_batch", MK3_.ik_batch, [("T", "poses", T_MK3[None]), ("tol", "tol", 1e-9)]),
+    ("MK3.ik", MK3_.ik, [("T", "transform", T_MK3), ("near", "q5", np.zeros(5)), ("tol", "ik_tol", 1e-9)]),
+    ("MK3.ik_batch", MK3_.ik_batch, [("T", "poses", T_MK3[None]), ("tol", "ik_tol", 1e-9)]),
     (
         "Porter",
         Porter,
-        [("l1", "positive", 1.0), ("l3", "positive", 0.5), ("l4", "positive", 0.3), ("q2_max", "positive", 2.0)],
+        [
+            ("l1", "robot_positive", 1.0),
+            ("l3", "robot_positive", 0.5),
+            ("l4", "robot_positive", 0.3),
+            ("q2_max", "robot_positive", 2.0),
+        ],  # fmt: skip
     ),  # fmt: skip
     ("Porter.fk", PORTER.fk, [("q", "q6", np.zeros(6))]),
     ("Porter.frames", PORTER.frames, [("q", "q6", np.zeros(6))]),
@@ -221,7 +236,7 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
         angle,
         [("v", "direction", [1.0, 0, 0]), ("w", "direction", [0, 1.0, 0]), ("n", "direction", [0, 0, 1.0])],
     ),  # fmt: skip
-    ("ThreeStepArm", ThreeStepArm, [("l1", "positive", 1.5), ("l2", "positive", 1.0)]),
+    ("ThreeStepArm", ThreeStepArm, [("l1", "robot_positive", 1.5), ("l2", "robot_positive", 1.0)]),
     ("ThreeStepArm.fk", TS.fk, [("q", "q6", np.zeros(6))]),
     ("ThreeStepArm.ik", TS.ik, [("T", "transform", T_TS), ("near", "q6", np.zeros(6))]),
     ("ThreeStepArm.ik_batch", TS.ik_batch, [("T", "poses", T_TS[None])]),
@@ -278,7 +293,7 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
     (
         "trajectories.time_scaling",
         tr.time_scaling,
-        [("duration", "positive", 2.0), ("n", "count", 5), ("kind", "scaling", "quintic")],
+        [("duration", "duration", 2.0), ("n", "count", 5), ("kind", "scaling", "quintic")],
     ),
     (
         "trajectories.joint_velocities",
@@ -351,7 +366,7 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
     (
         "spaces.joint_from_actuator",
         spaces.joint_from_actuator,
-        [("s", "stroke", 5.0), ("b", "positive", 3.0), ("c", "positive", 4.0), ("gamma0", "angle", 0.0)],
+        [("s", "stroke", 5.0), ("b", "robot_positive", 3.0), ("c", "robot_positive", 4.0), ("gamma0", "angle", 0.0)],
     ),
     (
         "spaces.actuator_rate",

@@ -274,3 +274,18 @@ def test_wrap_angle_is_in_minus_pi_pi_for_floats_and_arrays():
         assert math.isclose(math.cos(w), math.cos(v), abs_tol=1e-12) and math.isclose(
             math.sin(w), math.sin(v), abs_tol=1e-12
         )
+
+
+@pytest.mark.parametrize("delta", [0.0, 1e-9, 1e-7, 1e-6, 2e-6, 1e-5, 1e-3])
+@pytest.mark.parametrize("seed", range(20))
+def test_axis_angle_near_a_half_turn_reproduces_the_rotation(delta, seed):
+    # issue 21: axis_angle at θ = π - 1e-6 was off by 5.3e-7 (its axis came from R + I)
+    from puma_course.transforms import axis_angle, rodrigues
+
+    rng = np.random.default_rng(seed)
+    k = rng.normal(size=3)
+    k /= np.linalg.norm(k)
+    R = rodrigues(k, np.pi - delta)
+    axis, angle = axis_angle(R)
+    assert np.abs(rodrigues(axis, angle) - R).max() <= 1e-12
+    assert abs(angle - (np.pi - delta)) <= 1e-12

@@ -102,3 +102,23 @@ export function boundingSphere(points, pad = 0) {
   for (const p of points) radius = Math.max(radius, Math.hypot(p[0] - center[0], p[1] - center[1], p[2] - center[2]));
   return { center, radius: Math.max(radius + pad, 1e-9) };
 }
+
+/**
+ * Whether every point, given in normalized device coordinates ([x, y, z], the view's box is
+ * [-1, 1] on each), lies in front of the camera and within `limit` of the picture's edges.
+ */
+export function allInView(ndc, limit = 0.95) {
+  return ndc.every(([x, y, z]) => z > -1 && z < 1 && Math.abs(x) <= limit && Math.abs(y) <= limit);
+}
+
+/**
+ * The camera that frames `sphere` ({center, radius}) from the direction it looks now: the
+ * target moves to the sphere's centre and the camera back along its own line of sight to the
+ * distance that fits the sphere (fitDistance), so a view the user turned stays turned.
+ */
+export function reframe(position, target, sphere, fovDeg, aspect) {
+  const d = [0, 1, 2].map((k) => position[k] - target[k]);
+  const n = Math.hypot(...d) || 1;
+  const dist = fitDistance(sphere.radius, fovDeg, aspect);
+  return { target: [...sphere.center], position: sphere.center.map((c, k) => c + (d[k] / n) * dist) };
+}

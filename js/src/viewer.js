@@ -30,6 +30,7 @@ import {
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 
 import {
+  allInView,
   boundingSphere,
   fitDistance,
   formatLength,
@@ -38,6 +39,7 @@ import {
   niceStep,
   orbitPosition,
   pointAt,
+  reframe,
   segmentPlacement,
 } from "./geometry.js";
 import { placeLabels } from "./labels.js";
@@ -253,7 +255,7 @@ function render({ model, el }) {
 
   // what was drawn, for the browser tests: counts and times, the frames' origins as drawn, labels' boxes
   const stats = { renders: 0, poseRenders: 0, lastRender: 0, lastPoseRender: 0, lastPoseMessage: 0, poseSeq: -1,
-    labels: [], origins: [], ghosts: 0, selected: -1, animStep: -1, animSteps: 0 };
+    labels: [], origins: [], ghosts: 0, selected: -1, animStep: -1, animSteps: 0, reframes: 0 };
   box.__puma = stats;
   box.dataset.poseRenders = "0";
 
@@ -322,6 +324,8 @@ function render({ model, el }) {
     renderer.render(scene, camera);
     placeAllLabels(width, heightPx);
     const now = performance.now();
+    const eye = camera.position.clone().sub(controls.target).normalize();
+    stats.eye = [eye.x, eye.y, eye.z]; // the direction the view looks from (a user's turn changes it)
     stats.renders += 1;
     stats.lastRender = now;
     if (poseDirty) {
@@ -354,6 +358,38 @@ function render({ model, el }) {
   }
   controls.addEventListener("change", requestDraw);
 
+  // the points the view must hold for the pose shown: the links, the frames' origins (and the base)
+  function posePoints(withBase) {
+    const pts = withBase ? [[0, 0, 0]] : [];
+    for (let k = 0; k < sceneSpec.points; k += 1) pts.push(pointAt(pose.points, k));
+    styles.forEach((_, k) => {
+      const f = frameAt(pose.frames, k);
+      pts.push([f[3], f[7], f[11]]);
+    });
+    return pts;
+  }
+  function poseSphere(withBase) {
+    const sphere = boundingSphere(posePoints(withBase), Math.max(...styles.map((st) => st.length)));
+    return { center: sphere.center, radius: Math.max(sphere.radius, 0.5 * sceneSpec.radius) };
+  }
+
+  // a pose that leaves the picture (a large move) is framed again, seen from where the user turned the view
+  function keepInView() {
+    if (!started || animView) return;
+    camera.updateMatrixWorld();
+    const v = new Vector3();
+    const ndc = posePoints(false).map((p) => v.set(p[0], p[1], p[2]).project(camera).toArray());
+    if (allInView(ndc)) return;
+    const aspect = Math.max(box.clientWidth, 1) / Math.max(box.clientHeight, 1);
+    const next = reframe(camera.position.toArray(), controls.target.toArray(), poseSphere(false), FOV, aspect);
+    camera.position.set(...next.position);
+    controls.target.set(...next.target);
+    camera.zoom = 1;
+    camera.updateProjectionMatrix();
+    controls.update();
+    stats.reframes += 1;
+  }
+
   // toolbar: reset view
   const bar = document.createElement("div");
   bar.className = "puma-bar";
@@ -361,16 +397,7 @@ function render({ model, el }) {
   reset.textContent = "reset view";
   reset.title = "back to the starting view (drag: turn, wheel: zoom, right-drag or shift-drag: pan)";
   reset.addEventListener("click", () => {
-    if (!animView) {
-      const pts = [[0, 0, 0]];
-      for (let k = 0; k < sceneSpec.points; k += 1) pts.push(pointAt(pose.points, k));
-      styles.forEach((_, k) => {
-        const f = frameAt(pose.frames, k);
-        pts.push([f[3], f[7], f[11]]);
-      });
-      const sphere = boundingSphere(pts, Math.max(...styles.map((st) => st.length)));
-      home = { center: sphere.center, radius: Math.max(sphere.radius, 0.5 * sceneSpec.radius) };
-    }
+    if (!animView) home = poseSphere(true);
     homeView();
     requestDraw();
   });
@@ -499,6 +526,7 @@ function render({ model, el }) {
     stats.lastPoseMessage = performance.now();
     stop();
     applyPose(model.get("pose"));
+    keepInView();
     requestDraw();
   };
   model.on("change:pose", onPose);

@@ -2,7 +2,7 @@
 import assert from "node:assert/strict";
 import { test } from "node:test";
 
-import { boundingSphere, fitDistance, formatLength, frameAt, gridLines, niceStep, orbitPosition, pointAt, segmentPlacement } from "../src/geometry.js";
+import { allInView, boundingSphere, fitDistance, formatLength, frameAt, gridLines, niceStep, orbitPosition, pointAt, reframe, segmentPlacement } from "../src/geometry.js";
 
 const close = (a, b, tol = 1e-12) => a.forEach((x, i) => assert.ok(Math.abs(x - b[i]) <= tol, `${a} != ${b}`));
 
@@ -72,4 +72,27 @@ test("the bounding sphere of a pose: box centre, farthest point, plus the pad", 
   const { center, radius } = boundingSphere([[0, 0, 0], [2, 0, 0], [1, 1, 0]], 0.5);
   close(center, [1, 0.5, 0]);
   assert.ok(Math.abs(radius - (Math.hypot(1, 0.5) + 0.5)) < 1e-12);
+});
+
+test("points are in view inside the picture's margin and in front of the camera only", () => {
+  assert.equal(allInView([[0, 0, 0.5], [0.9, -0.9, 0.99]]), true);
+  assert.equal(allInView([[0.96, 0, 0.5]]), false);
+  assert.equal(allInView([[0, -1.2, 0.5]]), false);
+  assert.equal(allInView([[0, 0, 1.2]]), false); // behind the camera
+  assert.equal(allInView([[0.96, 0, 0.5]], 0.97), true);
+});
+
+test("reframing keeps the direction of view and fits the sphere", () => {
+  // looking from +x at the origin, 10 away; the arm now fills a sphere of radius 2 around (0, 5, 1)
+  const r = reframe([10, 0, 0], [0, 0, 0], { center: [0, 5, 1], radius: 2 }, 30, 1.5);
+  close(r.target, [0, 5, 1]);
+  const dist = fitDistance(2, 30, 1.5);
+  close(r.position, [dist, 5, 1], 1e-12);
+  // a turned view (from above and to the side) stays turned: the same unit direction
+  const p = [3, -4, 12];
+  const s = reframe(p, [0, 0, 0], { center: [1, 1, 1], radius: 1 }, 40, 1);
+  const d = s.position.map((x, k) => x - s.target[k]);
+  const n = Math.hypot(...d);
+  close(d.map((x) => x / n), [3 / 13, -4 / 13, 12 / 13], 1e-12);
+  assert.ok(Math.abs(n - fitDistance(1, 40, 1)) < 1e-12);
 });

@@ -1,7 +1,7 @@
 """Exercises: self-checks for students, release of the student versions, grading into a CSV.
 
-One question bank, on the grader's side (:data:`EXERCISES`, filled by :mod:`.bank`, one file per
-exercise), serves three jobs:
+One question bank, on the grader's side (:data:`EXERCISES`, filled from the course folder's
+``bank/``, one file per exercise, loaded on first use or by :func:`load_bank`), serves three jobs:
 
 * **Self-check** (student side, :mod:`.selfcheck`): in an exercise notebook,
   ``use_exercise("ex01_rotations")`` then ``check("q2", my_function)`` runs that question's
@@ -14,17 +14,18 @@ exercise), serves three jobs:
   submitted notebook in its own fresh process, inside an operating-system sandbox where one is
   available (:mod:`.sandbox`), with time and resource limits, against a student-side
   ``puma_course`` that holds only what the exercise allows (:mod:`.student`: no answer key
-  within reach); it calls the student's functions on inputs drawn at grading time (seeded), brings
+  within reach); it calls the student's functions on inputs drawn at grading time, each
+  student's own, from the instructor's secret key (:mod:`.secret`), brings
   back only the numbers they return, and compares them in the grader's process with the
   package's reference (:mod:`.compare`); :mod:`.report` writes the CSV and the feedback.
 
-Deleting or editing tests in a submitted notebook changes nothing: the questions live here.
+Deleting or editing tests in a submitted notebook changes nothing: the questions live in the
+instructor's course folder.
 """
 
 from __future__ import annotations
 
-from . import bank as _bank  # noqa: F401 - registers every exercise in EXERCISES
-from .model import EXERCISES, Exercise, NotebookResult, Question
+from .model import EXERCISES, BankNotFoundError, Exercise, NotebookResult, Question, load_bank
 from .release import release, release_notebook
 from .report import format_check_report
 from .runner import GradingIntegrityWarning, SandboxWarning, grade, grade_notebook
@@ -32,6 +33,8 @@ from .selfcheck import check, use_exercise
 
 __all__ = [
     "EXERCISES",
+    "load_bank",
+    "BankNotFoundError",
     "Exercise",
     "Question",
     "NotebookResult",

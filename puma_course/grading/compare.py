@@ -12,6 +12,8 @@ from typing import Any
 
 import numpy as np
 
+from .remake import made
+
 __all__ = ["Comparison", "compare_close", "compare_angles", "compare_angles_at", "compare_solution_set"]
 
 #: ``compare(got, expected)``: None if ``got`` is right, else a short reason for the student.
@@ -122,7 +124,7 @@ def compare_angles_at(indices: Sequence[int], tol: float = 1e-6) -> Comparison:
             return f"values differ from the reference by up to {err:.3g}{_where(np.abs(diff))}"
         return None
 
-    return compare
+    return made(compare, compare_angles_at, indices, tol)
 
 
 def compare_solution_set(angle_columns: Sequence[int], tol: float = 1e-6) -> Comparison:
@@ -178,4 +180,4 @@ def compare_solution_set(angle_columns: Sequence[int], tol: float = 1e-6) -> Com
             return f"returned {n_got} rows for the {n_ref} expected"
         return None
 
-    return compare
+    return made(compare, compare_solution_set, angle_columns, tol)

@@ -25,6 +25,8 @@ from typing import Any
 
 import numpy as np
 
+from .remake import made
+
 __all__ = [
     "Mistake",
     "TITLES",
@@ -43,6 +45,8 @@ __all__ = [
     "degrees_in",
     "angle_2pi",
     "unit_axis_out",
+    "negated",
+    "TRANSLATION",
 ]
 
 #: Every mistake key the graders emit, with the title an instructor reads in the class summary.
@@ -200,7 +204,7 @@ def matches(key: str, message: str, wrong: Callable[..., Any]) -> Mistake:
             return None  # the mistake gives the right answer here: nothing to say
         return message if close(got, wrong(*args)) else None
 
-    return Mistake(key, check)
+    return Mistake(key, made(check, matches, key, message, wrong, attr="check"))
 
 
 def _transposed(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
@@ -273,7 +277,7 @@ def sign_flip(names: Sequence[str] | None = None) -> Mistake:
                     return f"{word} {i + 1} has the wrong sign (the rest is right): check the sign of the {hint}"
         return None
 
-    return Mistake("sign_flip", check)
+    return Mistake("sign_flip", made(check, sign_flip, names, attr="check"))
 
 
 #: :func:`sign_flip` with generic entry names.
@@ -300,7 +304,7 @@ def degrees_out(indices: Sequence[int] | None = None) -> Mistake:
             return "the angles you returned look like degrees: the course works in radians (no np.degrees)"
         return None
 
-    return Mistake("degrees", check)
+    return Mistake("degrees", made(check, degrees_out, indices, attr="check"))
 
 
 #: Every returned number taken as an angle in degrees.
@@ -324,7 +328,7 @@ def degrees_in(*positions: int) -> Mistake:
             )
         return None
 
-    return Mistake("degrees", check)
+    return Mistake("degrees", made(check, degrees_in, *positions, attr="check"))
 
 
 def angle_2pi(indices: Sequence[int] | None = None, where: str = "the range asked for") -> Mistake:
@@ -347,7 +351,7 @@ def angle_2pi(indices: Sequence[int] | None = None, where: str = "the range aske
             return f"the angle is right up to a whole turn (off by 2π): return it in {where}"
         return None
 
-    return Mistake("angle_2pi", check)
+    return Mistake("angle_2pi", made(check, angle_2pi, indices, where, attr="check"))
 
 
 def unit_axis_out(stop: int = 3) -> Mistake:
@@ -371,7 +375,7 @@ def unit_axis_out(stop: int = 3) -> Mistake:
             return f"the axis you returned has length {norm:.4g}, not 1: divide it by its norm"
         return None
 
-    return Mistake("unnormalised", check)
+    return Mistake("unnormalised", made(check, unit_axis_out, stop, attr="check"))
 
 
 def matches_set(key: str, message: str, wrong: Callable[..., Any], tol: float = 1e-6) -> Mistake:
@@ -395,7 +399,31 @@ def matches_set(key: str, message: str, wrong: Callable[..., Any], tol: float = 
             return None
         return message if same_rows(got, bad) else None
 
-    return Mistake(key, check)
+    return Mistake(key, made(check, matches_set, key, message, wrong, tol, attr="check"))
+
+
+def negated(key: str, message: str) -> Mistake:
+    """The whole answer with its sign flipped (for an axis-angle pair, (-k, -θ): the same rotation, outside the range).
+
+    >>> negated("range", "flip both signs").check(np.array([-1.0, 2.0]), np.array([1.0, -2.0]), (), None)
+    'flip both signs'
+    """
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        return message if close(got, -np.asarray(expected, dtype=float)) else None
+
+    return Mistake(key, made(check, negated, key, message, attr="check"))
+
+
+def _translation(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+    ref_ = np.asarray(expected, dtype=float)
+    if got.shape != (4, 4) or not close(got[:3, :3], ref_[:3, :3]) or close(got[:3, 3], ref_[:3, 3]):
+        return None
+    return "the rotation part is right, the translation is not: the inverse moves by -Rᵀp (not -p or p)"
+
+
+#: An inverse transform whose rotation part is right and whose translation is not.
+TRANSLATION = Mistake("translation", _translation)
 
 
 def _duplicates(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:

@@ -81,6 +81,10 @@ def call_verdict(
             "not-numbers": f"returned a {quoted(detail, 60)}, which is not an array of numbers",
             "too-many": f"returned {_int(event.get('size'))} numbers, more than the 10000 allowed",
         }
+        if error == "answer-key" and detail.startswith("tamper:"):
+            return Verdict(
+                f"switched off the grader's watch on the answer key ({detail[7:]}) while being graded: the case fails"
+            )
         if error == "answer-key":
             spec = detail if detail in q.forbidden else ""
             name = spec.replace(":", ".") if spec else "a function of the course package"

@@ -18,7 +18,7 @@ Specifications"): ``setup.sh`` and ``run_autograder`` at its root; Gradescope un
   hidden cases' details left out), and for a question that failed a hidden case one more test, unscored,
   ``after_due_date``, with those details; the whole feedback file as an ``after_due_date`` test; the
   run's notes as the top-level output.
-* The course's bank goes in the zip through :func:`_bank_files` (today the bank ships inside the wheel).
+* The course's bank goes in the zip through :func:`_bank_files` and is loaded from ``/autograder/source``.
 
 Gradescope's container may not allow the user namespaces bubblewrap needs: the run then grades without
 the operating-system sandbox, and says so in the output everyone sees. The answer key stays out of the
@@ -44,7 +44,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import _version
-from .model import EXERCISES, Exercise, NotebookResult
+from .model import EXERCISES, Exercise, NotebookResult, load_bank
 from .report import format_question
 from .submissions import read_path
 
@@ -87,9 +87,10 @@ def wheel_name(version: str = _version.__version__) -> str:
 def _bank_files(course: Path) -> dict[str, bytes]:
     """The course's question bank, as zip paths -> bytes, shipped under ``bank/``.
 
-    Today the bank is a part of the package (``puma_course/grading/bank``) and ships inside the wheel,
-    so this is empty unless the course has its own ``bank/`` folder, which is then shipped whole.
-    The zip is made by the instructor, so the key may be in it; the student's process never sees it.
+    The bank lives in the course folder (``bank/``, beside ``solutions/``), never in the package, so it is
+    shipped whole; ``run_autograder`` loads it from ``/autograder/source/bank``. The zip is made by the
+    instructor, so the key may be in it; the student's process never sees it (hidden by the OS sandbox,
+    or taken off the container's disk before any student code runs where there is none).
     """
     folder = Path(course) / "bank"
     if not folder.is_dir():
@@ -254,6 +255,21 @@ def _write(base: Path, out: dict[str, Any]) -> None:
     os.replace(tmp, results_dir / "results.json")
 
 
+def _forget_bank(source: Path) -> None:
+    """Import every module of the bank at ``source/bank`` (already loaded), then delete its files: without the
+    OS sandbox, a student's process could otherwise read the answer key from the container's disk. Gradescope
+    runs each submission in a fresh container, so nothing else needs them."""
+    import importlib
+    import pkgutil
+    import shutil
+
+    from .model import BANK_MODULE
+
+    for info in pkgutil.walk_packages([str(source / "bank")], prefix=BANK_MODULE + "."):
+        importlib.import_module(info.name)
+    shutil.rmtree(source / "bank", ignore_errors=True)
+
+
 def _run(base: Path) -> dict[str, Any]:
     from .runner import grade
     from .sandbox import choose
@@ -261,6 +277,7 @@ def _run(base: Path) -> dict[str, Any]:
     start = time.perf_counter()
     config = json.loads((base / "source" / "autograder.json").read_text(encoding="utf-8"))
     name = config["exercise"]
+    load_bank(base / "source")  # the course's bank, shipped in the zip (never in the student's process)
     exercise = EXERCISES[name]
     notes: list[str] = []
     if config.get("version") != _version.__version__:
@@ -276,6 +293,7 @@ def _run(base: Path) -> dict[str, Any]:
             f"Graded WITHOUT the operating-system sandbox ({box.reason}): this container does not allow it. "
             "Your code ran in its own process, with time and memory limits, against a package without the answer key."
         )
+        _forget_bank(base / "source")  # nothing hides the folder from the student's process: take it off the disk
     seed = secrets.randbits(31)
     with tempfile.TemporaryDirectory(prefix="puma-gradescope-") as tmp:
         sub = Path(tmp) / "submissions" / "submission"

@@ -148,7 +148,7 @@ def _tags(cell: Any) -> list[str]:
 
 def _answer_cells(nb: Any, exercise: Exercise) -> dict[int, Question]:
     """Index of each question's answer cell, after checking the tags against the question bank."""
-    bank = f"puma_course/grading/bank/{exercise.name}.py"
+    bank = f"bank/{exercise.name}.py"
     found: dict[str, int] = {}
     for index, cell in enumerate(nb.cells):
         where = f"cell {index + 1} ({cell.get('id', '?')})"
@@ -296,7 +296,7 @@ def release(
         if exercise is None:
             raise ValueError(
                 f"solutions: expected notebooks named after the question bank's exercises {sorted(EXERCISES)}, "
-                f"got {path.name} (add puma_course/grading/bank/{path.stem}.py)"
+                f"got {path.name} (add bank/{path.stem}.py)"
             )
         try:
             generated = release_notebook(nbformat.read(path, as_version=4), exercise)

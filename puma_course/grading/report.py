@@ -113,7 +113,7 @@ def format_check_report(result: NotebookResult, exercise: Exercise) -> str:
 
 
 def feedback_markdown(
-    student: str, results: Sequence[NotebookResult], seed: int, unsandboxed: str | None = None
+    student: str, results: Sequence[NotebookResult], seed: int | None = None, unsandboxed: str | None = None
 ) -> str:
     """One student's feedback file: per exercise the status, the score, one table row per question, hints.
 
@@ -126,6 +126,7 @@ def feedback_markdown(
     '# Feedback for `x\\\\x0a# Total: 56 / 56`'
     """
     lines = [f"# Feedback for {quoted(student, 120)}", ""]
+    del seed  # accepted for compatibility, never printed: a printed seed let a student rebuild the hidden inputs
     if unsandboxed is not None:
         lines += [
             "> **Warning: graded without the operating-system sandbox** "
@@ -141,7 +142,8 @@ def feedback_markdown(
         lines += [
             f"## {r.exercise}: {ex.title}",
             "",
-            f"Status: `{r.status}`. Score: **{r.score:g} / {r.max_score:g}**.",
+            f"Status: `{r.status}`. Score: **{r.score:g} / {r.max_score:g}**."
+            + (f" Run id: `{r.run_id}`." if r.run_id else ""),
             "",
         ]
         for note in r.notes:
@@ -159,7 +161,11 @@ def feedback_markdown(
         if failing:
             lines += ["", "Hints:"] + [f"- {q.qid}: {q.hint}" for q in failing]
         lines.append("")
-    lines += ["", f"Hidden inputs were drawn with seed {seed}."]
+    lines += [
+        "",
+        "Your hidden inputs were drawn for you alone, from a key your instructor keeps; the run id names them, "
+        "so your instructor can repeat your grading exactly.",
+    ]
     return "\n".join(lines) + "\n"
 
 
@@ -192,7 +198,7 @@ _replace_atomically = replace_atomically  # the name other modules import
 def write_feedback(
     folder: str | os.PathLike[str],
     results: Sequence[NotebookResult],
-    seed: int,
+    seed: int | None = None,
     unsandboxed: str | None = None,
     reserved: Sequence[str] = (),
 ) -> dict[str, Path]:
@@ -224,6 +230,7 @@ def csv_rows(
     names: Sequence[str],
     seed: int | None = None,
     sandbox: str = "",
+    secret: str = "",
     late: Collection[tuple[str, str]] | None = None,
     limits: str = "",
 ) -> list[list[str]]:
@@ -233,9 +240,8 @@ def csv_rows(
         for q in EXERCISES[name].questions:
             if q.qid not in qids:
                 qids.append(q.qid)
-    rows = [
-        ["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "limits", "seed", "notes"]
-    ]
+    head = ["student", "exercise", "score", "max_score", "bonus", *qids, "status", "sandbox", "limits", "seed"]
+    rows = [[*head, "secret", "run", "notes"]]
     if late is not None:
         rows[0].append("late")
     for r in results:
@@ -243,7 +249,7 @@ def csv_rows(
         bonus = sum(r.scores.get(q.qid, 0.0) for q in ex.questions if q.bonus) if ex is not None else 0.0
         row = [csv_safe(r.student), r.exercise, f"{r.score:g}", f"{r.max_score:g}", f"{round(bonus, 2):g}"]
         row += [f"{r.scores[q]:g}" if q in r.scores else "" for q in qids]
-        row += [r.status, sandbox, limits, "" if seed is None else str(seed)]
+        row += [r.status, sandbox, limits, "" if seed is None else str(seed), secret, r.run_id]
         row.append(csv_safe(one_line(" | ".join(r.notes), 500)))
         if late is not None:
             row.append("late" if (r.student, r.exercise) in late else "")
@@ -258,16 +264,19 @@ def write_csv(
     *,
     seed: int | None = None,
     sandbox: str = "",
+    secret: str = "",
     late: Collection[tuple[str, str]] | None = None,
     limits: str = "",
 ) -> None:
     """Write the grades: student, exercise, score, max_score, bonus, one column per question id, status,
-    sandbox, limits, seed, notes.
+    sandbox, limits, seed, secret, run, notes.
 
     ``bonus`` is the part of the score that bonus questions earned (it counts in ``score``, not in
-    ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none") and ``seed`` which
-    hidden inputs they got; ``limits`` how the notebook's memory, processes and CPU were limited (per
-    notebook by a control group, or per process only, and why); with ``late`` (the (student, exercise)
+    ``max_score``); ``sandbox`` says how the notebooks ran ("bwrap" or "none"); ``limits`` how the
+    notebook's memory, processes and CPU were limited (per notebook by a control group, or per process
+    only, and why); ``secret`` is the fingerprint of the key the hidden inputs were drawn from, ``run``
+    each notebook's run id, and ``seed`` the public seed when one stood for the key (empty otherwise):
+    with the same key file, ``grade`` draws the same inputs again. With ``late`` (the (student, exercise)
     pairs a platform marked late), a last column ``late`` says "late" for those. A text cell that a
     spreadsheet would read as a formula starts with ``'``. The file is written under a fresh temporary
     name and moved into place, so it appears whole or not at all.
@@ -276,5 +285,5 @@ def write_csv(
     if out.parent and not out.parent.exists():
         out.parent.mkdir(parents=True, exist_ok=True)
     buffer = io.StringIO()
-    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, late, limits=limits))
+    csv.writer(buffer).writerows(csv_rows(results, names, seed, sandbox, secret, late, limits=limits))
     replace_atomically(out, buffer.getvalue())

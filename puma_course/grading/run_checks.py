@@ -73,6 +73,10 @@ def _reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[
     return [p.stem for p in own if p.suffix.lower() == ".md" and os.path.realpath(p.parent) == folder]
 
 
-def package_digest(package: Path) -> dict[str, bytes]:
-    """The bytes of every module of the package at ``package``, by path inside it."""
-    return {p.relative_to(package).as_posix(): p.read_bytes() for p in sorted(package.rglob("*.py"))}
+def package_digest(package: Path, course: Path | None = None) -> dict[str, bytes]:
+    """The bytes of every module of the package at ``package``, by path inside it, and of ``course``'s bank
+    (``bank/...``)."""
+    out = {p.relative_to(package).as_posix(): p.read_bytes() for p in sorted(package.rglob("*.py"))}
+    if course is not None:
+        out.update({p.relative_to(course).as_posix(): p.read_bytes() for p in sorted((course / "bank").rglob("*.py"))})
+    return out

@@ -17,26 +17,24 @@ from __future__ import annotations
 
 import concurrent.futures
 import contextlib
-import copy
 import json
 import os
-import secrets
 import tempfile
 import time
 import warnings
-import zlib
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
+from ..course import is_course
 from . import child, events, limits
 from .collect import Collected
 from .model import EXERCISES, Exercise, NotebookResult
+from .plan import make_plan
 from .report import write_csv, write_feedback
 from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
 from .sandbox import Sandbox, child_env, choose
+from .secret import Secret, choose_key
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
 from .text import quoted
@@ -73,47 +71,17 @@ class LimitsWarning(UserWarning):
     """The notebooks are graded with per-process limits only: no control group per notebook (:mod:`.limits`)."""
 
 
-def _jsonable(value: Any) -> Any:
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, (np.floating, np.integer)):
-        return value.item()
-    return value
+def _checkouts() -> list[Path]:
+    """The course folders a worker must never see: the bank's course and the package's own checkout.
 
-
-def make_plan(exercise: Exercise, seed: int) -> list[dict[str, Any]]:
-    """Every call to make (public + hidden cases) with its expected value, computed here.
-
-    Each question draws its hidden inputs from its own generator, seeded by ``seed`` and the
-    question's name, so adding a question does not change the others' inputs.
-
-    >>> from puma_course.grading import EXERCISES
-    >>> calls = make_plan(EXERCISES["ex01_rotations"], seed=1)
-    >>> calls[0]["qid"], calls[0]["function"], calls[0]["args"], calls[0]["expected"].shape
-    ('q1', 'elementary_rotation', ['x', 0.3], (3, 3))
-
-    ``expected`` is whatever the question's reference returns (an array for most questions; a
-    question judged by equivalence may return what its judge needs) and ``call_args`` keeps the
-    original arguments for the judge; neither ever reaches the student's process.
+    The package's parent is a checkout (an editable install, or ``pip install -e git+...`` cloning the
+    course into ``<venv>/src``) when it holds a course or a ``.git``; in a non-editable install it is
+    site-packages, which the worker needs, and is not hidden.
     """
-    calls = []
-    for q in exercise.questions:
-        rng = np.random.default_rng([seed, zlib.crc32(f"{exercise.name}:{q.qid}".encode())])
-        for case, args in enumerate(q.cases(rng)):
-            expected = q.reference(*copy.deepcopy(args))
-            if not callable(expected):
-                expected = np.asarray(expected, dtype=float) if not isinstance(expected, dict) else expected
-            calls.append(
-                {
-                    "qid": q.qid,
-                    "case": case,
-                    "function": q.function,
-                    "args": [_jsonable(a) for a in args],
-                    "expected": expected,
-                    "call_args": tuple(args),
-                }
-            )
-    return calls
+    folders = [EXERCISES.course] if EXERCISES.course is not None else []
+    if is_course(PACKAGE_PARENT) or (PACKAGE_PARENT / ".git").exists() or (PACKAGE_PARENT / "bank").is_dir():
+        folders.append(PACKAGE_PARENT)
+    return [f for f in dict.fromkeys(folders) if f is not None]
 
 
 def _box(sandbox: str | Sandbox) -> Sandbox:
@@ -217,7 +185,7 @@ def grade_notebook(
     path: str | os.PathLike[str] | None,
     exercise: Exercise,
     student: str = "",
-    seed: int = 0,
+    seed: int | Secret = 0,
     timeout_cell: float = 10.0,
     timeout_total: float = 60.0,
     plan: list[dict[str, Any]] | None = None,
@@ -241,7 +209,7 @@ def grade_notebook(
             return NotebookResult.blank(student, exercise, nb.state, nb.note)
         data = nb.data
     box = _box(sandbox)
-    calls = make_plan(exercise, seed) if plan is None else plan
+    calls = make_plan(exercise, seed, student) if plan is None else plan
     with Stage([exercise]) as stage:
         return _grade_data(
             data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
@@ -267,6 +235,7 @@ def grade(
     timeout_student: float = 120.0,
     private: Sequence[str | os.PathLike[str]] = (),
     cgroups: bool | limits.Run = True,
+    secret: Secret | str | os.PathLike[str] | None = None,
     collected: Collected | None = None,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
@@ -279,6 +248,10 @@ def grade(
     ``cgroups`` True puts each notebook in a control group of its own with limits for its whole process
     tree (:mod:`.limits`; where that cannot be done here: a :class:`LimitsWarning` and the CSV's ``limits``
     column say so), False does not try, or a :class:`~.limits.Run` opened earlier is used (and not closed).
+
+    Each student's hidden inputs are their own, drawn from ``secret`` (a key, or the instructor's key
+    file; ``seed``: a public key; neither: a one-off key; :func:`~.secret.choose_key`, :func:`make_plan`).
+
     ``collected`` is a platform's download read by :func:`~.collect.collect` (``submissions`` is then
     its folder): its students are graded instead of the folder's sub-folders, and the CSV gains a
     ``late`` column. Returns the results (sorted by student, exercise).
@@ -287,7 +260,7 @@ def grade(
     names = list(exercises) if exercises else list(EXERCISES)
     times = {"timeout_cell": timeout_cell, "timeout_total": timeout_total, "timeout_student": timeout_student}
     _check_args(sub_dir, names, jobs, times)
-    seed = secrets.randbits(31) if seed is None else int(seed)
+    key = choose_key(secret, seed)
     box = _box(sandbox)
     if box.kind != "bwrap":
         warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
@@ -300,7 +273,7 @@ def grade(
             jobs,
             timeout_cell,
             timeout_total,
-            seed,
+            key,
             names,
             progress,
             box,
@@ -321,7 +294,7 @@ def _grade_class(
     jobs: int,
     timeout_cell: float,
     timeout_total: float,
-    seed: int,
+    key: Secret,
     names: list[str],
     progress: Callable[[NotebookResult], None] | None,
     box: Sandbox,
@@ -341,10 +314,12 @@ def _grade_class(
         students = scan(sub_dir) if collected is None else collected.folders()
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
-    plans = {name: make_plan(EXERCISES[name], seed) for name in names}  # every expected value, before any child runs
-    package_before = package_digest(_PACKAGE_DIR)
-    hidden = [_PACKAGE_DIR, PACKAGE_PARENT / "solutions", sub_dir, Path(output), *(Path(p) for p in private)]
+    # every expected value, each student's own, before any child runs
+    plans = {(s.name, name): make_plan(EXERCISES[name], key, s.name) for s in students for name in names}
+    package_before = package_digest(_PACKAGE_DIR, EXERCISES.course)
+    hidden = [_PACKAGE_DIR, *_checkouts(), sub_dir, Path(output), *(Path(p) for p in private)]
     hidden += [Path(feedback)] if feedback is not None else []
+    hidden += [Path(key.source)] if key.seed is None and key.source not in ("", "one-off") else []
     with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
         hidden.append(stage.root)
         pre: dict[str, StudentFiles] = {}
@@ -383,12 +358,23 @@ def _grade_class(
                         limit = min(timeout_total, left)
                         note = _stop_note(limit, limit < timeout_total)
                         res = _grade_data(
-                            nb.data, ex, s.name, plans[name], stage, box, timeout_cell, limit, note, hidden, groups
+                            nb.data,
+                            ex,
+                            s.name,
+                            plans[s.name, name],
+                            stage,
+                            box,
+                            timeout_cell,
+                            limit,
+                            note,
+                            hidden,
+                            groups,
                         )
                 except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
                     why = f"{type(exc).__name__}: {exc}"[:300]
                     res = _blank(s.name, ex, "grader-error", f"the grader failed on this notebook: {why}")
                 nb.data = None
+                res.run_id = key.run_id(s.name, name)
                 out.append(res)
                 if progress is not None:
                     progress(res)
@@ -398,7 +384,7 @@ def _grade_class(
             results = [r for batch in pool.map(work, students) for r in batch]
         changed = [f"grading stage: {p}" for p in stage.changed()]
     results.sort(key=lambda r: (r.student, r.exercise))
-    package_after = package_digest(_PACKAGE_DIR)
+    package_after = package_digest(_PACKAGE_DIR, EXERCISES.course)
     changed += sorted(
         k for k in set(package_before) | set(package_after) if package_before.get(k) != package_after.get(k)
     )
@@ -411,8 +397,10 @@ def _grade_class(
             stacklevel=2,
         )
     late = None if collected is None else collected.late()
-    write_csv(output, results, names, seed=seed, sandbox=box.label, late=late, limits=groups.label)
+    write_csv(
+        output, results, names, seed=key.seed, sandbox=box.label, secret=key.fingerprint, late=late, limits=groups.label
+    )
     if feedback is not None:
         unsandboxed = box.reason if box.kind != "bwrap" else None
-        write_feedback(feedback, results, seed, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
+        write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
     return results

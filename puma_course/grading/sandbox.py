@@ -17,8 +17,10 @@ Under bubblewrap the worker gets:
 * a read-only view of the system (``/usr`` and its links, the dynamic loader's files) and of the
   Python install (its prefix and site-packages; outside the system's folders at neutral names,
   ``/python/0``, ``/python/1``, ..., so no mount point and no path it is given is a host path);
-  a read-only empty folder over the course package, ``solutions/``, the submissions, the grader's
-  output and anything else the grader names as private, wherever they fall inside those;
+  a read-only empty folder over the course folder (its ``bank/``, ``solutions/`` and ``.git``) wherever
+  it is visible (a course cloned into ``<venv>/src`` by ``pip install -e git+...``), the course package,
+  the submissions, the grader's output and anything else the grader names as private, wherever they
+  fall inside those;
 * the student-side package (``/puma/lib``) and the worker (``/puma/bin``) read-only, and one
   writable, size-capped, in-memory folder, ``/puma/work`` (also ``HOME`` and ``TMPDIR``);
   a small capped ``/dev/shm``; everything else read-only;
@@ -179,8 +181,11 @@ class Sandbox:
                 libs.append(f"{view}/lib")  # an install whose python finds libpython by an absolute RUNPATH
         if libs:
             args += ["--setenv", "LD_LIBRARY_PATH", ":".join(libs)]
-        for p in private:
-            args += [self.seen(a) if a.startswith("/") else a for a in _hide(os.path.realpath(p), mounted)]
+        # what the grader keeps private, covered by an empty read-only folder wherever a mount shows it (a
+        # course checkout holding the Python install is not mounted: only the install's folders are, at
+        # neutral names; a course cloned inside the install, into <venv>/src, is covered there)
+        for p in dict.fromkeys(os.path.realpath(p) for p in private if os.path.exists(p)):
+            args += [self.seen(a) if a.startswith("/") else a for a in _hide(p, mounted)]
         args += ["--proc", "/proc", "--dev", "/dev", "--size", str(SHM_BYTES), "--tmpfs", "/dev/shm"]
         args += ["--ro-bind", str(lib), f"{MOUNT}/lib", "--ro-bind", str(bin_dir), f"{MOUNT}/bin"]
         args += ["--size", str(WORK_BYTES), "--tmpfs", f"{MOUNT}/work", "--chdir", f"{MOUNT}/work"]
@@ -217,8 +222,9 @@ def _hide(path: str, mounted: Sequence[str]) -> list[str]:
         return ["--tmpfs", path, "--remount-ro", path]
     if os.path.exists(path):
         return ["--ro-bind", "/dev/null", path]
-    parent = os.path.dirname(path)
-    return _hide(parent, mounted) if parent and parent != path else []
+    # nothing there to hide (covering its parent instead would hide site-packages when the course's
+    # solutions/ is not beside an installed package, and grade every notebook 0)
+    return []
 
 
 def _probe(box: Sandbox, timeout: float = 30.0) -> str | None:

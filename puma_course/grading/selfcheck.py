@@ -9,42 +9,62 @@ question's answer key) fails a case here exactly as it does when graded.
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
-from .model import EXERCISES, Exercise, Question, Verdict, reconcile, score_question
+from ..course import CourseNotFoundError
+from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, reconcile, score_question
 from .report import format_question
 from .worker import NOT_ATTEMPTED, forbidden_codes, guarded_call
 
-__all__ = ["use_exercise", "check", "public_outcomes"]
+__all__ = ["use_exercise", "check", "public_outcomes", "registry"]
 
 _current_exercise: list[str] = []
 
 
+def registry() -> Mapping[str, Exercise]:
+    """The exercises the self-check knows: the course's question bank, else a student edition's public cases.
+
+    In the instructor's course the bank (``COURSE/bank/``) is found from the current folder; a student
+    edition has none, and its package carries the public cases instead (:mod:`.public`).
+    """
+    try:
+        len(EXERCISES)
+        return EXERCISES
+    except (BankNotFoundError, CourseNotFoundError):
+        from . import public
+
+        if not public.available():
+            raise
+        return public.exercises()
+
+
 def use_exercise(name: str) -> None:
     """Tell :func:`check` which exercise this notebook is (call once, in the first cell)."""
-    if name not in EXERCISES:
-        raise ValueError(f"name: expected one of {sorted(EXERCISES)}, got {name!r}")
+    known = registry()
+    if name not in known:
+        raise ValueError(f"name: expected one of {sorted(known)}, got {name!r}")
     _current_exercise[:] = [name]
 
 
 def _find_question(question: str) -> tuple[Exercise, Question]:
     if not isinstance(question, str):
         raise ValueError(f"question: expected a question id such as 'q1', got {question!r}")
+    exercises = registry()
     if ":" in question:
         ex_name, qid = question.split(":", 1)
     elif _current_exercise:
         ex_name, qid = _current_exercise[0], question
     else:
-        hits = [(ex, q) for ex in EXERCISES.values() for q in ex.questions if q.qid == question]
+        hits = [(ex, q) for ex in exercises.values() for q in ex.questions if q.qid == question]
         if len(hits) != 1:
             raise ValueError(f"question: call use_exercise(NAME) first, or write 'NAME:{question}'")
         return hits[0]
-    if ex_name not in EXERCISES:
-        raise ValueError(f"question: expected an exercise among {sorted(EXERCISES)}, got {ex_name!r}")
-    ex = EXERCISES[ex_name]
+    if ex_name not in exercises:
+        raise ValueError(f"question: expected an exercise among {sorted(exercises)}, got {ex_name!r}")
+    ex = exercises[ex_name]
     return ex, ex.question(qid)
 
 

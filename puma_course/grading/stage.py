@@ -35,7 +35,7 @@ class Stage:
             shutil.copytree(WORKER_DIR, self.bin / "puma_worker", ignore=shutil.ignore_patterns("__pycache__"))
             self.libs: dict[str, Path] = {}
             for ex in exercises:
-                self.libs[ex.name] = student.build(ex.name, ex.allowed, self.root / "lib" / ex.name)
+                self.libs[ex.name] = student.build(ex.name, ex.allowed, self.root / "lib" / ex.name, ex.answer_keys)
             student.lock(self.root)
             self._digest = self.digest()
         except BaseException:

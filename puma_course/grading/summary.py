@@ -16,13 +16,14 @@ from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from .diagnose import TITLES
 from .model import EXERCISES, NotebookResult, Question
 from .report import replace_atomically, verdict
 from .text import one_line
 
-__all__ = ["QuestionSummary", "question_summaries", "class_summary", "write_summary", "summary_path"]
+__all__ = ["QuestionSummary", "question_summaries", "class_summary", "write_summary", "summary_path", "run_outcome"]
 
 #: Statuses of notebooks that were not graded at all (they count as "not submitted").
 UNGRADED = ("missing", "malformed")
@@ -171,3 +172,29 @@ def write_summary(
         why = f"; commonest mistake: {TITLES.get(common[0][0], common[0][0])} ({common[0][1]})" if common else ""
         text.append(f"  {s.exercise} {s.question.qid} {s.question.function}: {s.passed}/{s.submitted} passed{why}")
     return path, "\n".join(text)
+
+
+def run_outcome(results: Sequence[Any], submissions: Path, names: Sequence[str]) -> tuple[int, str]:
+    """The exit code of a grading run and what went wrong: (0, ""), or 4 when no student folder holds any
+    notebook (the message says where it looked and in which layout: a flat download of notebooks is named),
+    or 5 when every notebook found crashed."""
+    found = [r for r in results if r.status != "missing"]
+    elsewhere = submissions.is_dir() and any(submissions.glob("*/*.ipynb"))  # misnamed: the feedback names them
+    if not found and not elsewhere:
+        flat = sorted(p.name for p in submissions.glob("*.ipynb")) if submissions.is_dir() else []
+        layout = (
+            f"; it holds notebooks directly ({', '.join(flat[:3])}{', ...' if len(flat) > 3 else ''}): a flat "
+            "download, give each student a folder"
+            if flat
+            else ""
+        )
+        return 4, (
+            f"no notebook found: looked for {str(submissions)!r}/<student>/<exercise>.ipynb with exercise "
+            f"in {', '.join(names)} (one folder per student){layout}"
+        )
+    if found and all(r.status == "crashed" for r in found):
+        return 5, (
+            f"every one of the {len(found)} notebook(s) found crashed: the grader or its sandbox is broken "
+            "here, not the students (see the CSV's notes)"
+        )
+    return 0, ""

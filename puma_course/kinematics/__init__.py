@@ -7,7 +7,7 @@ from .ik import IKBatch, IKSolutions, KinematicsWarning, SingularityWarning, joi
 from .mk3 import MK3
 from .porter import Porter
 from .puma560 import Puma560
-from .robot import Robot
+from .robot import MountedFk, Robot
 from .three_step import ThreeStepArm
 
 __all__ = [
@@ -17,6 +17,7 @@ __all__ = [
     "KinematicsWarning",
     "Link",
     "MK3",
+    "MountedFk",
     "Porter",
     "Puma560",
     "Robot",

@@ -4,7 +4,7 @@ Each solver writes its formulas ONCE, as functions of an ``ops`` argument: the o
 calls them with :data:`SCALAR` (Python floats and :mod:`math`: a few µs per pose), the batch
 path with :data:`ARRAY` (numpy arrays broadcasting over poses and branches: one vectorised pass).
 Only arithmetic operators and these functions appear in the formulas, so both paths compute the
-same expressions in the same order.
+same expressions in the same order, with the same rounding (``atan2`` and ``hypot`` are numpy's in both).
 
 >>> SCALAR.where(True, 1.0, 2.0), ARRAY.where(np.array([True, False]), 1.0, 2.0).tolist()
 (1.0, [1.0, 2.0])
@@ -29,12 +29,23 @@ def _maximum(a: Any, b: Any) -> Any:
     return a if a > b else b
 
 
+def _atan2(y: float, x: float) -> float:
+    # numpy's arctan2 and hypot round differently from math's (77k and 6k of 1M random pairs differ in the
+    # last bit here): the one-pose path calls numpy's on plain floats so that a threshold decided on the
+    # result (a singular wrist, a reach limit) falls the same way in ``ik`` and ``ik_batch``
+    return float(np.arctan2(y, x))
+
+
+def _hypot(x: float, y: float) -> float:
+    return float(np.hypot(x, y))
+
+
 SCALAR = SimpleNamespace(
     sin=math.sin,
     cos=math.cos,
-    atan2=math.atan2,
+    atan2=_atan2,
     sqrt=math.sqrt,
-    hypot=math.hypot,
+    hypot=_hypot,
     where=_where,
     maximum=_maximum,
     abs=abs,

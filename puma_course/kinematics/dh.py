@@ -176,7 +176,7 @@ def split_q(q: Any, n: int, check: Callable[[Any], np.ndarray]) -> tuple[list[An
     numpy for a float64 vector), (N,) arrays for a batch; and the batch size (None for one pose)."""
     if type(q) is np.ndarray and q.shape == (n,) and q.dtype == np.float64:
         values = q.tolist()
-        if all(math.isfinite(v) for v in values):
+        if all(math.isfinite(v) and abs(v) <= MAX_MAGNITUDE for v in values):
             return values, None
     arr = check(q)
     if arr.ndim == 1:

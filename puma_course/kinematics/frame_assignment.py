@@ -39,6 +39,17 @@ def _unit(v: Any, name: str) -> np.ndarray:
     return u / n
 
 
+def _dot3(a: np.ndarray, b: np.ndarray) -> float:
+    """a.b of two 3-vectors as one explicit sum (no BLAS call: the same bits on every machine)."""
+    (a0, a1, a2), (b0, b1, b2) = a.tolist(), b.tolist()
+    return a0 * b0 + a1 * b1 + a2 * b2
+
+
+def _cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    (a0, a1, a2), (b0, b1, b2) = a.tolist(), b.tolist()
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+
+
 def _snap_angle(a: float) -> float:
     k = round(a / (math.pi / 2))
     return k * math.pi / 2 if abs(a - k * math.pi / 2) < 1e-12 else a
@@ -82,7 +93,7 @@ def common_normal(p1: Any, u1: Any, p2: Any, u2: Any, *, hint: Any = None, at: A
     p2 = as_array(p2, "p2", (3,), max_magnitude=MAX_MAGNITUDE)
     u1, u2 = _unit(u1, "u1"), _unit(u2, "u2")
     scale = 1.0 + float(np.abs(np.concatenate([p1, p2])).max())
-    n = np.cross(u1, u2)
+    n = _cross3(u1, u2)
     sin = math.hypot(*n.tolist())
     w = p2 - p1
     if sin <= tol:  # parallel: the normal is free along the lines; put it through the point nearest `at`
@@ -97,20 +108,23 @@ def common_normal(p1: Any, u1: Any, p2: Any, u2: Any, *, hint: Any = None, at: A
         foot2 = foot1 + a * x
         alpha = _snap_angle(math.atan2(float(np.dot(n, x)), float(np.dot(u1, u2))))
         return CommonNormal(foot1, foot2, x, a, alpha, "parallel")
-    b, d, e = float(np.dot(u1, u2)), float(np.dot(u1, w)), float(np.dot(u2, w))
-    denom = 1.0 - b * b
-    s, t = (d - b * e) / denom, (b * d - e) / denom
+    # Not 1 - (u1.u2)² as the denominator (it cancels to 0 for lines 5e-9 rad from parallel, issue 21):
+    # with n = u1 x u2, the feet are at s = w.(u2 x n) / |n|², t = w.(u1 x n) / |n|², and the normal's
+    # length is |w.n| / |n| (each product computed from n, known to a relative eps / sin)
+    nn = sin * sin
+    s, t = _dot3(w, _cross3(u2, n)) / nn, _dot3(w, _cross3(u1, n)) / nn
     foot1, foot2 = p1 + s * u1, p2 + t * u2
-    v = foot2 - foot1
-    a = math.hypot(*v.tolist())
+    wn = _dot3(w, n) / sin
+    a = abs(wn)
+    x = n / sin
     if a <= tol * scale:  # intersecting: X = ±u1 x u2, the sign nearer the hint
-        x = n / sin
-        if hint is not None and float(np.dot(x, _unit(hint, "hint"))) < 0:
+        if hint is not None and _dot3(x, _unit(hint, "hint")) < 0:
             x = -x
         kind, a, foot2 = "intersecting", 0.0, foot1.copy()
     else:
-        x, kind = v / a, "skew"
-    alpha = _snap_angle(math.atan2(float(np.dot(np.cross(u1, u2), x)), b))
+        x, kind = (x if wn > 0 else -x) + 0.0, "skew"  # + 0.0: no signed zeros in the printed X
+    b = _dot3(u1, u2)
+    alpha = _snap_angle(math.atan2(_dot3(n, x), b))
     return CommonNormal(foot1, foot2, x, a, alpha, kind)
 
 

@@ -150,7 +150,7 @@ class IKSolutions(Sequence[np.ndarray]):
     joints: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
-        q = np.array(self.q, dtype=float)
+        q = np.array(as_array(self.q, "q", what="solutions of shape (k, n)"), dtype=float)  # finite and real
         if q.ndim != 2:
             raise ValueError(f"q: expected solutions of shape (k, n), got an array of shape {q.shape}")
         k = len(q)

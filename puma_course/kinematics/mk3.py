@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_length, as_tol
+from .._validate import as_robot_length, as_tol
 from ..transforms import wrap_angle
 from ._ops import ARRAY
 from .dh import DHChain, Link
@@ -59,6 +59,9 @@ _PLANE = np.array([0.0, 0.0, 1.0, 1.0])  # + π for the back branches
 _EL = np.array([1.0, -1.0, 1.0, -1.0])
 _H = math.pi / 2
 _BLOCK = 10_000
+#: The smallest accepted ``tol`` (on the sine of z5's angle to the arm plane): below 1e-12 rounding noise
+#: would refuse reachable poses (384 of 2,000 random ones at 1e-16).
+TOL_MIN = 1e-12
 
 
 def _plane(o: Any, P: tuple[Any, ...], R: tuple[Any, ...], d5: float, ltol: float, near: Any) -> tuple[Any, ...]:
@@ -67,9 +70,14 @@ def _plane(o: Any, P: tuple[Any, ...], R: tuple[Any, ...], d5: float, ltol: floa
     r13, r23 = R[2], R[5]
     wx, wy = px - d5 * r13, py - d5 * r23
     w_h, z_h = o.hypot(wx, wy), o.hypot(r13, r23)
-    from_w = w_h > ltol
-    free = ~from_w & (z_h <= 1e-9)  # w on the base axis and z5 vertical: the plane is free
-    phi = o.where(from_w, o.atan2(wy, wx), o.where(free, 0.0 if near is None else near[0], o.atan2(r23, r13)))
+    free = (w_h <= ltol) & (z_h <= 1e-9)  # w on the base axis and z5 vertical: the plane is free
+    # w = p - d5 z5 carries a rounding error of a few 1e-16 (|p| + d5): its azimuth is off by that over w_h.
+    # z5's azimuth is off by about 4e-16 / z_h: take the plane from whichever is known better (a wrist
+    # point microns from the base axis, z5 tilted: from z5, turned to w's side) when w's is off by > 1e-12.
+    err_w = 4e-16 * (o.abs(px) + o.abs(py) + abs(d5) + ltol)
+    use_z = (z_h > 1e-9) & (err_w > w_h * 1e-12) & (z_h * err_w > w_h * 4e-16)  # w's azimuth off > 1e-12
+    phi_z = o.atan2(r23, r13) + o.where((w_h > ltol) & (wx * r13 + wy * r23 < 0.0), o.pi, 0.0)
+    phi = o.where(free, 0.0 if near is None else near[0], o.where(use_z, phi_z, o.atan2(wy, wx)))
     c, s = o.cos(phi), o.sin(phi)
     off_p = o.abs(-s * px + c * py)  # distance of the tool point from the plane
     off_z = o.abs(-s * r13 + c * r23)  # sine of the angle between z5 and the plane
@@ -121,8 +129,10 @@ class MK3(DHChain):
         a3: float = DEFAULTS["a3"],
         d5: float = DEFAULTS["d5"],
     ) -> None:
-        d1, a1, d5 = (as_length(v, n, what=f"the length {n} in mm") for v, n in ((d1, "d1"), (a1, "a1"), (d5, "d5")))
-        a2, a3 = (as_length(v, n, positive=True, what=f"the link length {n} in mm (positive)")
+        d1, a1, d5 = (
+            as_robot_length(v, n, what=f"the length {n} in mm") for v, n in ((d1, "d1"), (a1, "a1"), (d5, "d5"))
+        )
+        a2, a3 = (as_robot_length(v, n, positive=True, what=f"the link length {n} in mm (positive)")
                   for v, n in ((a2, "a2"), (a3, "a3")))  # fmt: skip
         self._L = (d1, a1, a2, a3, d5)
         self._ltol = 1e-9 * (abs(d1) + abs(a1) + a2 + a3 + abs(d5))
@@ -166,7 +176,7 @@ class MK3(DHChain):
         >>> arm.ik(T).reason[:38]
         'a 5-DOF arm reaches only poses whose a'
         """
-        tol = as_tol(tol, "tol")
+        tol = as_tol(tol, "tol", lower=TOL_MIN)
         Tm = self._check_poses(T)
         if Tm.shape[0] != 1:
             raise ValueError(f"T: expected one pose (4, 4) (use ik_batch for several), got shape {Tm.shape}")
@@ -182,7 +192,7 @@ class MK3(DHChain):
         >>> b.q.shape, b.valid.sum(axis=1).tolist()  # the second pose is too far to reach over the back
         ((2, 4, 5), [4, 2])
         """
-        tol = as_tol(tol, "tol")
+        tol = as_tol(tol, "tol", lower=TOL_MIN)
         Tb = self._check_poses(T)
         return self._ik_batch(Tb, self._check_near(near, batch=Tb.shape[0]), tol)
 

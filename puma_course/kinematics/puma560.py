@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_length, as_tol
+from .._validate import as_robot_length, as_tol
 from ..transforms import wrap_angle
 from ._ops import ARRAY, SCALAR
 from .dh import DHChain, Link, split_q
@@ -71,6 +71,11 @@ _SH = np.array([1.0 if lab.startswith("left") else -1.0 for lab in BRANCH_LABELS
 _EL = np.array([1.0 if "/up/" in lab else -1.0 for lab in BRANCH_LABELS])
 _WR = np.array([1.0 if lab.endswith("noflip") else -1.0 for lab in BRANCH_LABELS])
 _H = math.pi / 2
+_FREE = 1e-3  # a free joint takes `near` only within 1e-3 x ltol = 1e-10 x size of the singular point
+_WRIST_FREE = 5e-10  # likewise θ4 only where that moves the hand by < 5e-10 (sin θ5 |sin Δθ4|)
+#: The smallest accepted ``tol``: sin θ5 is computed with an error of a few 1e-16, so a threshold below
+#: 1e-12 would let rounding noise decide the branch structure.
+TOL_MIN = 1e-12
 _BLOCK = 10_000  # ik_batch works through the poses in blocks: working memory stays a few times the result's
 
 
@@ -96,7 +101,10 @@ def _fk_entries(o: Any, q: list[Any], a2: float, a3: float, d3: float, d4: float
 
 def _reach(o: Any, px: Any, py: Any, pz: Any, L: tuple[float, ...], ltol: float) -> tuple[Any, ...]:
     """Pose terms shared by every branch: ρ², κ, S1 = sqrt(ρ² - d3²), S3 = sqrt(a3² + d4² - κ²),
-    unreachable flags and the singular flags; the square roots are snapped to exactly 0 within ``ltol``."""
+    unreachable flags and the singular flags (a root below ``ltol``). S3 is snapped to exactly 0 there,
+    and S1 where the two shoulder branches are one (|d3| >= ltol, or the wrist centre on the base axis):
+    that moves the wrist centre by about S²/size < 1e-14 size (|p| and ρ depend on the roots to second
+    order), while with d3 = 0 a wrist centre at ρ ≈ S1 from the axis keeps both distinct branches."""
     a2, a3, d3, d4 = L
     sqtol = ltol * ltol * 1e2  # 1e-12 L²: how far inside the boundary rounding may land
     rho2 = px * px + py * py
@@ -106,9 +114,14 @@ def _reach(o: Any, px: Any, py: Any, pz: Any, L: tuple[float, ...], ltol: float)
     base, reach = S1sq < -sqtol, S3sq < -sqtol
     S1, S3 = o.sqrt(o.maximum(S1sq, 0.0)), o.sqrt(o.maximum(S3sq, 0.0))
     sh_sing, el_sing = S1 < ltol, S3 < ltol
-    S1, S3 = o.where(sh_sing, 0.0, S1), o.where(el_sing, 0.0, S3)
-    axis = o.sqrt(rho2) < ltol  # possible (and reachable) only when d3 = 0
-    return rho2, K, S1, S3, base, reach, sh_sing, el_sing, axis
+    rho = o.sqrt(rho2)
+    axis = rho < ltol  # possible (and reachable) only when d3 = 0
+    # θ1 is set free (taken from `near`) only where that moves the hand by at most 1e-9 x size (2 ρ)
+    axis_free = rho < ltol * _FREE
+    # left and right are one solution when S1 is tiny beside |d3|; with d3 = 0 they differ by π in θ1
+    sh_drop = sh_sing & ((abs(d3) >= ltol) | axis_free)
+    S1, S3 = o.where(sh_drop, 0.0, S1), o.where(el_sing, 0.0, S3)
+    return rho2, K, S1, S3, base, reach, sh_sing, el_sing, axis, sh_drop, axis_free
 
 
 def _arm(o: Any, P: tuple[Any, Any, Any], terms: tuple[Any, ...], L: tuple[float, ...], sh: Any, el: Any,
@@ -116,47 +129,60 @@ def _arm(o: Any, P: tuple[Any, Any, Any], terms: tuple[Any, ...], L: tuple[float
     """θ1, θ2, θ3 of one (shoulder, elbow) branch and whether θ2 was free (wrist centre on joint 2's axis)."""
     px, py, pz = P
     a2, a3, d3, d4 = L
-    _, K, S1, S3, _, _, _, _, axis = terms
+    _, K, S1, S3, _, _, _, _, _, _, axis_free = terms
+    phi = o.where(axis_free, 0.0 if near is None else near[0], o.atan2(py, px))
     X = sh * S1  # reach along x1
-    phi = o.where(axis, 0.0 if near is None else near[0], o.atan2(py, px))
     t1 = phi - o.atan2(d3, X)  # also right for d3 = 0: atan2(0, ±S1) = 0 or π (signed zero)
     t3 = o.atan2(a3, d4) - o.atan2(K, sh * el * S3)  # + root for left/up and right/down
     c3, s3 = o.cos(t3), o.sin(t3)
     vx, vy = a2 + a3 * c3 - d4 * s3, a3 * s3 + d4 * c3
-    j2 = o.hypot(vx, vy) < ltol
-    t2 = o.where(j2, 0.0 if near is None else near[1], o.atan2(-pz, X) - o.atan2(vy, vx))
+    v = o.hypot(vx, vy)
+    j2 = v < ltol
+    t2 = o.where(v < ltol * _FREE, 0.0 if near is None else near[1], o.atan2(-pz, X) - o.atan2(vy, vx))
     return t1, t2, t3, j2
 
 
 def _wrist_terms(o: Any, R: tuple[Any, ...], t1: Any, t23: Any) -> tuple[Any, ...]:
-    """Entries of ^3R_6 = (^0R_3)^T R that fix the wrist: (m02, m12, m22) = (-s5 c4, c5, s4 s5),
-    (m10, m11) = (s5 c6, -s5 s6), and (m00, m20, m01) for the singular wrist."""
+    """Entries of M = ^3R_6 = (^0R_3)^T R that fix the wrist: (m02, m12, m22) = (-s5 c4, c5, s4 s5)
+    give θ4; then ^4R_6 = Ry(θ4)^T M (M = Ry(θ4) Rz(θ5) Rx(-90°) Rz(θ6)) gives θ5 and θ6 from m00, m01,
+    m20, m21 as well."""
     r11, r12, r13, r21, r22, r23, r31, r32, r33 = R
     c1, s1, c23, s23 = o.cos(t1), o.sin(t1), o.cos(t23), o.sin(t23)
     u0, u1, u2 = c1 * r11 + s1 * r21, c1 * r12 + s1 * r22, c1 * r13 + s1 * r23
     m02, m12, m22 = c23 * u2 - s23 * r33, -s23 * u2 - c23 * r33, -s1 * r13 + c1 * r23
     m10, m11 = -s23 * u0 - c23 * r31, -s23 * u1 - c23 * r32
     m00, m20, m01 = c23 * u0 - s23 * r31, -s1 * r11 + c1 * r21, c23 * u1 - s23 * r32
-    return m02, m12, m22, m10, m11, m00, m20, m01
+    m21 = -s1 * r12 + c1 * r22
+    return m02, m12, m22, m10, m11, m00, m20, m01, m21
 
 
-def _wrist(o: Any, m: tuple[Any, ...], w: Any, near: Any, tol: float) -> tuple[Any, Any, Any, Any]:
-    """θ4, θ5, θ6 of the wrist branch ``w`` (+1 noflip, -1 flip) and the singular flag (sin θ5 < tol).
+def _wrist(o: Any, m: tuple[Any, ...], w: Any, near: Any, tol: float) -> tuple[Any, Any, Any, Any, Any]:
+    """θ4, θ5, θ6 of the wrist branch ``w`` (+1 noflip, -1 flip), the singular flag (sin θ5 < tol) and
+    whether θ4 was set free (flip is then the same solution and dropped): without ``near`` where
+    sin θ5 < min(tol, 5e-10), with it where sin θ5 < tol and θ4 = near[3] moves the hand by < 5e-10.
 
-    At the singular wrist θ5 is snapped to exactly 0 or π, θ4 takes its value in ``near`` (else 0)
-    and θ6 follows from the defined sum θ4 + θ6 (θ5 = 0) or difference θ4 - θ6 (θ5 = π)."""
-    m02, m12, m22, m10, m11, m00, m20, m01 = m
+    θ4 comes from the third column of M = ^3R_6; θ5 and θ6 then come from ^4R_6 = Ry(θ4)^T M, so
+    they absorb any error of θ4 and the three angles reproduce M to rounding whatever θ4 is. At the
+    free wrist θ4 takes its value in ``near`` (else 0) and θ5, θ6 follow from it; that moves the hand by
+    at most 5e-10. Elsewhere below ``tol`` both branches are kept (flagged), each exact."""
+    m02, m12, m22, m10, m11, m00, m20, m01, m21 = m
     s5 = o.hypot(m02, m22)
+    t4 = o.atan2(w * m22, -w * m02)
     sing = s5 < tol
-    t5, t4, t6 = o.atan2(w * s5, m12), o.atan2(w * m22, -w * m02), o.atan2(-w * m11, w * m10)
-    if o.any(sing):
-        up = m12 >= 0
-        total = o.where(up, o.atan2(-m20, m00), o.atan2(-m01, -m00))  # θ4 + θ6 or θ4 - θ6
-        t4s = 0.0 if near is None else near[3]
-        t4 = o.where(sing, t4s, t4)
-        t6 = o.where(sing, o.where(up, total - t4s, t4s - total), t6)
-        t5 = o.where(sing, o.where(up, 0.0, o.pi), t5)
-    return t4, t5, t6, sing
+    if near is None:
+        free = s5 < min(tol, _WRIST_FREE)
+        take = free
+    else:  # θ4 = near[3] moves the hand by about s5 |sin(near[3] - θ4)|: free where that stays below 5e-10
+        free = sing & (s5 * o.abs(o.sin(near[3] - t4)) < _WRIST_FREE)
+        # and a branch whose θ4 is within the rounding cone of near[3] takes it (keeps the start exactly)
+        take = free | (s5 * o.abs(o.atan2(o.sin(near[3] - t4), o.cos(near[3] - t4))) < _WRIST_FREE)
+    if o.any(take):
+        t4 = o.where(take, 0.0 if near is None else near[3], t4)
+    c4, s4 = o.cos(t4), o.sin(t4)
+    # ^4R_6 = Rz(θ5) Rx(-90°) Rz(θ6) = [[c5 c6, -c5 s6, -s5], [s5 c6, -s5 s6, c5], [-s6, -c6, 0]]
+    t5 = o.atan2(s4 * m22 - c4 * m02, m12)
+    t6 = o.atan2(-(s4 * m00 + c4 * m20), -(s4 * m01 + c4 * m21))
+    return t4, t5, t6, sing, free
 
 
 def _reason(terms: tuple[Any, ...], i: Any, L: tuple[float, ...]) -> str:
@@ -199,9 +225,9 @@ class Puma560(DHChain):
         d3: float = DEFAULTS["d3"],
         d4: float = DEFAULTS["d4"],
     ) -> None:
-        a2 = as_length(a2, "a2", positive=True, what="the upper-arm length a2 in metres (a positive number)")
+        a2 = as_robot_length(a2, "a2", positive=True, what="the upper-arm length a2 in metres (a positive number)")
         a3, d3, d4 = (
-            as_length(v, n, what=f"the length {n} in metres") for v, n in ((a3, "a3"), (d3, "d3"), (d4, "d4"))
+            as_robot_length(v, n, what=f"the length {n} in metres") for v, n in ((a3, "a3"), (d3, "d3"), (d4, "d4"))
         )
         if math.hypot(a3, d4) <= 0.0:
             raise ValueError("a3, d4: expected a forearm of non-zero length (a3² + d4² > 0), got a3 = d4 = 0")
@@ -290,7 +316,7 @@ class Puma560(DHChain):
         >>> arm.ik(T).reason[:13]
         'out of reach:'
         """
-        tol = as_tol(tol, "tol")
+        tol = as_tol(tol, "tol", lower=TOL_MIN)
         Tm = self._check_poses(T)
         if Tm.shape[0] != 1:
             raise ValueError(f"T: expected one pose (4, 4) (use ik_batch for several), got shape {Tm.shape}")
@@ -302,10 +328,10 @@ class Puma560(DHChain):
         if terms[4] or terms[5]:
             return IKSolutions(np.zeros((0, 6)), (), (), MESSAGES, False, _reason(terms, 0, L), self.name,
                                "closed form", self.revolute, joints=self.joint_symbols)  # fmt: skip
-        sh_sing, el_sing, axis = terms[6], terms[7], terms[8]
+        sh_sing, el_sing, axis, sh_drop = terms[6], terms[7], terms[8], terms[9]
         rows, labels, flags = [], [], []
         for ish, sh in enumerate((1.0, -1.0)):
-            if ish and sh_sing:
+            if ish and sh_drop:
                 continue
             for iel, el in enumerate((1.0, -1.0)):
                 if iel and el_sing:
@@ -313,8 +339,8 @@ class Puma560(DHChain):
                 t1, t2, t3, j2 = _arm(o, P, terms, L, sh, el, nl, self._ltol)
                 m = _wrist_terms(o, R, t1, t2 + t3)
                 for iwr, wr in enumerate((1.0, -1.0)):
-                    t4, t5, t6, sing = _wrist(o, m, wr, nl, tol)
-                    if iwr and sing:
+                    t4, t5, t6, sing, free = _wrist(o, m, wr, nl, tol)
+                    if iwr and free:
                         continue
                     rows.append((t1, t2, t3, t4, t5, t6))
                     labels.append(BRANCH_LABELS[4 * ish + 2 * iel + iwr])
@@ -339,7 +365,7 @@ class Puma560(DHChain):
         >>> b.q.shape, int(b.valid.sum()), b.reachable.tolist()
         ((2, 8, 6), 16, [True, True])
         """
-        tol = as_tol(tol, "tol")
+        tol = as_tol(tol, "tol", lower=TOL_MIN)
         Tb = self._check_poses(T)
         N = Tb.shape[0]
         nr = self._check_near(near, batch=N)
@@ -363,12 +389,12 @@ class Puma560(DHChain):
         nr = None if near is None else [near[:, j, None] for j in range(6)]
         terms = _reach(o, *P, L, self._ltol)
         t1, t2, t3, j2 = _arm(o, P, terms, L, _SH, _EL, nr, self._ltol)
-        t4, t5, t6, wr_sing = _wrist(o, _wrist_terms(o, R, t1, t2 + t3), _WR, nr, tol)
-        base, reach, sh_sing, el_sing, axis = terms[4:9]
+        t4, t5, t6, wr_sing, wr_free = _wrist(o, _wrist_terms(o, R, t1, t2 + t3), _WR, nr, tol)
+        base, reach, sh_sing, el_sing, axis, sh_drop = terms[4:10]
         bad = base | reach  # (n, 1)
         for j, t in enumerate((t1, t2, t3, t4, t5, t6)):
             q[..., j] = np.where(bad, 0.0, wrap_angle(t))
-        valid[:] = ~(bad | (sh_sing & (_SH < 0)) | (el_sing & (_EL < 0)) | (wr_sing & (_WR < 0)))
+        valid[:] = ~(bad | (sh_drop & (_SH < 0)) | (el_sing & (_EL < 0)) | (wr_free & (_WR < 0)))
         bits = sh_sing * 1 + el_sing * 2 + wr_sing * 4 + axis * 8 + j2 * 16
         flags[:] = np.where(bad, 0, bits)
         for i in np.flatnonzero(bad[:, 0]):

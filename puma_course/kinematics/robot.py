@@ -19,10 +19,10 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_array, as_transform
+from .._validate import MAX_MAGNITUDE, as_array, as_transform
 from .ik import IKBatch, IKSolutions, SingularityWarning
 
-__all__ = ["Robot"]
+__all__ = ["Robot", "MountedFk"]
 
 
 class Robot(ABC):
@@ -76,8 +76,13 @@ class Robot(ABC):
 
     def check_q(self, q: Any, name: str = "q") -> np.ndarray:
         """``q`` as a float array of shape (n,) or (N, n), or ``ValueError`` naming what is wrong."""
-        return as_array(
-            q, name, (self.n,), batch=True, what=f"joint values of shape ({self.n},) or (N, {self.n}) for {self.name}"
+        return as_array(  # joint values up to 1e150 in size: a prismatic 1e308 summed to inf (issue 21)
+            q,
+            name,
+            (self.n,),
+            batch=True,
+            what=f"joint values of shape ({self.n},) or (N, {self.n}) for {self.name}",
+            max_magnitude=MAX_MAGNITUDE,
         )
 
     def q(self, name: str) -> np.ndarray:
@@ -161,3 +166,54 @@ class Robot(ABC):
             f"<thead><tr><th>parameter</th><th>value</th></tr></thead><tbody>{rows}</tbody></table>"
             f"<p>joints: {joints}<br>named configurations: {configs or 'none'}</p>"
         )
+
+
+class MountedFk:
+    """A robot's forward kinematics with a base and a tool transform: ``base @ fk(q) @ tool``.
+
+    ``fk`` is any batch-first forward kinematics (``robot.fk``). ``pad`` zero joints are appended to
+    each q before calling it (the arm's first joints only); ``position_only`` keeps the position of
+    the result with an identity rotation (where a point, not a frame, is meant). It pickles, so a
+    pose a student's configuration must reach can travel as data.
+
+    >>> from puma_course.kinematics import Puma560
+    >>> arm = Puma560()
+    >>> shifted = MountedFk(arm.fk, base=np.diag([1.0, 1.0, 1.0, 1.0]), tool=np.eye(4))
+    >>> bool(np.allclose(shifted(np.zeros(6)), arm.fk(np.zeros(6))))
+    True
+    >>> MountedFk(arm.fk, pad=3, position_only=True)(np.zeros((2, 3))).shape
+    (2, 4, 4)
+    """
+
+    def __init__(
+        self,
+        fk: Any,
+        base: Any = None,
+        tool: Any = None,
+        pad: int = 0,
+        position_only: bool = False,
+    ) -> None:
+        self.fk = fk
+        self.base = np.eye(4) if base is None else as_transform(base, "base")
+        self.tool = np.eye(4) if tool is None else as_transform(tool, "tool")
+        if not isinstance(pad, int) or pad < 0:
+            raise ValueError(f"pad: expected a number of joints >= 0, got {pad!r}")
+        self.pad, self.position_only = pad, bool(position_only)
+
+    def __call__(self, q: Any) -> np.ndarray:
+        Q = np.asarray(q, dtype=float)
+        if self.pad:
+            Q2 = np.atleast_2d(Q)
+            Q2 = np.concatenate([Q2, np.zeros((len(Q2), self.pad))], axis=1)
+            T = np.asarray(self.fk(Q2))
+            if self.position_only:
+                out = np.tile(np.eye(4), (len(Q2), 1, 1))
+                out[:, :3, 3] = T[:, :3, 3]
+                T = out
+            return self.base @ T @ self.tool
+        T = np.asarray(self.fk(Q))
+        if self.position_only:
+            out = np.broadcast_to(np.eye(4), T.shape).copy()
+            out[..., :3, 3] = T[..., :3, 3]
+            T = out
+        return self.base @ T @ self.tool

@@ -19,13 +19,13 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_array, as_length
+from .._validate import as_array, as_robot_length
 
 __all__ = ["actuator_from_joint", "joint_from_actuator", "actuator_rate"]
 
 
 def _arms(b: Any, c: Any) -> tuple[float, float]:
-    return as_length(b, "b", positive=True), as_length(c, "c", positive=True)
+    return as_robot_length(b, "b", positive=True), as_robot_length(c, "c", positive=True)
 
 
 def actuator_from_joint(theta: Any, b: float, c: float, gamma0: float = 0.0) -> Any:

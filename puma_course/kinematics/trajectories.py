@@ -12,13 +12,14 @@ valid solution the solver lists. Both take any :class:`~.robot.Robot`: they call
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from .._validate import MAX_MAGNITUDE, as_array, as_count, as_positive, as_rotation, as_transform
-from .ik import joint_distance, nearest_index
+from .ik import SingularityWarning, joint_distance, nearest_index
 from .robot import Robot
 
 __all__ = [
@@ -179,6 +180,11 @@ class JointPath:
 
 
 def _solve_path(robot: Robot, path_Ts: Any) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+    Ts, sol = _solve_batch(robot, path_Ts)
+    return sol.q, sol.valid, sol.labels
+
+
+def _solve_batch(robot: Robot, path_Ts: Any) -> tuple[np.ndarray, Any]:
     if not isinstance(robot, Robot):
         raise ValueError(
             f"robot: expected a robot of the course (Puma560(), Porter(), ...), got {type(robot).__name__}"
@@ -196,14 +202,17 @@ def _solve_path(robot: Robot, path_Ts: Any) -> tuple[np.ndarray, np.ndarray, tup
             f"path_Ts: {robot.name} cannot reach pose {i} of the path (position {np.round(Ts[i, :3, 3], 4).tolist()}): "
             f"{sol.reason[i] or 'no valid branch'}"
         )
-    return sol.q, sol.valid, sol.labels
+    return Ts, sol
 
 
 def follow(robot: Robot, path_Ts: Any, q0: Any) -> JointPath:
     """At each pose, the solution nearest the previous configuration (starting from ``q0``).
 
     The robot's ``ik_batch`` gives every branch for all poses at once; the choice itself is a
-    short loop over the path, since each step depends on the one before.
+    short loop over the path, since each step depends on the one before. At a singular sample
+    (a joint left free) the pose is solved again with the previous configuration as ``near``, so
+    the free joint keeps its value instead of jumping to the solver's default (the robot's ``ik``,
+    which searches a singular family for the member nearest to ``near``).
 
     >>> from puma_course.kinematics import Puma560
     >>> arm = Puma560()
@@ -213,14 +222,23 @@ def follow(robot: Robot, path_Ts: Any, q0: Any) -> JointPath:
     >>> jp.q.shape, jp.start_jump < 1e-9, jp.max_step < 0.05, jp.labels[0]
     ((20, 6), True, True, 'left/up/noflip')
     """
-    Q, valid, labels = _solve_path(robot, path_Ts)
+    Ts, sol = _solve_batch(robot, path_Ts)
+    Q, valid, labels = sol.q.copy(), sol.valid.copy(), sol.labels
     m = Q.shape[-1]
     prev = as_array(q0, "q0", (m,), what=f"a starting configuration of shape ({m},)")
     start = prev
     rev = robot.revolute
     n = Q.shape[0]
+    flagged: list[bool] = (np.asarray(sol.flags).reshape(n, -1) != 0).any(axis=1).tolist()
     choice = np.empty(n, dtype=int)
     for i in range(n):
+        if flagged[i]:  # the previous configuration decides the free joints (issue 21: no jump at a singular sample)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", SingularityWarning)  # the batch solve did not warn either
+                again = robot.ik(Ts[i], near=prev)
+            if len(again) and again.labels[0] in labels:  # sorted nearest-first: its first row is the one
+                j = labels.index(again.labels[0])
+                Q[i, j], valid[i, j] = again[0], True
         j = int(nearest_index(Q[i], prev, rev, valid[i]))
         choice[i] = j
         prev = Q[i, j]
@@ -287,6 +305,8 @@ def time_scaling(duration: float, n: int, kind: str = "quintic") -> TimeScaling:
     from .._validate import as_choice
 
     T = as_positive(duration, "duration")
+    if not 1e-50 <= T <= 1e50:  # ṡ ~ 1 / T and s̈ ~ 1 / T² must stay finite (issue 21: 1e-200 gave NaN and inf)
+        raise ValueError(f"duration: expected a duration from 1e-50 to 1e50 seconds, got {T:g}")
     n = as_count(n, "n", minimum=2)
     kind = as_choice(kind, "kind", ("quintic", "linear"))
     t = np.linspace(0.0, T, n)

@@ -83,20 +83,12 @@ def repository_url(root: Path) -> str | None:
     return str(url) if url else None
 
 
-# STAND-IN, to be replaced at merge by the student edition's writer (`puma-course edition DIR`, written
-# by another branch): the site's archive must hold exactly what that command hands a student. Until
-# then this copies what a student gets: the index, lectures, exercises, figures, the package (without
-# the grader's question bank), pyproject.toml, README.md, LICENSE; never solutions/.
 def _edition_tree(course: Path, dest: Path) -> None:
-    """Write the student edition of the course at ``course`` into the new folder ``dest``."""
-    junk = shutil.ignore_patterns("__pycache__", "*.pyc", ".ipynb_checkpoints", "bank")
-    dest.mkdir(parents=True)
-    for name in ("START_HERE.ipynb", "pyproject.toml", "README.md", "LICENSE"):
-        if (course / name).is_file():
-            shutil.copy2(course / name, dest / name)
-    for name in ("notebooks", "exercises", "figures", "puma_course"):
-        if (course / name).is_dir():
-            shutil.copytree(course / name, dest / name, ignore=junk)
+    """Write the student edition of the course at ``course`` into the new folder ``dest``: exactly what
+    ``puma-course edition DIR`` hands a student (:func:`puma_course.grading.edition.write_edition`)."""
+    from ..grading.edition import write_edition
+
+    write_edition(dest, course)
 
 
 def _edition_archive(course: Path, dest_dir: Path) -> Path:

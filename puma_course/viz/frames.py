@@ -16,7 +16,16 @@ from matplotlib.figure import Figure
 
 from .._validate import as_array
 
-__all__ = ["AXIS_COLORS", "new_axes", "set_equal", "frame_tightly", "draw_frame", "draw_frames", "draw_points"]
+__all__ = [
+    "AXIS_COLORS",
+    "new_axes",
+    "set_equal",
+    "frame_tightly",
+    "draw_frame",
+    "draw_frames",
+    "draw_points",
+    "note_below",
+]
 
 #: Colours of a triad's x, y and z axes.
 AXIS_COLORS = ("tab:red", "tab:green", "tab:blue")
@@ -159,3 +168,23 @@ def draw_points(
     """
     P = as_array(points, "points", (3,), batch=True).reshape(-1, 3)
     return list(ax.plot(P[:, 0], P[:, 1], P[:, 2], color=color, lw=lw, alpha=alpha, marker=marker, ms=lw + 2, **kw))
+
+
+def note_below(fig: Any, ax: Any, note: str, gap_px: float = 4.0) -> None:
+    """Write ``note`` under everything ``ax`` draws (tick numbers, axis labels): the figure grows downwards to hold it.
+
+    The axes keep their size in pixels; the note never sits on the x label or its numbers.
+    """
+    text = fig.text(0.01, 0.0, note, fontsize=9, color="0.35", style="italic", ha="left", va="bottom")
+    renderer = fig.canvas.get_renderer()
+    text_h = text.get_window_extent(renderer).height
+    drawn = ax.get_tightbbox(renderer)  # pixels from the figure's bottom left
+    need = text_h + 2 * gap_px - drawn.y0  # pixels missing under the axes' lowest drawing
+    if need > 0:
+        dpi = fig.dpi
+        w, h = fig.get_size_inches()
+        box = ax.get_position()  # figure fractions of the old height
+        h_new = h + need / dpi
+        fig.set_size_inches(w, h_new)
+        ax.set_position([box.x0, (box.y0 * h + need / dpi) / h_new, box.width, box.height * h / h_new])
+    text.set_y(gap_px / (fig.get_size_inches()[1] * fig.dpi))

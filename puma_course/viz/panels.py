@@ -111,7 +111,7 @@ def robot_panel(
 
     Everything comes from the robot API: one slider per joint labelled by ``robot.joint_symbols``,
     limited by ``robot.qlim``, in degrees for revolute joints (``θ1 [deg]``) and in the robot's
-    ``units`` for the others (``d3 [m]``, or ``q2 []`` for a unitless length). ``q`` is the
+    ``units`` for the others (``d3 [m]``, or ``q2 [length]`` for a chain that names no unit). ``q`` is the
     start: a configuration name (``"qn"``) or a joint vector (radians / lengths); by default 0
     where the limits allow it. ``readout`` is ``"pose"`` (the matrix ``robot.fk(q)``, named
     ⁰Tₙ), ``None`` or a callable ``readout(q)`` / ``readout(q, frames)`` returning text.
@@ -169,12 +169,13 @@ def dh_link_panel(
     """
     lo, hi = length_range
     sliders = joint_sliders(
-        ["α_{i-1}", "a_{i-1}", "θ_i", "d_i"],
+        ["αᵢ₋₁", "aᵢ₋₁", "θᵢ", "dᵢ"],  # plain Unicode: a slider's label shows no TeX
         [-np.pi, lo, -np.pi, lo],
         [np.pi, hi, np.pi, hi],
         values,
         degrees=[True, False, True, False],
         step=[1.0, 0.05, 1.0, 0.05],
+        units="",
     )
 
     def steps(q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -185,10 +186,12 @@ def dh_link_panel(
     span = max(abs(lo), abs(hi))
     L = 0.35 * span
     F0, _ = steps(sliders.radians())
-    corners = np.array([[x, y, z] for x in (-span, span) for y in (-span, span) for z in (-span, span)])
+    # the view holds the two frames as they start (origins and axis tips), so they fill the picture;
+    # a slider that carries {i} out of it makes the viewer frame the pose again
+    tips = (F0[:, :3, 3][:, None, :] + L * np.swapaxes(F0[:, :3, :3], 1, 2)).reshape(-1, 3)
     viewer = Viewer(F0, F0[:, :3, 3], labels=["{i-1}", "", "", "", "{i}"], lengths=[L, 0.6 * L, 0.6 * L, 0.6 * L, L],
                     faint=[False, True, True, True, False], axes=[True, False, False, False, True],
-                    view_points=corners * 0.75, title=title, height=height, link_radius=0.012 * span,
+                    view_points=np.vstack([F0[:, :3, 3], tips]), title=title, height=height, link_radius=0.012 * span,
                     link_color="#8c8c8c", note="grey: the path of the origin (a along X, then d along Z)")  # fmt: skip
     name = frame_name("i-1", "i")
 

@@ -41,7 +41,7 @@ import traitlets
 from .._validate import as_array
 from ..kinematics.ik import IKSolutions
 from ..kinematics.robot import Robot
-from .frames import AXIS_COLORS, draw_frame, draw_points, new_axes, set_equal
+from .frames import AXIS_COLORS, draw_frame, draw_points, new_axes, note_below, set_equal
 
 __all__ = ["Viewer", "RobotViewer", "view_box"]
 
@@ -260,7 +260,7 @@ class Viewer(anywidget.AnyWidget):
             if sc["units"]:
                 ax.set(xlabel=f"x [{sc['units']}]", ylabel=f"y [{sc['units']}]", zlabel=f"z [{sc['units']}]")
             if note:
-                fig.text(0.01, 0.01, note, fontsize=9, color="0.35", style="italic", ha="left", va="bottom")
+                note_below(fig, ax, note)
             buf = io.BytesIO()
             fig.savefig(buf, format="png", dpi=dpi)
         finally:

@@ -94,8 +94,9 @@ def joint_sliders(
 
     Angles (``degrees`` True for that joint) are shown in degrees with the label
     ``"<name> [deg]"``; lengths (``degrees`` False, e.g. a prismatic joint) keep their value
-    and read ``"<name> [<units>]"`` (``"q2 []"`` for ``units=""``, a unitless length) or just
-    the name (``units=None``). ``values`` default to 0 where the limits allow, else the middle.
+    and read ``"<name> [<units>]"`` (``"q2 [length]"`` for ``units=""``: a chain that names no
+    unit has lengths in its own unit, never an empty ``[]``) or just the name (``units=None``).
+    ``values`` default to 0 where the limits allow, else the middle.
     ``step`` is in display units (default 1 degree, or 1/200 of the range for lengths). The
     returned :class:`SliderList` converts back with ``.radians()``. ``continuous_update``
     (default) reports values while a slider is dragged, so the view follows the hand.
@@ -125,7 +126,7 @@ def joint_sliders(
         st = steps[i]
         if st is None:
             st = 1.0 if deg[i] else float(10.0 ** np.floor(np.log10((b - a) / 200.0)))
-        label = f"{names[i]} [deg]" if deg[i] else (names[i] if units is None else f"{names[i]} [{units}]")
+        label = f"{names[i]} [deg]" if deg[i] else (names[i] if units is None else f"{names[i]} [{units or 'length'}]")
         sliders.append(
             widgets.FloatSlider(
                 value=v,

@@ -2,9 +2,11 @@
 
 :class:`Lab` starts ``jupyter lab`` on 127.0.0.1 (a free port, a random token) serving a
 temporary copy of the lectures (so nothing the browser does can change the committed
-notebooks), with its own settings and workspace folders (no autosave, no news, no update
-check: nothing leaves the machine). It stops the server by its PID. :func:`browser` launches
-the system Chromium (Playwright's own browser download does not work offline).
+notebooks), started as ``puma-course lab`` starts it (:func:`puma_course.cli.lab_command`) with
+empty settings and workspace folders of its own, so every JupyterLab setting is the default a
+student gets (windowed notebooks included); no news, no update check: nothing leaves the machine.
+It stops the server by its PID. :func:`browser` launches the system Chromium (Playwright's own
+browser download does not work offline).
 
 Used by ``tests/browser/test_lectures.py`` and ``benchmarks/bench_viewer.py``.
 """
@@ -13,6 +15,7 @@ from __future__ import annotations
 
 import json
 import os
+import random
 import secrets
 import shutil
 import signal
@@ -61,9 +64,18 @@ def missing() -> str | None:
 
 
 def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
+    """A free port on 127.0.0.1: the first free one of ``$PUMA_LAB_PORTS`` ("8800-8849") if set, else any."""
+    lo, _, hi = os.environ.get("PUMA_LAB_PORTS", "0").partition("-")
+    ports = list(range(int(lo), int(hi or lo) + 1))
+    random.shuffle(ports)  # two servers started at once rarely pick the same one
+    for port in ports:
+        with socket.socket() as s:
+            try:
+                s.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            return int(s.getsockname()[1])
+    raise RuntimeError(f"no free port in PUMA_LAB_PORTS={os.environ['PUMA_LAB_PORTS']}")
 
 
 class Lab:
@@ -75,19 +87,10 @@ class Lab:
         shutil.copytree(notebooks, self.root, ignore=shutil.ignore_patterns(".ipynb_checkpoints"))
         self.port = _free_port()
         self.token = secrets.token_hex(16)
+        # an empty settings folder: every JupyterLab setting at its default, as `puma-course lab` runs it
+        # (windowed notebooks, autosave on); only the user's own settings are kept out of the test
         settings = self.tmp / "settings"
-        (settings / "@jupyterlab" / "docmanager-extension").mkdir(parents=True)
-        (settings / "@jupyterlab" / "docmanager-extension" / "plugin.jupyterlab-settings").write_text(
-            json.dumps({"autosave": False})
-        )
-        (settings / "@jupyterlab" / "apputils-extension").mkdir(parents=True)
-        (settings / "@jupyterlab" / "apputils-extension" / "notification.jupyterlab-settings").write_text(
-            json.dumps({"fetchNews": "false", "checkForUpdates": False})
-        )
-        (settings / "@jupyterlab" / "notebook-extension").mkdir(parents=True)
-        (settings / "@jupyterlab" / "notebook-extension" / "tracker.jupyterlab-settings").write_text(
-            json.dumps({"windowingMode": "none"})  # every cell in the page, as a reader scrolling would see it
-        )
+        settings.mkdir()
         env = dict(os.environ)
         env.update(
             JUPYTERLAB_SETTINGS_DIR=str(settings),
@@ -98,29 +101,40 @@ class Lab:
         )
         env.pop("MPLBACKEND", None)
         self.log = open(self.tmp / "server.log", "wb")  # noqa: SIM115 - closed in stop()
-        self.proc = subprocess.Popen(
-            [
-                sys.executable,
-                "-m",
-                "jupyter",
-                "lab",
-                "--no-browser",
-                "--ServerApp.ip=127.0.0.1",
-                f"--ServerApp.port={self.port}",
-                "--ServerApp.port_retries=0",
-                f"--IdentityProvider.token={self.token}",
-                f"--ServerApp.root_dir={self.root}",
-                "--LabApp.news_url=",
-                "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
-                "--LabApp.extension_manager=readonly",
-            ]
-            + (["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else []),  # fmt: skip
-            stdout=self.log,
-            stderr=subprocess.STDOUT,
-            env=env,
-            cwd=self.root,
-        )
-        self._wait_ready()
+        for attempt in range(3):  # a port found free may be taken by another server before this one binds it
+            cmd = self.command()
+            self.proc = subprocess.Popen(cmd, stdout=self.log, stderr=subprocess.STDOUT, env=env, cwd=self.root)
+            try:
+                self._wait_ready()
+                break
+            except RuntimeError:
+                if attempt == 2 or "is not available" not in self.server_log():
+                    self.stop()
+                    raise
+                self.port = _free_port()
+
+    def command(self) -> list[str]:
+        """``puma-course lab``'s own command line (:func:`puma_course.cli.lab_command`) plus the server's address.
+
+        The extra options only choose where the server listens and turn off what would reach the
+        network (news, update check, extension manager): no JupyterLab setting differs from its default.
+        """
+        from puma_course.cli import lab_command
+
+        extra = [
+            "--ServerApp.ip=127.0.0.1",
+            f"--ServerApp.port={self.port}",
+            "--ServerApp.port_retries=0",
+            f"--IdentityProvider.token={self.token}",
+            "--LabApp.news_url=",
+            "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+            "--LabApp.extension_manager=readonly",
+        ]
+        if hasattr(os, "geteuid") and os.geteuid() == 0:
+            extra.append("--allow-root")
+        cmd = lab_command(self.root, extra, no_browser=True)
+        cmd[0] = sys.executable
+        return cmd
 
     @property
     def base(self) -> str:
@@ -296,3 +310,11 @@ def press_and_time(page: Any, handle: Any, box: Any, key: str = "ArrowRight", ti
     t_key = page.evaluate("() => window.__pumaKeyT")
     t_draw = box.evaluate("b => b.__puma.lastPoseRender")
     return float(t_draw - t_key)
+
+
+def press_and_time_parts(page: Any, handle: Any, box: Any, key: str = "ArrowRight") -> tuple[float, float]:
+    """Like :func:`press_and_time`: (key press -> repaint, key press -> the kernel's new pose arrives) in ms."""
+    total = press_and_time(page, handle, box, key)
+    t_key = page.evaluate("() => window.__pumaKeyT")
+    t_msg = box.evaluate("b => b.__puma.lastPoseMessage")
+    return total, float(t_msg - t_key)

@@ -165,6 +165,21 @@ def test_lecture_panels_in_chromium(name: str, lab: Lab, page: Any, artifacts: P
     assert all(0 <= lab_["ax"] <= bb["width"] and 0 <= lab_["ay"] <= bb["height"] for lab_ in back), back
     _no_overlap(back)
     panel.screenshot(path=str(artifacts / f"{stem}_panel_reset.png"))
+
+    # 5. the user's turn of the view is kept while the arm moves, and the arm stays in the picture
+    page.mouse.move(bb["x"] + bb["width"] / 2, bb["y"] + bb["height"] / 2)
+    page.mouse.down()
+    page.mouse.move(bb["x"] + bb["width"] / 2 - 90, bb["y"] + bb["height"] / 2 - 20, steps=6)
+    page.mouse.up()
+    page.wait_for_timeout(200)
+    eye = np.array(box.evaluate("b => b.__puma.eye"))
+    index, value = moves[0]
+    _set_slider(page, box, index, value - 90.0)
+    page.wait_for_timeout(200)
+    np.testing.assert_allclose(box.evaluate("b => b.__puma.eye"), eye, atol=1e-6)
+    moved = box.evaluate("b => b.__puma.labels")
+    assert all(0 <= lab_["ax"] <= bb["width"] and 0 <= lab_["ay"] <= bb["height"] for lab_ in moved), moved
+    panel.screenshot(path=str(artifacts / f"{stem}_panel_turned_moved.png"))
     assert not page.errors, f"{name}: errors on the page: {page.errors}"
 
 
@@ -230,3 +245,86 @@ def test_ik_ghosts_and_animation_in_chromium(lab: Lab, page: Any, artifacts: Pat
     np.testing.assert_allclose(origins[-1], Puma560().fk(Puma560().q("qr"))[:3, 3], atol=1e-4)
     anim_box.screenshot(path=str(artifacts / "animation_end.png"))
     assert not page.errors, f"errors on the page: {page.errors}"
+
+
+# ---- every lecture as a student gets it (JupyterLab's default, windowed notebook) ----------------------
+
+ALL_LECTURES = sorted(p.name for p in (Path(__file__).resolve().parents[2] / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+
+IMAGE_SIZE = """(img) => {
+    const r = img.getBoundingClientRect();
+    const box = img.closest('.jp-OutputArea-output') || img.parentElement;
+    return {w: r.width, h: r.height, nw: img.naturalWidth, nh: img.naturalHeight, complete: img.complete,
+            room: box.getBoundingClientRect().width, src: (img.getAttribute('src') || '').slice(0, 40)};
+}"""
+
+
+def _drawn_at_natural_size(img: Any, where: str) -> None:
+    """The image, scrolled into view, is drawn at its natural size (or scaled down to the output's width)."""
+    # a reader scrolls the output into view (the image itself may have no box to scroll to until then)
+    out = img.evaluate_handle("i => i.closest('.jp-OutputArea-output')")
+    out.evaluate("o => o.scrollIntoView({block: 'center'})")
+    try:  # the output's image, looked up afresh (the player may replace its element once it is in view)
+        img.page.wait_for_function(
+            "o => [...o.querySelectorAll('img')].every(i => i.complete && i.naturalWidth > 0"
+            " && i.getBoundingClientRect().width > 0)",
+            arg=out, timeout=5_000,
+        )  # fmt: skip
+    except Exception:
+        pass  # measured below: the message says what was drawn
+    s = img.evaluate(IMAGE_SIZE)
+    want_w = min(s["nw"], s["room"])
+    assert abs(s["w"] - want_w) <= 1.5, f"{where}: drawn {s['w']:.0f} x {s['h']:.0f}, natural {s['nw']} x {s['nh']}"
+    assert abs(s["h"] - s["nh"] * want_w / s["nw"]) <= 1.5, f"{where}: drawn {s['w']:.0f} x {s['h']:.0f}, natural {s}"
+
+
+@pytest.mark.parametrize("name", ALL_LECTURES)
+def test_lecture_as_a_student_gets_it(name: str, lab: Lab, page: Any, artifacts: Path) -> None:
+    """Opened unmodified; after Run All every output image is drawn at its size, every animation plays on one click."""
+    stem = name.split("_")[0]
+    open_notebook(page, lab, name)
+    page.wait_for_timeout(500)
+    dirty = page.locator(".lm-DockPanel-tabBar .lm-TabBar-tab.jp-mod-dirty")
+    assert dirty.count() == 0, f"{name}: JupyterLab marks the notebook modified right after opening it"
+    run_all(page)
+    outputs = page.locator(".jp-Notebook .jp-CodeCell .jp-OutputArea-output")
+    images = page.locator(".jp-Notebook .jp-CodeCell .jp-OutputArea-output img")
+    for k in range(images.count()):
+        _drawn_at_natural_size(images.nth(k), f"{name}: output image {k}")
+    players = page.locator(".jp-Notebook .jp-OutputArea-output .animation")
+    for k in range(players.count()):
+        player = players.nth(k)
+        img = player.locator("img").first
+        _drawn_at_natural_size(img, f"{name}: animation {k}'s picture")
+        play = player.get_by_role("button", name="Play", exact=True)
+        before = play.bounding_box()
+        first = img.get_attribute("src")
+        slider = player.locator("input.anim-slider")
+        start = int(slider.input_value())
+        play.click()
+        page.wait_for_function(
+            "([s, v]) => parseInt(s.value) !== v", arg=[slider.element_handle(), start], timeout=5_000
+        )
+        after = play.bounding_box()
+        assert before is not None and after is not None
+        assert abs(after["y"] - before["y"]) < 1 and abs(after["x"] - before["x"]) < 1, (
+            f"{name}: animation {k}'s play button moved under the pointer: {before} -> {after}"
+        )
+        try:  # a player may show its first picture for a few frames (lecture 10 holds the start)
+            page.wait_for_function(
+                "([p, f]) => p.querySelector('img').getAttribute('src') !== f", arg=[player.element_handle(), first],
+                timeout=10_000,
+            )  # fmt: skip
+        except Exception:
+            pass
+        assert img.get_attribute("src") != first, f"{name}: animation {k} did not change its picture"
+        _drawn_at_natural_size(img, f"{name}: animation {k}'s picture while it plays")
+        player.get_by_role("button", name="Pause", exact=True).click()
+        player.screenshot(path=str(artifacts / f"{stem}_animation_{k}.png"))
+    assert outputs.count() > 0
+    for text in output_texts(page):
+        assert "Error displaying widget" not in text
+        assert "NBVAL" not in text
+    sources = page.locator(".jp-Notebook .jp-CodeCell .jp-InputArea").all_inner_texts()
+    assert not any("NBVAL" in s for s in sources), f"{name}: an nbval pragma is shown in a cell"
+    assert not page.errors, f"{name}: errors on the page: {page.errors}"

@@ -6,7 +6,11 @@ import nbformat
 import numpy as np
 import pytest
 
-from puma_course.grading import Exercise, Question
+from puma_course.grading import Exercise, Question, load_bank
+from tests.support import ROOT
+
+# the course's question bank (ROOT/bank), imported as puma_course_bank before any test module needs it
+load_bank(ROOT)
 
 
 def _make_notebook(*cells: tuple[str, str, list[str] | None]) -> nbformat.NotebookNode:

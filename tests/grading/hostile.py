@@ -18,8 +18,11 @@ says how to run it::
 Placeholders in the code are filled in before grading, so an attack knows what a real attacker could find
 out: ``{{SUBMISSIONS}}``, ``{{OUTPUT}}``, ``{{FEEDBACK}}``, ``{{ROOT}}`` (the course checkout),
 ``{{SITE}}`` (site-packages), ``{{HOME}}`` (the grader's home), ``{{MARK}}`` (a name unique to the
-run), ``{{PORT}}`` (a TCP port the test listens on). An attack that finds something it should not
-reports it by ending its process with exit code 97 (``LEAK()``), which the grader repeats in the notes.
+run), ``{{PORT}}`` (a TCP port the test listens on), ``{{TABLE}}`` (JSON: the hidden cases' answers a
+student rebuilds at home from the question bank and every seed they could know, :func:`home_table`).
+The class is graded with a secret key file in the class folder (as ``puma-course grade`` does).
+An attack that finds something it should not reports it by ending its process with exit code 97
+(``LEAK()``), which the grader repeats in the notes.
 
 :func:`run_attack` grades the class {attacker, honest (a copy of ``solutions/``), blank (a copy of
 ``exercises/``)} and :func:`check_run` asserts, for every fixture: the run finished and wrote its CSV
@@ -36,6 +39,7 @@ import functools
 import glob
 import hashlib
 import importlib.util
+import json
 import os
 import re
 import shutil
@@ -311,6 +315,8 @@ def run_attack(fx: Fixture, mode: str, tmp_path: Path, monkeypatch: pytest.Monke
             listener.close()
             pytest.skip(f"NO CONTROL GROUPS here, the per-notebook limits cannot be tested: {groups.reason}")
     before = {"subs": _digest(subs), "watched": watched()}
+    if any("{{TABLE}}" in cell for cell in fx.cells):
+        values["TABLE"] = home_table(fx.exercises, "attacker")
     monkeypatch.setenv("PUMA_HOSTILE_SECRET", mark)
     limits = {**LIMITS, **fx.limits}
     started = time.time()
@@ -321,7 +327,7 @@ def run_attack(fx: Fixture, mode: str, tmp_path: Path, monkeypatch: pytest.Monke
             out,
             feedback=fb,
             jobs=2,
-            seed=7,
+            secret=root / ".grading-secret",
             exercises=fx.exercises,
             sandbox=box,
             cgroups=groups or True,
@@ -363,6 +369,52 @@ for _name in {functions!r}:
 
 def _functions(exercise: str) -> list[str]:
     return list(dict.fromkeys(q.function for q in EXERCISES[exercise].questions))
+
+
+#: The seeds a student could know: the one earlier versions printed in every feedback, and small guesses.
+KNOWN_SEEDS = (7, 0, 1, 2, 3, 42, 2024)
+
+
+def table_key(args: Any) -> str:
+    """The lookup key of a call's arguments (rounded, so a value that went through JSON still matches)."""
+    import numpy as np
+
+    def r(a: Any) -> Any:
+        if isinstance(a, str):
+            return a
+        arr = np.asarray(a, dtype=float)
+        return np.round(arr, 9).tolist()
+
+    return json.dumps([r(a) for a in args])
+
+
+def home_table(exercises: list[str], student: str) -> str:
+    """JSON {function: {table_key(args): answer}}: every hidden case a student can rebuild at home.
+
+    The student holds the question bank and the grader's code, and knows every seed in
+    :data:`KNOWN_SEEDS` (earlier versions printed the seed in the feedback): they draw the hidden
+    cases of the shared-seed plan and of the public-seed keys, for their own name, and store a right
+    answer for each. Public cases are left out (their answers are no secret).
+    """
+    import numpy as np
+
+    from puma_course.grading.runner import make_plan
+    from puma_course.grading.secret import from_seed
+
+    table: dict[str, dict[str, Any]] = {}
+    for name in exercises:
+        ex = EXERCISES[name]
+        public = {(q.qid, k) for q in ex.questions for k in range(len(q.public))}
+        for seed in KNOWN_SEEDS:
+            for plan in (make_plan(ex, seed), make_plan(ex, from_seed(seed), student)):
+                for call in plan:
+                    if (call["qid"], call["case"]) in public:
+                        continue
+                    answer = ex.question(call["qid"]).right_answer(*call["call_args"])
+                    table.setdefault(call["function"], {})[table_key(call["call_args"])] = np.asarray(
+                        answer, dtype=float
+                    ).tolist()
+    return json.dumps(table)
 
 
 def _digest(folder: Path) -> dict[str, str]:

@@ -1,4 +1,5 @@
-"""The question bank (puma_course.grading.bank): consistent, fair, worked by hand, one file per exercise."""
+"""The question bank (the course folder's bank/, imported as puma_course_bank): consistent, fair, worked by hand,
+one file per exercise."""
 
 from __future__ import annotations
 
@@ -8,16 +9,17 @@ import json
 import numpy as np
 import pytest
 
+import puma_course_bank as bank
 from puma_course import MK3, Porter, Puma560, transforms
-from puma_course.grading import EXERCISES, Exercise, Question, bank
-from puma_course.grading.bank import _formulas
-from puma_course.grading.bank._reference import chains, motion, porter_chain
+from puma_course.grading import EXERCISES, Exercise, Question
 from puma_course.grading.model import register
-from puma_course.grading.runner import _jsonable
+from puma_course.grading.plan import _jsonable
 from puma_course.grading.worker import forbidden_codes, resolve
+from puma_course_bank import _formulas
+from puma_course_bank._reference import chains, motion, porter_chain
 from tests.support import ROOT
 
-BANK = ROOT / "puma_course" / "grading" / "bank"
+BANK = ROOT / "bank"
 QUESTIONS = [(ex.name, q.qid) for ex in EXERCISES.values() for q in ex.questions]
 
 
@@ -157,10 +159,10 @@ def test_bank_files_call_the_kinematics_only_through_reference(name):
         "__future__",
         "typing",
         "numpy",
-        "..model",
-        "..compare",
-        "..diagnose",
-        "..judges",
+        "puma_course.grading.model",
+        "puma_course.grading.compare",
+        "puma_course.grading.diagnose",
+        "puma_course.grading.judges",
         "._inputs",
         "._formulas",
         "._reference",
@@ -180,11 +182,12 @@ def test_bank_files_call_the_kinematics_only_through_reference(name):
             "math",
             "zlib",
             "numpy",
-            "...transforms",
+            "puma_course.transforms",
         }, helper
     for path in (BANK / "_reference").glob("*.py"):
-        package = {m for m, _ in _imports(path) if m.startswith("....")}
-        assert package <= {"....", "....kinematics", "....kinematics.porter"}, (path.name, package)
+        package = {m for m, _ in _imports(path) if m.startswith("puma_course")}
+        allowed_package = {"puma_course", "puma_course.kinematics", "puma_course.kinematics.porter"}
+        assert package <= allowed_package, (path.name, package)
 
 
 @pytest.mark.parametrize(("name", "qid"), QUESTIONS, ids=[f"{n}:{q}" for n, q in QUESTIONS])

@@ -258,13 +258,15 @@ def test_hidden_case_details_are_held_back_until_the_due_date():
 
 
 def test_the_course_bank_folder_goes_into_the_zip(tmp_path):
-    assert _bank_files(tmp_path) == {}  # today: the bank is inside the wheel
+    assert _bank_files(tmp_path) == {}  # a folder without a bank ships none
+    shutil.copytree(ROOT / "bank", tmp_path / "bank", ignore=shutil.ignore_patterns("__pycache__"))
     (tmp_path / "bank" / "__pycache__").mkdir(parents=True)
-    (tmp_path / "bank" / "ex01_rotations.py").write_text("QUESTIONS = 1\n", encoding="utf-8")
     (tmp_path / "bank" / "__pycache__" / "x.pyc").write_bytes(b"0")
-    assert _bank_files(tmp_path) == {"bank/ex01_rotations.py": b"QUESTIONS = 1\n"}
+    files = _bank_files(tmp_path)
+    mine = (tmp_path / "bank" / "ex01_rotations.py").read_bytes()
+    assert files["bank/ex01_rotations.py"] == mine and not any("__pycache__" in n for n in files)
     (tmp_path / "solutions").mkdir()  # a course folder
     out = tmp_path / "a.zip"
     assert main(["gradescope", EX, "-o", str(out), "--course", str(tmp_path)]) == 0
     with zipfile.ZipFile(out) as zf:
-        assert zf.read("bank/ex01_rotations.py") == b"QUESTIONS = 1\n"
+        assert zf.read("bank/ex01_rotations.py") == mine

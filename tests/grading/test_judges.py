@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from puma_course.grading import EXERCISES
-from puma_course.grading.bank._reference import chains
+from puma_course_bank._reference import chains
 
 H, PI = np.pi / 2, np.pi
 

@@ -169,6 +169,7 @@ def test_inside_the_course_and_private_folders_are_not_there(tmp_path):
 def test_the_cli_names_the_sandbox_and_records_it(tmp_path, capsys):
     subs = tmp_path / "subs"
     (subs / "ann").mkdir(parents=True)
+    shutil.copy(ROOT / "exercises" / "ex01_rotations.ipynb", subs / "ann")  # handed in as handed out
     args = [
         "grade",
         str(subs),

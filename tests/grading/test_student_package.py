@@ -138,3 +138,111 @@ def test_a_bad_allowed_entry_is_refused(tmp_path, spec, message):
 def test_every_exercise_of_the_bank_builds():
     for ex in EXERCISES.values():
         assert requirements(ex.allowed) is not None
+
+
+_RESOLVE = """
+import importlib
+for spec in KEYS:
+    module, _, path = spec.partition(":")
+    try:
+        obj = importlib.import_module(module)
+        for part in path.split("."):
+            obj = getattr(obj, part)
+        result[spec] = "there"
+    except (ImportError, AttributeError) as exc:
+        result[spec] = f"{type(exc).__name__}: {exc}"
+"""
+
+
+@pytest.mark.parametrize("name", sorted(EXERCISES))
+def test_no_answer_key_of_an_exercise_is_in_its_student_side(tmp_path, name):
+    """Every answer key the exercise does not allow by name is absent, class members included, saying why."""
+    ex = EXERCISES[name]
+    build(name, ex.allowed, tmp_path, ex.answer_keys)
+    keys = [k for k in ex.answer_keys if k not in ex.allowed and ".grading." not in k]
+    got = _run(tmp_path, f"KEYS = {keys!r}\n{_RESOLVE}")
+    assert {k: v for k, v in got.items() if v == "there"} == {}
+    for spec, said in got.items():
+        assert "not available in this exercise" in said or "No module named" not in said, (spec, said)
+
+
+@pytest.mark.parametrize(
+    ("name", "cls", "module", "gone", "helpers"),
+    [
+        ("ex09_puma_ik", "Puma560", "puma_course.kinematics.puma560", ("ik", "ik_batch", "_batch_block"),
+         ("_arm", "_wrist", "_reach", "_wrist_terms", "_reason")),
+        ("ex06_porter_explicit", "Porter", "puma_course.kinematics.porter", ("ik", "ik_batch", "classify", "_batch"),
+         ("branch", "pose_terms", "construct", "angle")),
+        ("ex07_porter_geometric", "Porter", "puma_course.kinematics.porter", ("ik", "ik_batch", "_explicit_one"),
+         ("branch", "pose_terms", "construct", "angle")),
+    ],
+)  # fmt: skip
+def test_an_allowed_robot_keeps_its_allowed_members_only(tmp_path, name, cls, module, gone, helpers):
+    """fk, frames, points and the named configurations work as in the package; ik and its kernels are not there."""
+    ex = EXERCISES[name]
+    build(name, ex.allowed, tmp_path, ex.answer_keys)
+    every = "\n".join(p.read_text(encoding="utf-8") for p in (tmp_path / "puma_course").rglob("*.py"))
+    path = tmp_path / module.replace(".", "/")
+    own = (path / "__init__.py" if path.is_dir() else path.with_suffix(".py")).read_text(encoding="utf-8")
+    for helper in helpers:
+        assert f"def {helper}(" not in every, helper  # not wrapped: not there at all
+    for member in gone:  # (the bases' abstract ik, which computes nothing, stays in robot.py and dh.py)
+        assert f"def {member}(" not in own and f"{member} = _AbsentMember()" in own, member
+    got = _run(
+        tmp_path,
+        f"""
+import numpy as np
+from {module} import {cls}
+arm = {cls}()
+q = np.array([0.3, -0.4, 0.5, 0.2, 0.6, 0.1])
+result["fk"] = arm.fk(q).tolist()
+result["frames"] = arm.frames(q).tolist()
+result["points"] = arm.points(q).tolist()
+result["configurations"] = {{k: np.asarray(v).tolist() for k, v in arm.configurations.items()}}
+for member in {gone!r}:
+    for owner in (arm, {cls}):
+        try:
+            getattr(owner, member)
+            result[member] = "there"
+        except AttributeError as exc:
+            result[member] = str(exc)
+    result[member + "?"] = hasattr(arm, member)
+result["mro"] = [k.__name__ for k in type(arm).__mro__]
+""",
+    )
+    real = {"Puma560": Puma560, "Porter": Porter}[cls]()
+    q = np.array([0.3, -0.4, 0.5, 0.2, 0.6, 0.1])
+    assert np.allclose(got["fk"], real.fk(q)) and np.allclose(got["frames"], real.frames(q))
+    assert np.allclose(got["points"], real.points(q))
+    assert got["configurations"].keys() == real.configurations.keys()
+    for member in gone:
+        assert got[member].startswith(f"{cls}.{member} is not available in this exercise"), got[member]
+        assert got[member + "?"] is False
+    assert got["mro"][0] == cls
+
+
+def test_an_answer_of_another_exercise_stays_where_it_is_allowed(tmp_path):
+    """Exercise 10 uses Puma560.ik (exercise 9's answer) but not the nearest-solution helpers (its own)."""
+    ex = EXERCISES["ex10_trajectories"]
+    build(ex.name, ex.allowed, tmp_path, ex.answer_keys)
+    got = _run(
+        tmp_path,
+        """
+import numpy as np
+from puma_course.kinematics.puma560 import Puma560
+arm = Puma560()
+sol = arm.ik(arm.fk(np.array([0.3, -0.4, 0.5, 0.2, 0.6, 0.1])))
+result["q"] = np.asarray(sol).tolist()
+result["html"] = "<table" in sol._repr_html_()  # what answers nothing stays (the notebook display)
+try:
+    sol.nearest(np.zeros(6))
+    result["nearest"] = "there"
+except AttributeError as exc:
+    result["nearest"] = str(exc)
+""",
+    )
+    assert len(got["q"]) == 8
+    real = Puma560()
+    assert all(np.allclose(real.fk(q), real.fk([0.3, -0.4, 0.5, 0.2, 0.6, 0.1])) for q in got["q"])
+    assert got["nearest"].startswith("IKSolutions.nearest is not available in this exercise")
+    assert got["html"] is True

@@ -140,3 +140,32 @@ def test_the_text_repr_names_the_viewer_and_holds_no_memory_address():
     data = data[0] if isinstance(data, tuple) else data
     assert data["text/plain"] == repr(v) == "RobotViewer('Motoman MK3', 6 frames)"
     assert "0x" not in data["text/plain"]
+
+
+def test_the_stills_note_sits_under_the_axes_numbers_and_labels():
+    import matplotlib.pyplot as plt
+
+    from puma_course.viz.frames import new_axes, note_below, set_equal
+    from puma_course.viz.viewer import STILL_NOTE
+
+    fig, ax = new_axes(figsize=(5.6, 4.2), title="PUMA-560", dpi=110)
+    try:
+        set_equal(ax, np.array([[-0.6, -0.6, -0.4], [0.6, 0.6, 1.0]]))
+        ax.set(xlabel="x [m]", ylabel="y [m]", zlabel="z [m]")
+        size = fig.get_size_inches().copy()
+        note_below(fig, ax, STILL_NOTE)
+        fig.canvas.draw()
+        r = fig.canvas.get_renderer()
+        note = fig.texts[-1].get_window_extent(r)
+        drawn = [a.label.get_window_extent(r) for a in (ax.xaxis, ax.yaxis, ax.zaxis)]
+        ticks = [t.get_window_extent(r) for a in (ax.xaxis, ax.yaxis, ax.zaxis) for t in a.get_ticklabels()
+                 if t.get_text() and t.get_visible()]  # fmt: skip
+        W = fig.get_size_inches()[0] * fig.dpi
+        drawn += [b for b in ticks if 0 <= b.x0 and b.x1 <= W]  # the numbers drawn (not those of ticks out of view)
+        assert len(drawn) >= 6  # three axis labels and their numbers
+        for b in drawn:
+            assert not note.overlaps(b), f"the note {note} overlaps {b}"
+        assert note.y1 < min(b.y0 for b in drawn)  # under all of it
+        assert note.y0 >= 0 and fig.get_size_inches()[1] >= size[1]  # inside the picture, which grew to hold it
+    finally:
+        plt.close(fig)

@@ -53,7 +53,7 @@ def test_joint_sliders_labels_and_units():
 
 
 def test_joint_sliders_unitless_lengths_and_bare_names():
-    assert joint_sliders(["q2"], 0.0, 2.0, degrees=False, units="")[0].description == "q2 []"
+    assert joint_sliders(["q2"], 0.0, 2.0, degrees=False, units="")[0].description == "q2 [length]"
     assert joint_sliders(["d"], 0.0, 2.0, degrees=False)[0].description == "d"
     s = joint_sliders(["θ", "d"], [-np.pi, 1.0], [np.pi, 2.0], degrees=[True, False])
     assert [x.value for x in s] == [0.0, 1.5]  # 0 where the range allows it, else the middle
@@ -169,7 +169,7 @@ def test_robot_panel_porter_labels_units_and_stroke():
     labels = ["{0}", "", "{2}", "{3}", "{4}", "{5}"]
     panel = robot_panel(arm, q=[0.5, -0.4, 1.2, 0.9, 0.6, -0.3], labels=labels)
     assert [s.description for s in panel.sliders] == [
-        "α1 [deg]", "α2 [deg]", "q2 []", "α3 [deg]", "α4 [deg]", "α5 [deg]",
+        "α1 [deg]", "α2 [deg]", "q2 [length]", "α3 [deg]", "α4 [deg]", "α5 [deg]",
     ]  # fmt: skip
     assert panel.sliders[2].max == pytest.approx(2 * (1.0 + 0.5 + 0.3))  # the default stroke 2 (l1 + l3 + l4)
     assert panel.sliders[2].value == 1.2 and panel.sliders[0].value == pytest.approx(np.degrees(0.5))
@@ -219,7 +219,8 @@ def test_robot_panel_ik_at_a_singular_pose_says_so_without_a_warning():
 def test_dh_link_panel_matrix_matches_hand_worked_cases():
     panel = dh_link_panel()
     s = panel.sliders
-    assert [x.description for x in s] == ["α_{i-1} [deg]", "a_{i-1}", "θ_i [deg]", "d_i"]
+    assert [x.description for x in s] == ["αᵢ₋₁ [deg]", "aᵢ₋₁ [length]", "θᵢ [deg]", "dᵢ [length]"]
+    assert not any(c in x.description for x in s for c in "_^{}\\")  # plain Unicode, no TeX
     # α = 90°, a = 1, θ = 0, d = 0.5: Z_i = -Y_{i-1}, origin at (a, -d, 0) by hand
     s[0].value, s[1].value, s[2].value, s[3].value = 90.0, 1.0, 0.0, 0.5
     T = panel.last_frames[-1]

@@ -19,7 +19,7 @@ by what it *does*:
 * :func:`stroke_judge`: Porter's parallel-planes representative (front plane, minimal stroke).
 
 The judges need no kinematics of their own: the bank passes in what they evaluate (the chain of a
-student's table, the robot's forward kinematics) from :mod:`puma_course.grading.bank._reference`.
+student's table, the robot's forward kinematics) from the course's bank (``bank/_reference/``).
 """
 
 from __future__ import annotations

@@ -10,6 +10,7 @@ import numpy as np
 from ...transforms import wrap_angle
 from ..diagnose import close
 from ..model import Judge, Verdict
+from ..remake import made
 from ._poses import POS_TOL, _dist, _floats, _off, _radians, _wrapped, pose_ok
 
 
@@ -115,7 +116,7 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
             return Verdict("the right solutions, in another order: sort them as the question asks", "solution_order")
         return Verdict(None)
 
-    return judge
+    return made(judge, solution_set_judge, match_tol)
 
 
 def nearest_judge() -> Judge:
@@ -161,7 +162,7 @@ def nearest_judge() -> Judge:
         key, message = candidates[0]
         return Verdict(message, key, tuple(candidates), not_nearest)
 
-    return judge
+    return made(judge, nearest_judge)
 
 
 def path_judge(slack: float = 0.01) -> Judge:
@@ -215,7 +216,7 @@ def path_judge(slack: float = 0.01) -> Judge:
             )
         return Verdict(None)
 
-    return judge
+    return made(judge, path_judge, slack)
 
 
 def rotation_judge(from_angles: Callable[..., np.ndarray]) -> Judge:
@@ -243,7 +244,7 @@ def rotation_judge(from_angles: Callable[..., np.ndarray]) -> Judge:
             f"{float(np.max(np.abs(mine - R))):.3g}"
         )
 
-    return judge
+    return made(judge, rotation_judge, from_angles)
 
 
 def stroke_judge() -> Judge:
@@ -276,4 +277,4 @@ def stroke_judge() -> Judge:
             )
         return Verdict(None)
 
-    return judge
+    return made(judge, stroke_judge)

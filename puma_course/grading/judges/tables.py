@@ -7,18 +7,57 @@ from typing import Any
 
 import numpy as np
 
+from ...kinematics import DHChain, Link
+from ...kinematics.standard_dh import standard_dh
 from ..model import Judge, Verdict
+from ..remake import made
 from ._poses import POS_TOL, _constant, _floats, _off, pose_ok
 
 # ------------------------------------------------------------------------------------------ DH tables
 TableFk = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
 
-def table_judge(chain_fk: TableFk, standard_fk: TableFk) -> Judge:
+def modified_table_fk(table: Any, Q: Any) -> np.ndarray:
+    """The poses of a table's chain (rows α_{i-1}, a_{i-1}, θ_i, d_i, σ_i; σ = 1 prismatic) at Q (N, n) or q (n,).
+
+    Craig's modified link matrices, through :class:`~puma_course.kinematics.DHChain` (an RP chain by hand:
+    the prismatic joint slides 0.5 along z, which θ1 = π/2 leaves where it is).
+
+    >>> T = modified_table_fk([[0, 0, 0, 0, 0], [0, 0, 0, 0, 1]], [np.pi / 2, 0.5])
+    >>> np.round(T[:3, 3], 12).tolist()
+    [0.0, 0.0, 0.5]
+    """
+    rows = np.asarray(table, dtype=float).reshape(-1, 5)
+    chain = DHChain([Link(r[0], r[1], r[3], r[2], "P" if r[4] > 0.5 else "R") for r in rows])
+    return chain.fk(np.asarray(Q, dtype=float))
+
+
+def standard_table_fk(table: Any, Q: Any) -> np.ndarray:
+    """The same table read as a standard-DH table: Rot(Z, θ) Trans(Z, d) Trans(X, a) Rot(X, α) per row.
+
+    >>> T = standard_table_fk([[0, 1.0, 0, 0, 0]], [np.pi / 2])  # a = 1 along the turned x axis
+    >>> np.round(T[:3, 3], 12).tolist()
+    [0.0, 1.0, 0.0]
+    """
+    rows = np.asarray(table, dtype=float).reshape(-1, 5)
+    Qs = np.atleast_2d(np.asarray(Q, dtype=float))
+    prism = rows[:, 4] > 0.5
+    out = []
+    for q in Qs:
+        T = np.eye(4)
+        for i, r in enumerate(rows):
+            theta, d = (r[2], r[3] + q[i]) if prism[i] else (r[2] + q[i], r[3])
+            T = T @ standard_dh(theta, d, r[1], r[0])
+        out.append(T)
+    return np.stack(out) if np.ndim(Q) > 1 else out[0]
+
+
+def table_judge(chain_fk: TableFk = modified_table_fk, standard_fk: TableFk = standard_table_fk) -> Judge:
     """Judge a DH table (rows α_{i-1}, a_{i-1}, θ_i, d_i, σ_i) by the poses its chain reaches.
 
     ``chain_fk(table, Q)`` evaluates a table with Craig's modified link matrices and
-    ``standard_fk(table, Q)`` with the standard (distal) ones, for joint values Q (N, n). The
+    ``standard_fk(table, Q)`` with the standard (distal) ones, for joint values Q (N, n) (default: the
+    engine's :func:`modified_table_fk` and :func:`standard_table_fk`, which a student edition carries). The
     reference gives ``{"fk": poses of Q, "Q": hidden joint values (N, n), "revolute": (n,) mask,
     "scale": the mechanism's size}``; the table passes when its chain reaches every reference pose.
     """
@@ -53,7 +92,7 @@ def table_judge(chain_fk: TableFk, standard_fk: TableFk) -> Judge:
             return Verdict(None)
         return _table_mistake(table, T_got, T_ref, fk, Q, rev, scale, chain_fk, standard_fk)
 
-    return judge
+    return made(judge, table_judge, chain_fk, standard_fk)
 
 
 def _table_mistake(

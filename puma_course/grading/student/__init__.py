@@ -13,8 +13,11 @@ process can see at all). It holds:
 * nothing else: importing any other part of the package fails with an ``ImportError`` saying it
   is not available in this exercise.
 
-Reference answers are never in it: the question bank (``puma_course.grading``) is refused as an
-allowed name, and expected values are computed in the grader's process only.
+An allowed class holds its allowed members only: the exercise's answer keys that are members of it
+(``Puma560.ik``) are not in the copy, nor what only they use; reading one raises AttributeError
+saying it is not available in this exercise. Reference answers are never in it: the question bank
+(``puma_course.grading``) is refused as an allowed name, and expected values are computed in the
+grader's process only.
 """
 
 from __future__ import annotations
@@ -81,14 +84,20 @@ def _target(folder: Path, module: str) -> Path:
     return folder / rel / "__init__.py" if real is not None and real.name == "__init__.py" else folder / f"{rel}.py"
 
 
-def build(exercise_name: str, allowed: Iterable[str], folder: str | os.PathLike[str]) -> Path:
+def build(
+    exercise_name: str, allowed: Iterable[str], folder: str | os.PathLike[str], answers: Iterable[str] = ()
+) -> Path:
     """Write the student-side package for an exercise into ``folder`` (created); return ``folder``.
 
     ``folder`` is what goes first on the student's ``sys.path``: it holds ``puma_course/``.
+    ``answers`` are the exercise's answer keys (:attr:`~puma_course.grading.Exercise.answer_keys`):
+    those not named in ``allowed`` are left out of the copy, class members included (an allowed
+    ``Puma560`` keeps ``fk``, ``frames``, ``points``, its named configurations, but has no ``ik``,
+    no ``ik_batch`` and none of the private helpers that compute them).
     """
     allowed = tuple(allowed)
     folder = Path(folder)
-    sources = shake(requirements(allowed))
+    sources = shake(requirements(allowed), frozenset(answers) - set(allowed))
     sources.setdefault(ROOT_PACKAGE, "")
     footer = templates.MODULE_FOOTER.format(allowed=templates.message(allowed))
     for module, body in sources.items():

@@ -76,12 +76,16 @@ class _Source:
     imports: dict[str, _Import] = field(default_factory=dict)
 
     @classmethod
-    def load(cls, name: str) -> _Source:
+    def load(cls, name: str, absent: frozenset[str] = frozenset()) -> _Source:
         path = module_file(name)
         if path is None:
             raise ValueError(f"allowed: expected a module of {ROOT_PACKAGE}, got {name!r}")
         text = path.read_text(encoding="utf-8")
         tree = ast.parse(text, filename=str(path))
+        if absent:
+            stripped = _strip_members(name, path.name == "__init__.py", tree, absent)
+            if stripped is not None:
+                text, tree = stripped, ast.parse(stripped, filename=str(path))
         future = any(
             isinstance(s, ast.ImportFrom) and s.module == "__future__" and any(a.name == "annotations" for a in s.names)
             for s in tree.body
@@ -137,6 +141,111 @@ class _Source:
             elif isinstance(node, ast.Import):
                 found += [(a.name, None) for a in node.names if a.name.split(".")[0] == ROOT_PACKAGE]
         return found
+
+
+#: Source of the stand-in for a class member an exercise does not give (``_ALLOWED_HERE`` comes from the
+#: generated module's footer, defined once the module has run; ABCMeta reads the member before). It
+#: holds nothing of the member: reading it raises AttributeError.
+ABSENT_MEMBER = '''
+class _AbsentMember:
+    """A member of this class that this exercise does not give: reading it says so."""
+
+    __slots__ = ("label",)
+
+    def __set_name__(self, owner, name):
+        self.label = owner.__name__ + "." + name
+
+    def __get__(self, obj, owner=None):
+        raise AttributeError(
+            self.label + " is not available in this exercise: write it yourself "
+            "(what this exercise lets you import from puma_course: " + str(globals().get("_ALLOWED_HERE")) + ")"
+        )
+'''
+
+
+def _absent_globals(module: str, is_package: bool, tree: ast.Module, absent: frozenset[str]) -> set[str]:
+    """Module-level names of ``module`` that are answers: defined here or imported from where they are."""
+    names = {spec.partition(":")[2] for spec in absent if spec.partition(":")[0] == module}
+    found = {n for n in names if "." not in n}
+    for stmt in tree.body:
+        if isinstance(stmt, ast.ImportFrom) and stmt.module != "__future__":
+            origin = _resolve_relative(module, is_package, stmt.level, stmt.module)
+            found |= {a.asname or a.name for a in stmt.names if f"{origin}:{a.name}" in absent}
+    return found
+
+
+def _member_refs(stmt: ast.stmt, class_name: str) -> tuple[set[str], set[str]]:
+    """(global names a member reads, attributes it reads on ``self``, ``cls`` or its own class).
+
+    A name the member binds itself (an argument, an assignment) is its own, not a global.
+    """
+    names, attrs, own = set(), set(), set()
+    for node in ast.walk(stmt):
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+            names.add(node.id)
+        elif isinstance(node, ast.Name):
+            own.add(node.id)
+        elif isinstance(node, ast.arg):
+            own.add(node.arg)
+        elif isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):
+            if node.value.id in ("self", "cls", class_name):
+                attrs.add(node.attr)
+    return names - own, attrs
+
+
+def _strip_members(module: str, is_package: bool, tree: ast.Module, absent: frozenset[str]) -> str | None:
+    """The module's source with the answer members of its classes replaced by :data:`ABSENT_MEMBER` (None: none).
+
+    A class loses the members named in ``absent`` (``"module:Class.member"``), every member that reads a
+    module-level answer (a name of ``absent``) or a removed member of its own class, and then the private
+    members (``_name``) that removed members read and no remaining member does: what computes an answer
+    is not there.
+    """
+    answers = _absent_globals(module, is_package, tree, absent)
+    changed = False
+    for stmt in tree.body:
+        if not isinstance(stmt, ast.ClassDef):
+            continue
+        named = {spec.rpartition(".")[2] for spec in absent if spec.startswith(f"{module}:{stmt.name}.")}
+        members = {m.name: m for m in stmt.body if isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef))}
+        refs = {n: _member_refs(m, stmt.name) for n, m in members.items()}
+        drop = named & set(members)
+        more = True
+        while more:
+            more = False
+            for n, (names, attrs) in refs.items():
+                if n not in drop and (names & answers or attrs & drop):
+                    drop.add(n)
+                    more = True
+        if not drop:
+            continue
+        more = True
+        while more:  # private helpers of removed members that no remaining member uses
+            more = False
+            used = set().union(*(refs[n][1] for n in members if n not in drop))
+            helpers = set().union(*(refs[n][1] for n in drop if n in refs))
+            for n in members:
+                private = n.startswith("_") and not (n.startswith("__") and n.endswith("__"))
+                if private and n in helpers and n not in drop and n not in used:
+                    drop.add(n)
+                    more = True
+        body: list[ast.stmt] = []
+        for m in stmt.body:
+            if isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef)) and m.name in drop:
+                body.append(ast.copy_location(ast.parse(f"{m.name} = _AbsentMember()").body[0], m))
+            else:
+                body.append(m)
+        stmt.body = body
+        changed = True
+    if not changed:
+        return None
+    head = 0
+    for head, first in enumerate([*tree.body, None]):
+        future = isinstance(first, ast.ImportFrom) and first.module == "__future__"
+        if not (future or (head == 0 and isinstance(first, ast.Expr))):
+            break
+    tree.body[head:head] = ast.parse(ABSENT_MEMBER).body
+    return ast.unparse(ast.fix_missing_locations(tree))
 
 
 def _bound_names(stmt: ast.stmt) -> list[str]:
@@ -224,11 +333,13 @@ def _reduced_import(stmt: ast.Import | ast.ImportFrom, keep: set[str]) -> ast.st
     return ast.Import(names=names)
 
 
-def shake(requirements: set[tuple[str, str | None]]) -> dict[str, str]:
+def shake(requirements: set[tuple[str, str | None]], absent: frozenset[str] = frozenset()) -> dict[str, str]:
     """For each needed package module, the source of its reduced copy (see the module docstring).
 
-    ``requirements`` are ``(module, name)`` pairs, ``name`` None for a whole module. Raises
-    ValueError (naming ``allowed``) for a module or name the package does not have.
+    ``requirements`` are ``(module, name)`` pairs, ``name`` None for a whole module. ``absent`` names
+    answers (``"module:name"``, ``"module:Class.member"``) to leave out: a class keeps its other members
+    and says, for a missing one, that it is not available in this exercise (:func:`_strip_members`).
+    Raises ValueError (naming ``allowed``) for a module or name the package does not have.
     """
     sources: dict[str, _Source] = {}
     kept: dict[str, set[int]] = {}
@@ -241,7 +352,7 @@ def shake(requirements: set[tuple[str, str | None]]) -> dict[str, str]:
             continue
         seen.add((module, name))
         if module not in sources:
-            sources[module] = _Source.load(module)
+            sources[module] = _Source.load(module, absent)
             kept[module], imported_names[module] = set(), set()
             parent = module.rpartition(".")[0]
             if parent:

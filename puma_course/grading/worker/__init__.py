@@ -30,8 +30,11 @@ OS-level stdout/stderr are pointed at /dev/null so that a flood of output costs 
 
 "Forbidden" package functions (a question's answer key, e.g. ``puma_course.transforms:rodrigues``
 for "write Rodrigues' formula") are absent from the student side unless the exercise allows them;
-an allowed one is wrapped before any student code runs, and a call to it *while that question's
-function is being graded* fails the case: a second line of defence, not the first.
+an allowed class holds only its allowed members (no ``Puma560.ik`` where ``ik`` is the answer).
+What is left of the key within reach (an answer that must be allowed, say) is wrapped before any
+student code runs and watched by code object while each question is graded; a call to it, or
+switching the watch off (``sys.setprofile(None)``, a thread), fails the case: a second line of
+defence, not the first.
 """
 
 from __future__ import annotations
@@ -155,8 +158,8 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
 
     forbidden = {qid: set(specs) for qid, specs in job.get("forbidden", {}).items()}
     state: dict[str, Any] = {"guard": set(), "hit": None}
+    codes = {qid: forbidden_codes(specs) for qid, specs in forbidden.items()}  # the originals' code, before wrapping
     install_tripwires(set().union(*forbidden.values()) if forbidden else set(), state)
-    codes = {qid: forbidden_codes(specs) for qid, specs in forbidden.items()}
 
     ns: dict[str, Any] = {"__name__": "__main__", "display": display}
     for index, source in enumerate(sources):

@@ -10,6 +10,45 @@ import sys
 import traceback
 from typing import Any
 
+# Private references taken when the worker starts, before any student code runs: a cell that
+# replaces ``sys.setprofile`` does not change what the guard calls.
+_setprofile, _getprofile, _getframe = sys.setprofile, sys.getprofile, sys._getframe
+
+#: Prefix of a guard hit that is not an answer-key call but the student switching the guard off.
+TAMPER = "tamper:"
+
+
+def _watch_breakers() -> tuple[dict[Any, str], dict[Any, str]]:
+    """(builtins, Python code objects) whose call during a guarded question switches the profile off or escapes it.
+
+    ``sys.setprofile`` / ``sys.settrace`` (and their all-threads forms), ``threading.setprofile`` /
+    ``settrace`` and starting a thread (a new thread runs without the profile).
+    """
+    import _thread
+    import threading
+
+    builtins: dict[Any, str] = {}
+    for owner, names in (
+        (sys, ("setprofile", "settrace", "_setprofileallthreads", "_settraceallthreads")),
+        (_thread, ("start_new_thread", "start_new", "start_joinable_thread")),
+    ):
+        for name in names:
+            fn = getattr(owner, name, None)
+            if fn is not None:
+                builtins[fn] = f"{getattr(owner, '__name__', '')}.{name}"
+    codes: dict[Any, str] = {}
+    for name in ("setprofile", "settrace", "setprofile_all_threads", "settrace_all_threads"):
+        code = getattr(getattr(threading, name, None), "__code__", None)
+        if code is not None:
+            codes[code] = f"threading.{name}"
+    start = getattr(getattr(threading.Thread, "start", None), "__code__", None)
+    if start is not None:
+        codes[start] = "threading.Thread.start"
+    return builtins, codes
+
+
+_BREAKERS, _BREAKER_CODES = _watch_breakers()
+
 __all__ = [
     "CappedWriter",
     "type_name",
@@ -17,6 +56,7 @@ __all__ = [
     "resolve",
     "forbidden_codes",
     "guarded_call",
+    "TAMPER",
     "install_tripwires",
     "limit_resources",
 ]
@@ -103,7 +143,10 @@ def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | 
     """Call ``fn(*args)``; also return the first forbidden function (by code object) it called, if any.
 
     Uses ``sys.setprofile``, so it sees calls however the function got hold of them
-    (``from puma_course import rodrigues`` included).
+    (``from puma_course import rodrigues``, a wrapper's ``__wrapped__``, an object found through ``gc``).
+    Switching the profile off (``sys.setprofile(None)``, ``sys.settrace``, ``threading.setprofile``),
+    starting a thread (which would run without it) or leaving another profile in place counts as a hit
+    too, reported as :data:`TAMPER` followed by what was called: the profile sees that call before it runs.
 
     >>> import numpy as np
     >>> from puma_course.transforms import rotx
@@ -114,22 +157,44 @@ def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | 
         return fn(*args), None
     hit: list[str] = []
 
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        if event == "call" and not hit and frame.f_code in codes:
-            hit.append(codes[frame.f_code])
+    breakers, breaker_codes = _BREAKERS, _BREAKER_CODES
+    own = _getframe().f_code  # this function's own calls (putting the old profile back) are not the student's
 
-    old = sys.getprofile()
-    sys.setprofile(profile)
+    def profile(frame: Any, event: str, arg: Any) -> None:
+        if hit:
+            return
+        if event == "call":
+            code = frame.f_code
+            if code in codes:
+                hit.append(codes[code])
+            elif code in breaker_codes:
+                hit.append(TAMPER + breaker_codes[code])
+        elif event == "c_call" and frame.f_code is not own:
+            try:
+                name = breakers.get(arg)
+            except TypeError:  # an unhashable callable
+                name = None
+            if name is not None:
+                hit.append(TAMPER + name)
+
+    old = _getprofile()
+    _setprofile(profile)
     try:
         value = fn(*args)
     finally:
-        sys.setprofile(old)
+        still = _getprofile() is profile
+        _setprofile(old)
+    if not still and not hit:
+        hit.append(TAMPER + "sys.setprofile")
     return value, (hit[0] if hit else None)
 
 
 def install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
-    """Wrap each allowed ``module:attr[.attr]`` so that calls during a guarded question are recorded in ``state``."""
-    import functools
+    """Wrap each allowed ``module:attr[.attr]`` so that calls during a guarded question are recorded in ``state``.
+
+    The wrapper keeps the original's name and docstring but not a ``__wrapped__`` reference to it; the
+    profile of :func:`guarded_call` (by code object) is what catches a call that reaches the original anyway.
+    """
     import importlib
 
     for spec in sorted(specs):
@@ -144,12 +209,16 @@ def install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
             continue  # not in the student side: nothing to guard
 
         def make(original: Any, spec: str) -> Any:
-            @functools.wraps(original)
             def wrapper(*args: Any, **kwargs: Any) -> Any:
                 if spec in state["guard"] and state["hit"] is None:
                     state["hit"] = spec
                 return original(*args, **kwargs)
 
+            for attr in ("__module__", "__name__", "__qualname__", "__doc__"):
+                try:
+                    setattr(wrapper, attr, getattr(original, attr))
+                except (AttributeError, TypeError):
+                    pass
             return wrapper
 
         wrapped = make(original, spec)

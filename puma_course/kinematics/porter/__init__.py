@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._validate import as_choice, as_length, as_tol
+from ..._validate import as_choice, as_robot_length, as_tol
 from ...transforms import wrap_angle
 from .._ops import ARRAY, SCALAR
 from ..ik import IKBatch, IKSolutions, dedupe_mask
@@ -61,11 +61,11 @@ class Porter(Robot):
 
     def __init__(self, l1: float = 1.0, l3: float = 0.5, l4: float = 0.3, *, q2_max: float | None = None) -> None:
         self._L: tuple[float, float, float] = (
-            as_length(l1, "l1", positive=True),
-            as_length(l3, "l3", positive=True),
-            as_length(l4, "l4", positive=True),
+            as_robot_length(l1, "l1", positive=True),
+            as_robot_length(l3, "l3", positive=True),
+            as_robot_length(l4, "l4", positive=True),
         )
-        self.q2_max = None if q2_max is None else as_length(q2_max, "q2_max", positive=True)
+        self.q2_max = None if q2_max is None else as_robot_length(q2_max, "q2_max", positive=True)
         self.name, self.units = "Porter's chain", ""
         stroke = self.q2_max if self.q2_max is not None else 2.0 * sum(self._L)
         lim = [(-np.pi, np.pi)] * 6

@@ -53,11 +53,15 @@ def nearest_parallel(R: np.ndarray, p: np.ndarray, L: tuple[float, float, float]
     """
     l1, l3, l4 = L
     c1, s1 = math.cos(a1), math.sin(a1)
-    M1 = np.array([[c1, s1, 0.0], [-s1, c1, 0.0], [0.0, 0.0, 1.0]]) @ R
-    m = (M1[0, 0], M1[0, 1], M1[1, 0], M1[1, 1], M1[2, 0], M1[2, 1])
-    p4 = p - l4 * R[:, 0]
+    # Rz(a1)^T R written out entry by entry: a matrix product (`@`) or np.linalg.norm may go through BLAS,
+    # whose kernels (Haswell, Prescott, ...) round differently, and this search is decided on the result
+    # (issue 21: up to 1.3e-8 between two OpenBLAS kernels)
+    (r00, r01, _), (r10, r11, _), (r20, r21, _) = R.tolist()
+    m = (c1 * r00 + s1 * r10, c1 * r01 + s1 * r11, -s1 * r00 + c1 * r10, -s1 * r01 + c1 * r11, r20, r21)
+    px, py, pz = p.tolist()
+    p4 = (px - l4 * r00, py - l4 * r10, pz - l4 * r20)
     r4, h = c1 * p4[0] + s1 * p4[1], p4[2] - l1
-    s4 = 1.0 if M1[1, 0] >= 0 else -1.0
+    s4 = 1.0 if m[2] >= 0 else -1.0
     a4 = math.atan2(s4, 0.0)
 
     def family(t: Any) -> np.ndarray:
@@ -80,7 +84,7 @@ def nearest_parallel(R: np.ndarray, p: np.ndarray, L: tuple[float, float, float]
         else:
             lo = m1
     best = family(0.5 * (lo + hi))
-    scale = l1 + l3 + l4 + float(np.linalg.norm(p))
+    scale = l1 + l3 + l4 + math.hypot(px, py, pz)
     if math.hypot(r4, h) > tol * scale:  # the member of minimal q2: z3 = -(p4 - p2)/|p4 - p2|
         cand = family(math.atan2(-r4, -h))
         if cand[2] <= tol * scale:

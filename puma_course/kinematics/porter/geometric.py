@@ -42,8 +42,20 @@ def angle(v: Any, w: Any, n: Any) -> float:
             raise ValueError(
                 f"{name}: expected a non-zero 3-vector (the angle is undefined for a zero vector), got zeros"
             )
-    a, b, c = v.tolist(), w.tolist(), n.tolist()
-    return _angle((a[0], a[1], a[2]), (b[0], b[1], b[2]), (c[0], c[1], c[2]))
+    # Each vector scaled by a power of two near its size first (exact: the same bits for ordinary sizes),
+    # since a dot or cross product of 1e200-long vectors overflows to NaN and of 1e-200-long ones
+    # underflows to 0 (issue 21: NaN and 0 instead of π/2). The result does not depend on |v| and |w|;
+    # it does on |n| (the printed formula's sin α = <n; v x w> / (|v||w|)), so n's power of two is
+    # given back to the other term of atan2.
+    (a, _), (b, _), (c, en) = (_scaled(x) for x in (v, w, n))
+    return math.atan2(_dot(c, _cross(a, b)), math.ldexp(_dot(a, b), -en))
+
+
+def _scaled(u: np.ndarray) -> tuple[Vec, int]:
+    """u times 2^-e, with 2^e near its largest entry (exact), and e."""
+    e = math.frexp(float(np.max(np.abs(u))))[1]
+    x, y, z = (math.ldexp(t, -e) for t in u.tolist())
+    return (x, y, z), e
 
 
 def _cross(a: Vec, b: Vec) -> Vec:

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._validate import as_array, as_length
+from ..._validate import as_array, as_robot_length
 from ...euler import EULER_SINGULAR_TOL, zyz_from_rotation
 from ...transforms import wrap_angle
 from .._ops import ARRAY, SCALAR
@@ -83,8 +83,8 @@ class ThreeStepArm(Robot):
     """
 
     def __init__(self, l1: float = 1.5, l2: float = 1.0) -> None:
-        self.l1 = as_length(l1, "l1", positive=True)
-        self.l2 = as_length(l2, "l2", positive=True)
+        self.l1 = as_robot_length(l1, "l1", positive=True)
+        self.l2 = as_robot_length(l2, "l2", positive=True)
         self.name, self.units = "three-step arm", ""
         self._tol = 1e-9 * (self.l1 + self.l2)
         configs = {"qz": np.zeros(6), "qn": np.array([0.0, math.pi / 4, -math.pi / 2, 0.0, math.pi / 4, 0.0])}

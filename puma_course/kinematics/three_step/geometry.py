@@ -55,14 +55,18 @@ def base_angle(o: Any, wx: Any, wy: Any, tol: float, free: Any) -> tuple[Any, An
 def triangle(o: Any, l1: float, l2: float, l3: Any, tol: float) -> tuple[Any, ...]:
     """The triangle (ℓ1, ℓ2, ℓ3 = |w|): θ at the shoulder (eq. 5) and β at the elbow, snapped at the boundaries.
 
-    Returns (ℓ3 snapped, θ, β, stretched, folded). A wrist within ``tol`` of the stretched
-    (ℓ1 + ℓ2) or folded (|ℓ1 - ℓ2|) boundary is put on it: one factor of Heron's product is then
+    Returns (ℓ3 snapped, θ, β, stretched, folded). A wrist beyond, or within rounding (and ``tol``) of,
+    the stretched (ℓ1 + ℓ2) or folded (|ℓ1 - ℓ2|) boundary is put on it: one factor of Heron's product is then
     exactly 0, so θ and β are exactly 0 or π there, on every machine. Both angles come from
     atan2(4·area, numerator of the law of cosines): given ℓ3 exactly, that is accurate to the last
     bit where arccos is not (lecture 08 measures both).
     """
-    stretched = o.abs(l3 - (l1 + l2)) <= tol
-    folded = o.abs(l3 - abs(l1 - l2)) <= tol
+    # Snapped only within rounding (1e-15 (ℓ1 + ℓ2)) and beyond the boundary (an accepted wrist at most
+    # ``tol`` outside the reach): a length tolerance of 1e-9 spanned ~9e-5 rad of the elbow angle and merged
+    # distinct solutions, and a wrist just beyond reach gave duplicate pairs, unflagged (issue 21).
+    snap = min(tol, 1e-15 * (l1 + l2))
+    stretched = l3 >= (l1 + l2) - snap
+    folded = l3 <= abs(l1 - l2) + snap
     l3 = o.where(stretched, l1 + l2, o.where(folded, abs(l1 - l2), l3))
     q = (l1 + l2 + l3) * (-l1 + l2 + l3) * (l1 - l2 + l3) * (l1 + l2 - l3)  # (4 area)², Heron factored
     four_area = o.sqrt(o.maximum(q, 0.0))

@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._validate import MAX_MAGNITUDE, as_array, as_choice, as_count, as_rotation
+from ..._validate import MAX_MAGNITUDE, as_array, as_choice, as_count, as_robot_length, as_rotation
 from ...euler import zyz_from_rotation
 from ...transforms import axis_angle, rodrigues, wrap_angle
 from .._ops import ARRAY, SCALAR
@@ -199,7 +199,7 @@ class ThreeStepSolution:
 def solve_three_steps(
     w: Any, target: Any, l1: float, l2: float, elbow: str = "up", start: Any = None
 ) -> ThreeStepSolution:
-    """The three-step procedure for one target {w, F} from the state ``start`` (lengths already checked).
+    """The three-step procedure for one target {w, F} from the state ``start``.
 
     Step 1 uses θ0 = atan2(w_y, w_x) (eq. 2 with its quadrant restored). Step 2 computes θ of
     eq. (5) and the elbow's interior angle β from the triangle (ℓ1, ℓ2, ℓ3 = |w|); then
@@ -212,6 +212,8 @@ def solve_three_steps(
     so in ``singular``. Unreachable w, a target that is not a rotation or an unknown ``elbow``
     raise ``ValueError``.
     """
+    # checked here too: int8 lengths overflowed to "l1 + l2 = -56" (issue 21)
+    l1, l2 = as_robot_length(l1, "l1", positive=True), as_robot_length(l2, "l2", positive=True)
     w = as_array(w, "w", (3,), what="a wrist-centre position of shape (3,)", max_magnitude=MAX_MAGNITUDE)
     F = as_rotation(target, "target")
     elbow = as_choice(elbow, "elbow", ("up", "down"))

@@ -11,9 +11,10 @@ from typing import Any
 
 import numpy as np
 
-from ..diagnose import matches
-from ..judges import nearest_judge, solution_set_judge
-from ..model import Exercise, Question
+from puma_course.grading.diagnose import matches
+from puma_course.grading.judges import nearest_judge, solution_set_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._formulas import porter_wrist_point
 from ._formulas import wrapped_nearest as nearest_row

@@ -12,7 +12,8 @@ alone are in :mod:`._formulas` and :mod:`._inputs`, the answer keys in :mod:`._k
 
 from __future__ import annotations
 
-from ..model import register
+from puma_course.grading.model import register
+
 from . import (
     ex01_rotations,
     ex02_dh_frames,

@@ -12,8 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from ..judges import nearest_judge, solution_set_judge
-from ..model import Exercise, Question
+from puma_course.grading.judges import nearest_judge, solution_set_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._formulas import nearest_row
 from ._reference import chains

@@ -8,7 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from .... import transforms
+from puma_course import transforms
+
 from .._formulas import case_rng, hidden_q
 
 

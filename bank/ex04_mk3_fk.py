@@ -11,9 +11,10 @@ from typing import Any
 
 import numpy as np
 
-from ..diagnose import degrees_in, matches
-from ..judges import table_judge
-from ..model import Exercise, Question
+from puma_course.grading.diagnose import degrees_in, matches
+from puma_course.grading.judges import table_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._reference import chains as ref
 
@@ -92,7 +93,7 @@ EXERCISE = Exercise(
             ),
             hidden=lambda rng: ref.mk3_cases(rng, 5),
             reference=ref.mk3_fk,
-            forbidden=(*keys.KEY_CHAIN, "puma_course.grading.bank._reference.chains:mk3_fk"),
+            forbidden=(*keys.KEY_CHAIN, "puma_course_bank._reference.chains:mk3_fk"),
             mistakes=(
                 matches(
                     "printed_formula",
@@ -130,7 +131,7 @@ EXERCISE = Exercise(
             public=((450.0, 360.0, 135.0, 250.0, 215.0, 100.0), (700.0, 360.0, 135.0, 250.0, 215.0, 100.0)),
             hidden=lambda rng: [(float(c), *ref.mk3_cases(rng, 1)[0][1:]) for c in rng.uniform(200.0, 800.0, 3)],
             reference=ref.mk3_rail_expected,
-            judge_with=table_judge(ref.table_fk, ref.standard_table_fk),
+            judge_with=table_judge(),
             answer=rail_table,
             forbidden=keys.KEY_TABLES,
             hint="The rail's joint comes first: which way must z_1 point, and which twist about x_0 turns z_0 into it "

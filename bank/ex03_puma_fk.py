@@ -11,9 +11,10 @@ from typing import Any
 
 import numpy as np
 
-from ..diagnose import matches
-from ..judges import table_judge
-from ..model import Exercise, Question
+from puma_course.grading.diagnose import matches
+from puma_course.grading.judges import table_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._reference import chains as ref
 
@@ -109,7 +110,7 @@ EXERCISE = Exercise(
                 )
             ],
             reference=ref.puma_pedestal_expected,
-            judge_with=table_judge(ref.table_fk, ref.standard_table_fk),
+            judge_with=table_judge(),
             answer=puma_table,
             forbidden=keys.KEY_TABLES,
             hint="Start from frames you trust (lecture 03 §1) and ask what the picture changes: where {0} sits, "

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ...transforms import homogeneous, roty, rotz, wrap_angle
+from puma_course.transforms import homogeneous, roty, rotz, wrap_angle
 
 
 def link_parameters(T: Any) -> np.ndarray:

@@ -7,9 +7,10 @@ from typing import Any
 
 import numpy as np
 
-from .... import transforms
-from ....kinematics import Porter
-from ....kinematics.porter import angle as porter_angle
+from puma_course import transforms
+from puma_course.kinematics import MountedFk, Porter
+from puma_course.kinematics.porter import angle as porter_angle
+
 from .._formulas import porter_wrist_point
 from ._common import _quiet, _set_expected, _table_expected, pose, tz
 
@@ -96,7 +97,7 @@ def porter_tool_ik_expected(T_tool: Any, l1: float, l3: float, l4: float, E: Any
         ("order", wrong, Ei @ T_tool @ E),
         ("tool_frame", "your configurations put F5, not the tool frame, at the pose asked for", T_tool @ E),
     ]
-    out = _set_expected(robot, T_tool @ Ei, fk=lambda Q: robot.fk(Q) @ E, stroke=2, alternatives=alts)
+    out = _set_expected(robot, T_tool @ Ei, fk=MountedFk(robot.fk, tool=E), stroke=2, alternatives=alts)
     out["T"] = T_tool
     return out
 

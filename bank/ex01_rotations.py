@@ -7,29 +7,24 @@ is the modelling question: the pose of a camera on a pan-tilt head, from a descr
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
-from ..diagnose import SIGN_FLIP, TRANSPOSED, Mistake, angle_2pi, close, degrees_in, degrees_out, matches, unit_axis_out
-from ..model import Exercise, Question
+from puma_course.grading.diagnose import (
+    SIGN_FLIP,
+    TRANSLATION,
+    TRANSPOSED,
+    angle_2pi,
+    degrees_in,
+    degrees_out,
+    matches,
+    negated,
+    unit_axis_out,
+)
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._formulas import camera_fixed_axes, camera_head_frame, rodrigues_unnormalised
 from ._reference import chains as ref
-
-
-def _negated(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
-    if close(got, -np.asarray(expected, dtype=float)):
-        return "(-k, -θ) is the same rotation as (k, θ), but the question asks for 0 < θ < π: flip both signs"
-    return None
-
-
-def _translation(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
-    ref_ = np.asarray(expected, dtype=float)
-    if got.shape != (4, 4) or not close(got[:3, :3], ref_[:3, :3]) or close(got[:3, 3], ref_[:3, 3]):
-        return None
-    return "the rotation part is right, the translation is not: the inverse moves by -Rᵀp (not -p or p)"
-
 
 EXERCISE = Exercise(
     "ex01_rotations",
@@ -84,7 +79,15 @@ EXERCISE = Exercise(
             hidden=lambda rng: [(R,) for R in ref.random_rotations(rng, 5)],
             reference=ref.axis_angle,
             forbidden=keys.KEY_AXIS_ANGLE,
-            mistakes=(degrees_out([3]), angle_2pi([3], "(0, π)"), unit_axis_out(3), Mistake("range", _negated)),
+            mistakes=(
+                degrees_out([3]),
+                angle_2pi([3], "(0, π)"),
+                unit_axis_out(3),
+                negated(
+                    "range",
+                    "(-k, -θ) is the same rotation as (k, θ), but the question asks for 0 < θ < π: flip both signs",
+                ),
+            ),
             hint="The trace gives cos θ and the antisymmetric part R - Rᵀ gives sin θ times the axis (lecture 01 §3); "
             "return a unit axis and 0 < θ < π.",
         ),
@@ -100,7 +103,7 @@ EXERCISE = Exercise(
             hidden=lambda rng: ref.random_transforms(rng, 4),
             reference=ref.inverse_transform,
             forbidden=keys.KEY_INVERSE,
-            mistakes=(Mistake("translation", _translation), TRANSPOSED),
+            mistakes=(TRANSLATION, TRANSPOSED),
             hint="Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §4).",
         ),
         Question(

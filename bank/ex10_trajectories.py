@@ -11,10 +11,11 @@ from typing import Any
 
 import numpy as np
 
-from ..compare import compare_angles
-from ..diagnose import matches
-from ..judges import path_judge, solution_set_judge
-from ..model import Exercise, Question
+from puma_course.grading.compare import compare_angles
+from puma_course.grading.diagnose import matches
+from puma_course.grading.judges import path_judge, solution_set_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._formulas import plain_distance
 from ._reference import motion as ref

@@ -13,5 +13,5 @@ for and import the module of their topic:
 References run in the grader's process; their warnings (singular poses) are silenced. A modelling
 question's reference returns a dict for its judge (:mod:`puma_course.grading.judges`), holding the
 reference robot's forward kinematics as a callable. The answer keys (package functions a question
-forbids) are named in :mod:`puma_course.grading.bank._keys`.
+forbids) are named in :mod:`puma_course_bank._keys`.
 """

@@ -12,10 +12,11 @@ from typing import Any
 
 import numpy as np
 
-from ..compare import compare_angles
-from ..diagnose import TRANSPOSED, degrees_out, matches
-from ..judges import rotation_judge
-from ..model import Exercise, Question
+from puma_course.grading.compare import compare_angles
+from puma_course.grading.diagnose import TRANSPOSED, degrees_out, matches
+from puma_course.grading.judges import rotation_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._inputs import reachable_wrist_points
 from ._reference import chains

@@ -11,10 +11,11 @@ from typing import Any
 
 import numpy as np
 
-from ..compare import compare_angles_at
-from ..diagnose import INVERSE, SIGN_FLIP, TRANSPOSED, degrees_in, degrees_out, matches, sign_flip
-from ..judges import table_judge
-from ..model import Exercise, Question
+from puma_course.grading.compare import compare_angles_at
+from puma_course.grading.diagnose import INVERSE, SIGN_FLIP, TRANSPOSED, degrees_in, degrees_out, matches, sign_flip
+from puma_course.grading.judges import table_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._formulas import link_parameters, standard_reading
 from ._reference import chains as ref
@@ -106,7 +107,7 @@ EXERCISE = Exercise(
                 (float(h), float(d)) for h, d in zip(rng.uniform(0.3, 1.5, 4), rng.uniform(0.05, 0.5, 4), strict=True)
             ],
             reference=ref.rrp_expected,
-            judge_with=table_judge(ref.table_fk, ref.standard_table_fk),
+            judge_with=table_judge(),
             answer=rrp_table,
             forbidden=keys.KEY_TABLES,
             hint="Draw z_i along each joint axis in its positive sense first, then each x_i along the common normal "

@@ -11,10 +11,11 @@ from typing import Any
 
 import numpy as np
 
-from ..compare import compare_solution_set
-from ..diagnose import DUPLICATES, angle_2pi, degrees_out, matches, matches_set, unit_axis_out
-from ..judges import stroke_judge
-from ..model import Exercise, Question
+from puma_course.grading.compare import compare_solution_set
+from puma_course.grading.diagnose import DUPLICATES, angle_2pi, degrees_out, matches, matches_set, unit_axis_out
+from puma_course.grading.judges import stroke_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
 from ._formulas import porter_elbows, porter_normal
 from ._inputs import unit_vectors

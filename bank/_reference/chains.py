@@ -6,8 +6,9 @@ from typing import Any
 
 import numpy as np
 
-from .... import transforms
-from ....kinematics import MK3, DHChain, Link, Puma560, dh
+from puma_course import transforms
+from puma_course.kinematics import MK3, DHChain, Link, Puma560, dh
+
 from .._formulas import CAMERA_IN_HEAD, PAN_TILT_C, PAN_TILT_H
 from .._inputs import unit_vectors
 from ._common import _table_expected, pose, tz

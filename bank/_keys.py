@@ -9,13 +9,13 @@ from __future__ import annotations
 
 _T, _DH, _P560 = "puma_course.transforms", "puma_course.kinematics.dh", "puma_course.kinematics.puma560"
 _IK, _PORTER, _TS = "puma_course.kinematics.ik", "puma_course.kinematics.porter", "puma_course.kinematics.three_step"
-_BANK = "puma_course.grading.bank._reference.chains"
+_BANK = "puma_course_bank._reference.chains"
 KEY_ROT = tuple(f"{_T}:{name}" for name in ("rotx", "roty", "rotz", "trotx", "troty", "trotz"))
 KEY_RODRIGUES = (f"{_T}:rodrigues", f"{_T}:trot")
 KEY_AXIS_ANGLE = (f"{_T}:axis_angle",)
 KEY_INVERSE = (f"{_T}:inverse_transform",)
 KEY_MDH = (f"{_DH}:mdh", f"{_DH}:DHChain.link_matrices", f"{_BANK}:mdh")
-KEY_LINK_PARAMETERS = ("puma_course.grading.bank._formulas:link_parameters",)
+KEY_LINK_PARAMETERS = ("puma_course_bank._formulas:link_parameters",)
 KEY_CHAIN = (
     f"{_DH}:DHChain.fk",
     f"{_DH}:DHChain.frames",
@@ -35,7 +35,7 @@ KEY_TABLES = (
     f"{_BANK}:puma_pedestal_fk",
     f"{_BANK}:mk3_rail_fk",
     f"{_BANK}:mk3_table",
-    "puma_course.grading.bank._reference.porter_chain:porter_tool_fk",
+    "puma_course_bank._reference.porter_chain:porter_tool_fk",
 )
 KEY_PORTER_FK = (
     f"{_PORTER}:Porter.fk",

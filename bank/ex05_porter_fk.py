@@ -11,11 +11,11 @@ from typing import Any
 
 import numpy as np
 
-from ..diagnose import INVERSE, TRANSPOSED, matches
-from ..judges import table_judge
-from ..model import Exercise, Question
+from puma_course.grading.diagnose import INVERSE, TRANSPOSED, matches
+from puma_course.grading.judges import table_judge
+from puma_course.grading.model import Exercise, Question
+
 from . import _keys as keys
-from ._reference import chains
 from ._reference import porter_chain as ref
 
 H = np.pi / 2
@@ -113,7 +113,7 @@ EXERCISE = Exercise(
             public=(PUBLIC_L, PUBLIC_L2),
             hidden=lambda rng: [tuple(float(v) for v in rng.uniform(0.3, 1.5, 3)) for _ in range(3)],
             reference=ref.porter_tool_expected,
-            judge_with=table_judge(chains.table_fk, chains.standard_table_fk),
+            judge_with=table_judge(),
             answer=porter_table,
             forbidden=keys.KEY_TABLES,
             hint="List the six joint axes with their positive senses at q = 0 (lecture 05 §1): z_i goes along axis i "

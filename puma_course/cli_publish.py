@@ -1,0 +1,68 @@
+"""The ``puma-course`` commands that publish the course: ``site`` (its website) and ``edition`` (what students get).
+
+Split from :mod:`puma_course.cli` (the thin argparse layer), which registers them with :func:`add_publish_parsers`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+__all__ = ["add_publish_parsers", "site", "edition"]
+
+
+def add_publish_parsers(sub: Any, course: argparse.ArgumentParser) -> None:
+    """The ``site`` and ``edition`` sub-commands (``course``: the shared ``--course`` option)."""
+    site = sub.add_parser(
+        "site",
+        parents=[course],
+        help="build the course's website (lectures, exercises, notation) into _site/",
+        description="Build the course as a static website from the committed notebooks, without running them "
+        "and without the network. Open <output>/index.html in a browser.",
+    )
+    site.add_argument(
+        "-o", "--output", type=Path, default=None, metavar="DIR", help="where the site goes (default: <course>/_site)"
+    )
+    site.add_argument(
+        "--repo-url",
+        default=None,
+        metavar="URL",
+        help="the course's repository, linked from the landing page (default: [tool.puma-course] repository, "
+        "else [project.urls] Repository, in the course's pyproject.toml; none when neither is set)",
+    )
+    ed = sub.add_parser(
+        "edition",
+        parents=[course],
+        help="write the student edition (the course without its answer key) into DIR",
+        description="Write the student edition into DIR: lectures, exercises, figures, the package, the self-check's "
+        "public cases; no solution, bank, hidden test or seed. Again: updates DIR in place, its .git untouched.",
+    )
+    ed.add_argument("out", type=Path, metavar="DIR", help="where the edition goes (e.g. ../class-edition)")
+
+
+def edition(args: argparse.Namespace, course: Path) -> int:
+    """``puma-course edition DIR``: the student edition of ``course`` written into DIR."""
+    from .grading.edition import write_edition
+
+    ed = write_edition(args.out, course)
+    print(f"wrote the student edition ({len(ed.exercises)} exercises, {len(ed.files)} files) to {ed.root}")
+    return 0
+
+
+def site(args: argparse.Namespace, course: Path) -> int:
+    """``puma-course site``: the course's website built (lectures, exercises, notation, the edition's archive)."""
+    try:
+        from .site import build_site
+    except ImportError as exc:  # pragma: no cover - the extra is missing
+        print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
+        return 2
+    report = build_site(course, args.output, repo_url=args.repo_url)
+    print(
+        f"built {len(report.pages)} pages in {report.seconds:.1f} s, {report.size_bytes / 1e6:.1f} MB: "
+        f"open {report.out / 'index.html'} in a browser"
+    )
+    for line in report.warnings[:20]:
+        print(f"  sphinx: {line}", file=sys.stderr)
+    return 0

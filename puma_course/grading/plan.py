@@ -1,0 +1,67 @@
+"""The plan of a notebook's grading: every call to make (public and hidden cases) with its expected value.
+
+Computed in the grader's process before any worker runs (:func:`make_plan`); the worker receives the
+calls without ``expected`` or ``call_args`` (:func:`~.runner._job`), and the grader judges what comes back
+against them (:mod:`.events`).
+"""
+
+from __future__ import annotations
+
+import copy
+import zlib
+from typing import Any
+
+import numpy as np
+
+from .model import Exercise
+from .secret import Secret
+
+__all__ = ["make_plan"]
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (np.floating, np.integer)):
+        return value.item()
+    return value
+
+
+def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> list[dict[str, Any]]:
+    """Every call to make (public + hidden cases) with its expected value, computed here.
+
+    Each question draws its hidden inputs from its own generator (adding a question does not change
+    the others'): with a :class:`~.secret.Secret` (:func:`grade`), seeded with HMAC-SHA256 of
+    (``student``, exercise, question) under the key, so each student's are their own and nobody
+    without the key can compute them; with an integer, everyone's, from ``seed`` and the question.
+
+    >>> from puma_course.grading import EXERCISES
+    >>> calls = make_plan(EXERCISES["ex01_rotations"], seed=1)
+    >>> calls[0]["qid"], calls[0]["function"], calls[0]["args"], calls[0]["expected"].shape
+    ('q1', 'elementary_rotation', ['x', 0.3], (3, 3))
+
+    ``expected`` is whatever the question's reference returns (an array for most questions; a
+    question judged by equivalence may return what its judge needs) and ``call_args`` keeps the
+    original arguments for the judge; neither ever reaches the student's process.
+    """
+    calls = []
+    for q in exercise.questions:
+        if isinstance(seed, Secret):
+            rng = np.random.default_rng(seed.case_seed(student, exercise.name, q.qid))
+        else:
+            rng = np.random.default_rng([seed, zlib.crc32(f"{exercise.name}:{q.qid}".encode())])
+        for case, args in enumerate(q.cases(rng)):
+            expected = q.reference(*copy.deepcopy(args))
+            if not callable(expected):
+                expected = np.asarray(expected, dtype=float) if not isinstance(expected, dict) else expected
+            calls.append(
+                {
+                    "qid": q.qid,
+                    "case": case,
+                    "function": q.function,
+                    "args": [_jsonable(a) for a in args],
+                    "expected": expected,
+                    "call_args": tuple(args),
+                }
+            )
+    return calls

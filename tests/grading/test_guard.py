@@ -1,0 +1,109 @@
+"""The tripwire, the second line where an answer must stay within reach: tricks that switch it off fail the case.
+
+The first line is that an answer is not in the student side at all (tests/grading/test_student_package.py);
+here an exercise allows ``rodrigues`` and one question forbids it, so the worker's watch is all there is.
+"""
+
+from __future__ import annotations
+
+import nbformat
+import numpy as np
+import pytest
+
+from puma_course.grading import Exercise, Question
+from puma_course.grading.runner import grade_notebook
+
+KEY = ("puma_course.transforms:rodrigues",)
+
+STEAL = "from puma_course import rodrigues\nimport sys, threading, gc\n"
+TRICKS = {
+    "plain call": "def turn(a, t):\n    return rodrigues(a, t)",
+    "unwrapped": (
+        "def turn(a, t):\n    f = rodrigues\n    while hasattr(f, '__wrapped__'):\n        f = f.__wrapped__\n"
+        "    return f(a, t)"
+    ),
+    "setprofile first": "def turn(a, t):\n    sys.setprofile(None)\n    return rodrigues(a, t)",
+    "settrace first": "def turn(a, t):\n    sys.settrace(None)\n    sys.setprofile(None)\n    return rodrigues(a, t)",
+    "profile put back": (
+        "def turn(a, t):\n    p = sys.getprofile()\n    sys.setprofile(None)\n    r = rodrigues(a, t)\n"
+        "    sys.setprofile(p)\n    return r"
+    ),
+    "threading.setprofile first": (
+        "def turn(a, t):\n    threading.setprofile(None)\n    box = []\n"
+        "    th = threading.Thread(target=lambda: box.append(rodrigues(a, t)))\n    th.start()\n    th.join()\n"
+        "    return box[0]"
+    ),
+    "original through gc": (
+        "import types\n"
+        "ORIG = [o for o in gc.get_objects() if isinstance(o, types.FunctionType)"
+        " and o.__code__.co_name == 'rodrigues' and o is not rodrigues]\n"
+        "def turn(a, t):\n    sys.setprofile(None)\n    return (ORIG or [rodrigues])[0](a, t)"
+    ),
+    "sys.setprofile replaced in a cell": (
+        "sys.setprofile = lambda f: None\nsys.getprofile = lambda: None\ndef turn(a, t):\n    return rodrigues(a, t)"
+    ),
+}
+
+
+def _exercise() -> Exercise:
+    from puma_course import rodrigues
+
+    q = Question(
+        "q1",
+        "turn",
+        1,
+        "K(a, t)",
+        ((np.array([0.0, 0.0, 1.0]), 0.3), (np.array([1.0, 0.0, 0.0]), -1.2)),
+        lambda rng: [],
+        reference=lambda a, t: rodrigues(a, t),
+        forbidden=KEY,
+    )
+    return Exercise("ex98_tripwire", "a helper that is also the answer", (q,), allowed=KEY)
+
+
+@pytest.mark.parametrize("trick", sorted(TRICKS))
+def test_switching_the_watch_off_gains_nothing(tmp_path, trick):
+    nb = tmp_path / "ex98_tripwire.ipynb"
+    cells = [nbformat.v4.new_code_cell(STEAL), nbformat.v4.new_code_cell(TRICKS[trick])]
+    nbformat.write(nbformat.v4.new_notebook(cells=cells), nb)
+    r = grade_notebook(nb, _exercise())
+    notes = " ".join(r.question_notes["q1"])
+    assert r.status == "ok" and r.score == 0, (trick, r.status, r.notes, notes)
+    assert "used the course package's answer" in notes or "switched off the grader's watch" in notes, notes
+
+
+def test_an_honest_answer_beside_the_allowed_helper_keeps_its_points(tmp_path):
+    """The watch costs an honest answer nothing: its own Rodrigues formula, numpy and a thread-free call."""
+    nb = tmp_path / "ex98_tripwire.ipynb"
+    code = (
+        "import numpy as np\n"
+        "def turn(a, t):\n    a = np.asarray(a, float) / np.linalg.norm(a)\n"
+        "    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])\n"
+        "    return np.eye(3) + np.sin(t) * K + (1 - np.cos(t)) * K @ K"
+    )
+    nbformat.write(nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code)]), nb)
+    r = grade_notebook(nb, _exercise())
+    assert (r.status, r.score) == ("ok", 1), (r.notes, r.question_notes)
+
+
+def test_the_tripwire_leaves_no_path_back_to_the_original():
+    """install_tripwires' wrapper has no __wrapped__ (the original is found by code object, not through it)."""
+    import sys
+    import types
+
+    from puma_course.grading.worker.guard import forbidden_codes, guarded_call, install_tripwires
+
+    mod = types.ModuleType("puma_course_guard_probe")
+    exec("def key(x):\n    '''The answer.'''\n    return 2 * x\n", mod.__dict__)
+    sys.modules[mod.__name__] = mod
+    try:
+        original = mod.key
+        spec = f"{mod.__name__}:key"
+        codes = forbidden_codes([spec])
+        install_tripwires({spec}, {"guard": set(), "hit": None})
+        assert mod.key is not original and not hasattr(mod.key, "__wrapped__")
+        assert (mod.key.__name__, mod.key.__doc__) == ("key", "The answer.")
+        assert guarded_call(lambda x: original(x), (3,), codes) == (6, spec)
+        assert guarded_call(lambda x: 3 * x, (3,), codes) == (9, None)
+    finally:
+        del sys.modules[mod.__name__]
