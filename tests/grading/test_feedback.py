@@ -16,6 +16,7 @@ import pytest
 
 from puma_course.grading import EXERCISES
 from puma_course.grading.model import Question, Verdict, reconcile
+from tests.fixtures.answers.generic import factory_name
 from tests.fixtures.answers.methods import METHODS
 from tests.fixtures.answers.model import grade
 
@@ -97,7 +98,7 @@ def recognised(q: Question) -> set[str]:
     """Every mistake key the grader of ``q`` can name: its diagnosis, its judge's, its reference's alternatives."""
     keys = {m.key for m in q.mistakes}
     if q.judge_with is not None:
-        keys |= JUDGE_KEYS[q.judge_with.__qualname__.split("_judge")[0]]
+        keys |= JUDGE_KEYS[factory_name(q.judge_with).split("_judge")[0]]
         expected = q.reference(*copy.deepcopy(q.public[0]))
         for field in ("alternatives", "wrong_orders", "wrong_sets"):
             keys |= {entry[0] for entry in expected.get(field, ())}
