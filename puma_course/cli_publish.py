@@ -58,7 +58,9 @@ def site(args: argparse.Namespace, course: Path) -> int:
     except ImportError as exc:  # pragma: no cover - the extra is missing
         print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
         return 2
-    report = build_site(course, args.output, repo_url=args.repo_url)
+    from .grading.edition import write_edition
+
+    report = build_site(course, args.output, repo_url=args.repo_url, edition=write_edition)
     print(
         f"built {len(report.pages)} pages in {report.seconds:.1f} s, {report.size_bytes / 1e6:.1f} MB: "
         f"open {report.out / 'index.html'} in a browser"

@@ -8,6 +8,7 @@ import re
 import shutil
 import tempfile
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -83,27 +84,27 @@ def repository_url(root: Path) -> str | None:
     return str(url) if url else None
 
 
-def _edition_tree(course: Path, dest: Path) -> None:
-    """Write the student edition of the course at ``course`` into the new folder ``dest``: exactly what
-    ``puma-course edition DIR`` hands a student (:func:`puma_course.grading.edition.write_edition`)."""
-    from ..grading.edition import write_edition
-
-    write_edition(dest, course)
+#: writes the student edition of a course into a new folder (``puma-course edition``'s writer, handed in by the
+#: command: the site layer reads the course's files and imports nothing above the base layer)
+EditionWriter = Callable[[Path, Path], object]
 
 
-def _edition_archive(course: Path, dest_dir: Path) -> Path:
+def _edition_archive(course: Path, dest_dir: Path, edition: EditionWriter) -> Path:
     """The student edition as ``dest_dir/ARCHIVE``, one top folder ``puma-course/`` inside."""
     with tempfile.TemporaryDirectory(prefix="puma-edition-") as tmp:
         tree = Path(tmp) / "puma-course"
-        _edition_tree(course, tree)
+        edition(tree, course)  # exactly what `puma-course edition DIR` hands a student
         dest_dir.mkdir(parents=True, exist_ok=True)
         made = shutil.make_archive(str(dest_dir / ARCHIVE.removesuffix(".zip")), "zip", tmp, "puma-course")
     return Path(made)
 
 
-def _get_the_course(repo_url: str | None) -> list[str]:
-    """The landing page's "Get the course" section: the archive, and the repository when known."""
-    lines = ["## Get the course", "",
+def _get_the_course(repo_url: str | None, archive: bool = True) -> list[str]:
+    """The landing page's "Get the course" section: the archive (when built), and the repository when known."""
+    if not archive and not repo_url:
+        return []
+    lines = ["## Get the course", ""]
+    lines += [] if not archive else [
              f'<a class="puma-archive" href="{ARCHIVE}" download>Download the course ({ARCHIVE})</a>: '
              "the lectures, the exercises, the index START_HERE.ipynb and the `puma_course` package the "
              "notebooks run on, in one folder (no solutions). Unpack it and follow *Read, then run* below "
@@ -115,7 +116,9 @@ def _get_the_course(repo_url: str | None) -> list[str]:
     return lines
 
 
-def _landing_page(root: Path, lectures: list[Path], exercises: list[Path], repo_url: str | None = None) -> str:
+def _landing_page(
+    root: Path, lectures: list[Path], exercises: list[Path], repo_url: str | None = None, archive: bool = True
+) -> str:
     sections = _readme_sections((root / "README.md").read_text(encoding="utf-8"))
     intro = sections["_intro"].split("\n", 1)[1].strip()  # without the "# puma-course" title
     start = sections.get("Start", "")
@@ -123,7 +126,7 @@ def _landing_page(root: Path, lectures: list[Path], exercises: list[Path], repo_
     unix = first_commands(start, "linux-macos")
     windows = first_commands(start, "windows")
     install = unix or (command.group(1).strip() if command else 'python -m pip install -e ".[lab]" && puma-course lab')
-    lines = ["# puma-course: kinematics of robot manipulators", "", intro, "", *_get_the_course(repo_url),
+    lines = ["# puma-course: kinematics of robot manipulators", "", intro, "", *_get_the_course(repo_url, archive),
              "## Read, then run", "",
              "Every page of this site is a notebook of the course, shown with the outputs it had when it was "
              "last run: figures, tables, animations that play, and a picture of each 3-D panel. Nothing here "
@@ -227,7 +230,10 @@ _CSS = """@media (min-width: 960px) {
 
 
 def build_site(
-    course: str | Path | None = None, out: str | Path | None = None, repo_url: str | None = None
+    course: str | Path | None = None,
+    out: str | Path | None = None,
+    repo_url: str | None = None,
+    edition: EditionWriter | None = None,
 ) -> SiteReport:
     """Build the website of the course at ``course`` (default: the course around the current folder).
 
@@ -262,12 +268,14 @@ def build_site(
             shutil.copy2(nb, src / "exercises" / nb.name)
         if (root / "figures").is_dir():
             shutil.copytree(root / "figures", src / "figures", ignore=shutil.ignore_patterns("*.py", "__pycache__"))
-        (src / "index.md").write_text(_landing_page(root, lectures, exercises, repo_url), encoding="utf-8")
+        landing = _landing_page(root, lectures, exercises, repo_url, edition is not None)
+        (src / "index.md").write_text(landing, encoding="utf-8")
         (src / "conventions.md").write_text(_conventions_page(root), encoding="utf-8")
         (src / "conf.py").write_text(_CONF.format(mathjax=MATHJAX_FILE), encoding="utf-8")
         _copy_mathjax(base / "assets" / "mathjax")
         (base / "assets" / "puma.css").write_text(_CSS, encoding="utf-8")
-        _edition_archive(root, base / "extra")
+        if edition is not None:  # `puma-course site` hands in the edition's writer
+            _edition_archive(root, base / "extra", edition)
         warnings = io.StringIO()
         # built inside the temporary folder (MyST-NB writes jupyter_execute/ next to Sphinx's output
         # folder), then moved to out_dir

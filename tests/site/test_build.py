@@ -155,7 +155,7 @@ def test_the_site_command_takes_a_repository_link(tmp_path, monkeypatch):
 
     seen = {}
 
-    def fake(course, out, repo_url=None):
+    def fake(course, out, repo_url=None, edition=None):
         seen["repo_url"] = repo_url
         raise ValueError("stop here")
 
