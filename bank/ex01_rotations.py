@@ -96,7 +96,10 @@ EXERCISE = Exercise(
             "invert_transform",
             2,
             "inverse of a homogeneous transform",
-            public=((np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]),),),
+            public=(
+                (np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]),),
+                (np.array([[1.0, 0, 0, 0.5], [0, 0, -1, -1], [0, 1, 0, 0.25], [0, 0, 0, 1]]),),
+            ),
             hidden=lambda rng: ref.random_transforms(rng, 4),
             reference=ref.inverse_transform,
             forbidden=keys.KEY_INVERSE,

@@ -102,7 +102,7 @@ EXERCISE = Exercise(
             "rrp_table",
             6,
             "the DH table of the RRP arm, from its picture",
-            public=((0.8, 0.2),),
+            public=((0.8, 0.2), (1.2, 0.35)),
             hidden=lambda rng: [
                 (float(h), float(d)) for h, d in zip(rng.uniform(0.3, 1.5, 4), rng.uniform(0.05, 0.5, 4), strict=True)
             ],

@@ -95,7 +95,7 @@ EXERCISE = Exercise(
             "puma_table",
             6,
             "the PUMA-560's table from its picture (pedestal, tool, upright zero)",
-            public=((0.4318, 0.0203, 0.15005, 0.4318, 0.6604, 0.056),),
+            public=((0.4318, 0.0203, 0.15005, 0.4318, 0.6604, 0.056), (0.45, 0.02, 0.12, 0.4, 0.8, 0.1)),
             hidden=lambda rng: [
                 tuple(float(v) for v in row)
                 for row in np.column_stack(

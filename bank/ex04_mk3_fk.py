@@ -43,6 +43,13 @@ def _wrist_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     return [(ref.mk3_fk(q, *L), L[-1]) for q, *L in ref.mk3_cases(rng, n)]
 
 
+def _twists_in_degrees(table: np.ndarray) -> np.ndarray:
+    """The table with its twists α written in degrees (the mistake: 90 typed for π/2)."""
+    out = np.array(table, dtype=float)
+    out[:, 0] = np.degrees(out[:, 0])
+    return out
+
+
 EXERCISE = Exercise(
     "ex04_mk3_fk",
     "Forward kinematics of the Motoman MK3, and the MK3 on a rail",
@@ -106,6 +113,12 @@ EXERCISE = Exercise(
                     lambda q, *L: ref.reversed_table_fk(ref.mk3_table(*L), q),
                 ),
                 degrees_in(0),
+                matches(
+                    "degrees",
+                    "your twists α are in degrees (90 where the table means π/2): np.cos and np.sin take "
+                    "radians, so write the twists as np.pi / 2",
+                    lambda q, *L: ref.table_fk(_twists_in_degrees(ref.mk3_table(*L)), q),
+                ),
             ),
             hint="Check q = 0 and the ready pose against the flange positions you work out by hand (lecture 04 §4); "
             "the numbers are millimetres.",
@@ -115,7 +128,7 @@ EXERCISE = Exercise(
             "rail_table",
             5,
             "the DH table of the MK3 on a rail, from its picture",
-            public=((450.0, 360.0, 135.0, 250.0, 215.0, 100.0),),
+            public=((450.0, 360.0, 135.0, 250.0, 215.0, 100.0), (700.0, 360.0, 135.0, 250.0, 215.0, 100.0)),
             hidden=lambda rng: [(float(c), *ref.mk3_cases(rng, 1)[0][1:]) for c in rng.uniform(200.0, 800.0, 3)],
             reference=ref.mk3_rail_expected,
             judge_with=table_judge(),

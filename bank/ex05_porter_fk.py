@@ -22,6 +22,9 @@ H = np.pi / 2
 #: The configuration and lengths (l1, l3, l4) of the public cases (exercise 6 reaches the same pose).
 PUBLIC_Q = np.array([0.3, 0.7, 1.3, -0.4, 0.9, 0.6])
 PUBLIC_L = (1.0, 0.5, 0.3)
+#: A second public configuration and lengths (general position: cos α4 = 0.83, q2 = 0.8).
+PUBLIC_Q2 = np.array([-1.0, 0.4, 0.8, 0.9, -0.6, 1.5])
+PUBLIC_L2 = (1.2, 0.6, 0.4)
 
 
 def porter_table(l1: float, l3: float, l4: float) -> np.ndarray:
@@ -88,7 +91,7 @@ EXERCISE = Exercise(
             "porter_points",
             2,
             "the joint points p0 ... p5",
-            public=((PUBLIC_Q, *PUBLIC_L),),
+            public=((PUBLIC_Q, *PUBLIC_L), (PUBLIC_Q2, *PUBLIC_L2)),
             hidden=lambda rng: ref.porter_configs(rng, 4),
             reference=ref.porter_points,
             forbidden=keys.KEY_PORTER_FK,
@@ -107,7 +110,7 @@ EXERCISE = Exercise(
             "porter_table",
             5,
             "a DH table for Porter's chain, from its picture",
-            public=(PUBLIC_L,),
+            public=(PUBLIC_L, PUBLIC_L2),
             hidden=lambda rng: [tuple(float(v) for v in rng.uniform(0.3, 1.5, 3)) for _ in range(3)],
             reference=ref.porter_tool_expected,
             judge_with=table_judge(),

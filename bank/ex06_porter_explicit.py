@@ -20,7 +20,7 @@ from ._formulas import porter_wrist_point
 from ._formulas import wrapped_nearest as nearest_row
 from ._reference import chains
 from ._reference import porter_chain as ref
-from .ex05_porter_fk import PUBLIC_L, PUBLIC_Q
+from .ex05_porter_fk import PUBLIC_L, PUBLIC_L2, PUBLIC_Q, PUBLIC_Q2
 
 TOOL = chains.pose(chains.elementary_rotation("y", 0.4), [0.1, 0.0, 0.05])
 
@@ -46,7 +46,10 @@ EXERCISE = Exercise(
             "porter_wrist_point",
             2,
             "the wrist point p4 from the hand frame",
-            public=((ref.porter_fk(PUBLIC_Q, *PUBLIC_L), PUBLIC_L[2]),),
+            public=(
+                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), PUBLIC_L[2]),
+                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2), PUBLIC_L2[2]),
+            ),
             hidden=lambda rng: [(T, l4) for T, _, _, l4 in ref.porter_poses(rng, 4)],
             reference=porter_wrist_point,
             mistakes=(
@@ -61,7 +64,10 @@ EXERCISE = Exercise(
             "porter_ik",
             5,
             "every configuration reaching F05 (Ver.1)",
-            public=((ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L),),
+            public=(
+                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L),
+                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2), *PUBLIC_L2),
+            ),
             hidden=lambda rng: ref.porter_poses(rng, 5, near_singular=True),
             reference=ref.porter_ik_expected,
             judge_with=solution_set_judge(),
@@ -75,7 +81,10 @@ EXERCISE = Exercise(
             "porter_ik_tool",
             3,
             "every configuration putting a tool at a pose",
-            public=((ref.porter_fk(PUBLIC_Q, *PUBLIC_L) @ TOOL, *PUBLIC_L, TOOL),),
+            public=(
+                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L) @ TOOL, *PUBLIC_L, TOOL),
+                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2) @ TOOL, *PUBLIC_L2, TOOL),
+            ),
             hidden=lambda rng: _tool_cases(rng, 4),
             reference=ref.porter_tool_ik_expected,
             judge_with=solution_set_judge(),
@@ -89,7 +98,10 @@ EXERCISE = Exercise(
             "porter_ik_nearest",
             3,
             "bonus: the configuration nearest the previous one",
-            public=((ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L, PUBLIC_Q + 0.05),),
+            public=(
+                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L, PUBLIC_Q + 0.05),
+                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2), *PUBLIC_L2, PUBLIC_Q2 - 0.05),
+            ),
             hidden=lambda rng: ref.porter_nearest_cases(rng, 4),
             reference=ref.porter_nearest_expected,
             judge_with=nearest_judge(),

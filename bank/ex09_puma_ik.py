@@ -24,6 +24,9 @@ LECTURE = (0.4318, 0.0203, 0.15005, 0.4318)
 Q_PUBLIC = np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0])  # lecture 09's example
 T_PUBLIC = ref.puma_fk(Q_PUBLIC, *LECTURE)
 B_PUBLIC = chains.pose(chains.elementary_rotation("z", np.pi / 2), [0.5, 0.0, 0.8])
+#: A second public pose and base (the robot hung upside down from a gantry).
+T_PUBLIC2 = ref.puma_fk(np.array([-1.2, -0.6, 0.4, -0.9, 1.1, 2.0]), *LECTURE)
+B_PUBLIC2 = chains.pose(chains.elementary_rotation("x", np.pi), [1.0, -0.5, 2.2])
 
 
 def _arm_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
@@ -43,7 +46,7 @@ EXERCISE = Exercise(
             "puma_arm_angles",
             3,
             "the four (θ1, θ2, θ3) putting the wrist centre at p",
-            public=((T_PUBLIC[:3, 3], *LECTURE),),
+            public=((T_PUBLIC[:3, 3], *LECTURE), (T_PUBLIC2[:3, 3], *LECTURE)),
             hidden=lambda rng: _arm_cases(rng, 4),
             reference=ref.puma_arm_expected,
             judge_with=solution_set_judge(),
@@ -57,7 +60,7 @@ EXERCISE = Exercise(
             "puma_ik",
             5,
             "every configuration reaching a pose",
-            public=((T_PUBLIC, *LECTURE),),
+            public=((T_PUBLIC, *LECTURE), (T_PUBLIC2, *LECTURE)),
             hidden=lambda rng: ref.puma_cases(rng, 5),
             reference=ref.puma_ik_expected,
             judge_with=solution_set_judge(),
@@ -87,7 +90,10 @@ EXERCISE = Exercise(
             "puma_ik_world",
             4,
             "every configuration putting the tool at a pose of the cell",
-            public=((B_PUBLIC @ T_PUBLIC @ chains.tz(0.1), B_PUBLIC, 0.1),),
+            public=(
+                (B_PUBLIC @ T_PUBLIC @ chains.tz(0.1), B_PUBLIC, 0.1),
+                (B_PUBLIC2 @ T_PUBLIC2 @ chains.tz(0.15), B_PUBLIC2, 0.15),
+            ),
             hidden=lambda rng: ref.puma_world_cases(rng, 4),
             reference=ref.puma_world_expected,
             judge_with=solution_set_judge(),

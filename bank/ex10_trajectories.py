@@ -7,8 +7,11 @@ never jump (graded on hidden paths through a wrist flip, by the largest joint st
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
+from puma_course.grading.compare import compare_angles
 from puma_course.grading.diagnose import matches
 from puma_course.grading.judges import path_judge, solution_set_judge
 from puma_course.grading.model import Exercise, Question
@@ -22,6 +25,41 @@ Q_B = np.array([-3.0, 0.4, -0.9, 0.3, 0.4, 3.1])
 #: The eight solutions of lecture 09's example pose.
 SOLUTIONS = ref.puma_ik_expected(ref.puma_fk(np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0])))["solutions"]
 UNWRAPPED = "you did not wrap the angle differences: 179° and -179° are 2° apart, not 358° (lecture 10 §2)"
+
+
+def quintic_motion(
+    q_start: Any, q_end: Any, duration: float, t: Any, scaling: str = "quintic", wrap: bool = True
+) -> np.ndarray:
+    """q(t) = q_start + s(t / duration) Δq, Δq the wrapped difference, s the rest-to-rest quintic (lecture 10 §5).
+
+    ``scaling`` and ``wrap`` give the mistakes: a linear or cubic s, τ = t not divided by the duration, Δq not
+    wrapped.
+    """
+    q_start = np.asarray(q_start, dtype=float)
+    d = np.asarray(q_end, dtype=float) - q_start
+    d = np.asarray(ref.transforms.wrap_angle(d)) if wrap else d
+    tau = np.asarray(t, dtype=float) / (1.0 if scaling == "no duration" else duration)
+    s = {
+        "quintic": 10 * tau**3 - 15 * tau**4 + 6 * tau**5,
+        "no duration": 10 * tau**3 - 15 * tau**4 + 6 * tau**5,
+        "linear": tau,
+        "cubic": 3 * tau**2 - 2 * tau**3,
+    }[scaling]
+    return q_start + s[:, None] * d
+
+
+def _quintic_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (q_start, q_end, duration, t): one joint (at least) across ±π, so an unwrapped difference fails."""
+    out = []
+    for _ in range(n):
+        q0 = rng.uniform(-np.pi, np.pi, 6)
+        q1 = np.asarray(ref.transforms.wrap_angle(q0 + rng.normal(0.0, 1.0, 6)))
+        j = int(rng.integers(6))
+        q0[j], q1[j] = (3.0, -3.0) if rng.uniform() < 0.5 else (-2.9, 3.1)
+        duration = float(rng.uniform(1.5, 5.0))
+        t = np.r_[0.0, np.sort(rng.uniform(0.0, duration, 5)), duration]
+        out.append((q0, q1, duration, t))
+    return out
 
 
 def _pairs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -85,6 +123,42 @@ EXERCISE = Exercise(
             forbidden=keys.KEY_NEAREST,
             hint="The arm stands at q0 before the path starts, and between neighbouring poses its joints should "
             "hardly move (lecture 10 §2-3): print your largest step. The path is the pen's: where is frame {6}?",
+        ),
+        Question(
+            "q4",
+            "quintic_motion",
+            2,
+            "a joint motion timed by a quintic, the short way round",
+            public=(
+                (np.zeros(6), np.array([0.5, -0.5, 1.0, 0.0, 0.0, 0.2]), 2.0, np.linspace(0.0, 2.0, 5)),
+                (Q_A, Q_B, 4.0, np.array([0.0, 1.0, 2.0, 3.0, 4.0])),
+            ),
+            hidden=lambda rng: _quintic_cases(rng, 4),
+            reference=quintic_motion,
+            compare=compare_angles,
+            forbidden=keys.KEY_NEAREST,
+            mistakes=(
+                matches("unwrapped_distance", UNWRAPPED, lambda q0, q1, T, t: quintic_motion(q0, q1, T, t, wrap=False)),
+                matches(
+                    "time_scaling",
+                    "your motion moves at constant speed (s = t / T): it starts and stops with a jerk; the "
+                    "quintic of lecture 10 §5 starts and ends at rest",
+                    lambda q0, q1, T, t: quintic_motion(q0, q1, T, t, scaling="linear"),
+                ),
+                matches(
+                    "time_scaling",
+                    "this is the cubic s = 3τ² - 2τ³: at rest at both ends but with a jump in acceleration; the "
+                    "question asks for the quintic (zero acceleration at both ends too, lecture 10 §5)",
+                    lambda q0, q1, T, t: quintic_motion(q0, q1, T, t, scaling="cubic"),
+                ),
+                matches(
+                    "time_scaling",
+                    "your s takes the time t itself for τ: τ = t / duration runs from 0 to 1",
+                    lambda q0, q1, T, t: quintic_motion(q0, q1, T, t, scaling="no duration"),
+                ),
+            ),
+            hint="Three conditions at each end (position, speed, acceleration) need six coefficients; check that "
+            "your first row is q_start, your last q_end (up to whole turns), and that no joint turns more than π.",
         ),
     ),
     allowed=("puma_course.kinematics.puma560:Puma560", "puma_course.transforms:inverse_transform"),

@@ -118,16 +118,26 @@ def puma_arm_expected(p: Any, a2: float, a3: float, d3: float, d4: float) -> dic
 
 
 def puma_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
-    """Cases (T, q_ref, a2, a3, d3, d4): q_ref near one solution, across ±π where wrapping decides."""
-    out = []
-    for k, (T, *L) in enumerate(puma_cases(rng, n, near_singular=True)):
-        sol = _quiet(Puma560(*L).ik, T).q
-        q_ref = sol[int(rng.integers(len(sol)))] + rng.normal(0.0, 0.05, 6)
-        if k % 2 == 0:  # one joint just across ±π from the solution: only a wrapped distance sees it is near
-            j = int(rng.integers(6))
+    """Cases (T, q_ref, a2, a3, d3, d4) on poses near singularities (:func:`puma_cases`): q_ref near one solution
+    with one joint across ±π from it, drawn until the solution nearest by the unwrapped distance is another one
+    (so not wrapping fails every hidden case)."""
+    out: list[tuple[Any, ...]] = []
+    poses = puma_cases(rng, n, near_singular=True)
+    while len(out) < n:
+        T, *L = poses[len(out)]
+        sol = np.atleast_2d(np.asarray(_quiet(Puma560(*L).ik, T).q, dtype=float))
+        for _ in range(50):
+            q_ref = sol[int(rng.integers(len(sol)))] + rng.normal(0.0, 0.05, 6)
+            j = int(rng.integers(6))  # one joint just across ±π from the solution: only a wrapped distance sees it
             q_ref[j] = math.copysign(math.pi, -q_ref[j]) + math.copysign(0.05, q_ref[j]) * -1.0
-            q_ref[j] = transforms.wrap_angle(q_ref[j])
-        out.append((T, transforms.wrap_angle(q_ref), *L))
+            q_ref = np.asarray(transforms.wrap_angle(q_ref))
+            wrapped = np.asarray(transforms.wrap_angle(sol - q_ref))
+            plain = np.asarray(transforms.wrap_angle(sol)) - q_ref
+            if int(np.argmin(np.sum(wrapped**2, axis=1))) != int(np.argmin(np.sum(plain**2, axis=1))):
+                out.append((T, q_ref, *L))
+                break
+        else:  # no q_ref separates the two distances on this pose: another pose
+            poses[len(out)] = puma_cases(rng, 1, near_singular=False)[0]
     return out
 
 
@@ -157,6 +167,10 @@ def puma_world_expected(T_world: Any, B: Any, d6: float) -> dict[str, Any]:
     ]
     out = _set_expected(arm, Bi @ T_world @ tz(-d6), fk=MountedFk(arm.fk, base=B, tool=tz(d6)), alternatives=alts)
     out["T"] = T_world
+    # what the same mistakes give when their ⁰T₆ is out of reach: no solution (the judge names an empty answer)
+    out["wrong_sets"] = [
+        (key, message, np.asarray(_quiet(arm.ik, Bi @ P @ tz(-d6)).q).reshape(-1, 6)) for key, message, P in alts
+    ]
     return out
 
 
@@ -198,8 +212,9 @@ def puma_path_expected(path: Any, q0: Any, d_tool: float) -> dict[str, Any]:
 def puma_paths(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     """Cases (path, q0, d_tool): lines through a wrist flip (θ5 crossing 0 between samples) and circles, each
     starting from a configuration that is not the solver's first branch."""
-    arm, out = Puma560(), []
-    for k in range(n):
+    arm, out = Puma560(), list[tuple[Any, ...]]()
+    while len(out) < n:  # only paths where nearest-the-start jumps (see _start_nearest_jumps)
+        k = len(out)
         d = float(rng.uniform(0.05, 0.15))
         q_mid = np.array(
             [
@@ -223,8 +238,26 @@ def puma_paths(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
             )
         sols = _quiet(arm.ik, path06[0])
         q0 = sols.q[int(rng.integers(1, len(sols)))]
-        out.append((path06 @ tz(d), q0, d))
+        if _start_nearest_jumps(arm, path06, q0):
+            out.append((path06 @ tz(d), q0, d))
     return out
+
+
+def _start_nearest_jumps(arm: Puma560, path06: np.ndarray, q0: np.ndarray, slack: float = 0.01) -> bool:
+    """True when choosing, at every pose, the solution nearest the *start* q0 (not the previous pose) makes a
+    step the path judge calls a jump: only such paths tell that mistake from the right method."""
+    ref = tr.follow(arm, path06, q0).q
+    rows = []
+    for T in path06:
+        S = np.atleast_2d(np.asarray(_quiet(arm.ik, T).q, dtype=float))
+        rows.append(S[int(np.argmin(np.sum(np.asarray(transforms.wrap_angle(S - q0)) ** 2, axis=1)))])
+    mine = np.array(rows)
+
+    def largest(P: np.ndarray) -> float:
+        d = np.asarray(transforms.wrap_angle(P[1:] - P[:-1]))
+        return float(np.max(np.sqrt(np.sum(d * d, axis=1)), initial=0.0))
+
+    return largest(mine) > 1.5 * largest(ref) + slack
 
 
 def three_step_variant(

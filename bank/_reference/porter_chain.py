@@ -107,12 +107,25 @@ def signed_angle(v: Any, w: Any, axis: Any) -> float:
     return float(porter_angle(v, w, axis))
 
 
+def signed_angles_matter(q: Any) -> bool:
+    """True when one of the angles Porter's step 4 measures (α2 + π/2, α3 + π/2, α5) is negative in ``q``.
+
+    There the printed, unsigned angle() gives another configuration: a case that separates the two.
+    """
+    q = np.asarray(q, dtype=float)
+    return bool(min(transforms.wrap_angle(q[1] + np.pi / 2), transforms.wrap_angle(q[3] + np.pi / 2), q[5]) < -0.05)
+
+
 def porter_parallel_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
-    """Cases (T, l1, l3, l4) with x5 normal to the arm plane (α4 = ±π/2) and p4 off the z0 axis."""
-    out = []
-    for q, l1, l3, l4 in porter_configs(rng, n):
+    """Cases (T, l1, l3, l4) with x5 normal to the arm plane (α4 = ±π/2) and p4 off the z0 axis, each one
+    where Porter's configuration has a negative signed angle (so the printed unsigned angle fails it)."""
+    out: list[tuple[Any, ...]] = []
+    while len(out) < n:
+        q, l1, l3, l4 = porter_configs(rng, 1)[0]
         q[4] = np.pi / 2 * (1 if rng.uniform() < 0.5 else -1)
-        out.append((Porter(l1, l3, l4).fk(q), l1, l3, l4))
+        T = Porter(l1, l3, l4).fk(q)
+        if signed_angles_matter(porter_geometric(T, l1, l3, l4)[0]):
+            out.append((T, l1, l3, l4))
     return out
 
 
@@ -135,15 +148,26 @@ def porter_geometric(T: Any, l1: float, l3: float, l4: float) -> np.ndarray:
     return np.asarray(_quiet(Porter(l1, l3, l4).ik, T, method="geometric"))
 
 
+def _nearest_index(S: np.ndarray, q: np.ndarray, wrap: Any) -> int:
+    d = np.where(np.asarray(wrap, dtype=bool), transforms.wrap_angle(S - q), S - q)
+    return int(np.argmin(np.sum(d * d, axis=1)))
+
+
 def porter_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
-    """Cases (T, l1, l3, l4, q_prev): q_prev near one of the four configurations, an angle across ±π from it."""
-    out = []
-    for T, l1, l3, l4 in porter_poses(rng, n):
-        sol = np.asarray(_quiet(Porter(l1, l3, l4).ik, T).q)
-        q_prev = sol[int(rng.integers(len(sol)))] + rng.normal(0.0, 0.05, 6)
-        j = int(rng.choice([0, 1, 3, 4, 5]))
-        q_prev[j] = transforms.wrap_angle(q_prev[j] + np.pi) - np.pi  # the same angle, written a turn away
-        out.append((T, l1, l3, l4, q_prev))
+    """Cases (T, l1, l3, l4, q_prev): q_prev between the four configurations (angles within about 0.8 of one,
+    the stroke 3.5 to 7 long), each one where wrapping nothing, or wrapping the stroke like an angle, picks
+    another configuration than the course's distance (angles wrapped, the stroke not): both mistakes fail it."""
+    out: list[tuple[Any, ...]] = []
+    angles, everything, nothing = [True, True, False, True, True, True], [True] * 6, [False] * 6
+    while len(out) < n:
+        T, l1, l3, l4 = porter_poses(rng, 1)[0]
+        sol = np.atleast_2d(np.asarray(_quiet(Porter(l1, l3, l4).ik, T).q, dtype=float))
+        q_prev = sol[int(rng.integers(len(sol)))] + rng.normal(0.0, 0.8, 6)
+        q_prev[2] = float(rng.uniform(3.5, 7.0))
+        q_prev = np.where(angles, transforms.wrap_angle(q_prev), q_prev)
+        right = _nearest_index(sol, q_prev, angles)
+        if right not in {_nearest_index(sol, q_prev, everything), _nearest_index(sol, q_prev, nothing)}:
+            out.append((T, l1, l3, l4, q_prev))
     return out
 
 

@@ -157,6 +157,17 @@ def compare_solution_set(angle_columns: Sequence[int], tol: float = 1e-6) -> Com
 
         n_ref, n_got = ref.shape[0], arr.shape[0]
         missed = int(np.sum(dist(ref, arr).min(axis=1) > tol)) if n_ref and n_got else n_ref
+        if missed and n_ref and n_got:
+            wrong = np.flatnonzero(dist(arr, ref).min(axis=1) > tol)
+            if wrong.size:
+                # say what differs: the first returned row that is none of the expected ones, and by how much
+                i = int(wrong[0])
+                j = int(np.argmin(dist(arr[i : i + 1], ref)[0]))
+                off = float(dist(arr[i : i + 1], ref[j : j + 1])[0, 0])
+                return (
+                    f"row {i + 1} of yours is none of the {n_ref} expected rows: it is off by up to {off:.3g} from "
+                    f"the nearest one ({missed} expected row(s) missing)"
+                )
         if missed:
             return f"misses {missed} of the {n_ref} expected rows (you returned {n_got})"
         extra = int(np.sum(dist(arr, ref).min(axis=1) > tol)) if n_ref and n_got else n_got

@@ -31,6 +31,7 @@ __all__ = [
     "Mistake",
     "TITLES",
     "diagnose",
+    "diagnose_all",
     "close",
     "matches",
     "matches_set",
@@ -82,6 +83,8 @@ TITLES: dict[str, str] = {
     "offset_sign": "an offset with the wrong sign",
     "not_minimal": "not Porter's minimal stroke",
     "back_plane": "the arm plane entered from the back",
+    "time_scaling": "another time scaling than the one asked for (linear, cubic, t not divided by the duration)",
+    "frame_coordinates": "a vector or point written in another frame's coordinates than the one asked for",
 }
 
 #: ``check(got, expected, args, reference)``: a message for the student if ``got`` is this mistake, else None.
@@ -161,6 +164,32 @@ def diagnose(
     return None
 
 
+def diagnose_all(
+    mistakes: Sequence[Mistake], got: Any, expected: Any, args: tuple[Any, ...], reference: Any
+) -> list[tuple[str, str]]:
+    """Every one of ``mistakes`` that ``got`` is, as (key, message), in order (the first message per key).
+
+    >>> diagnose_all((DEGREES_OUT, sign_flip()), [-90.0], np.array([np.pi / 2]), (), None)
+    []
+    >>> [k for k, _ in diagnose_all((DEGREES_OUT, SIGN_FLIP), [-1.0], np.array([1.0]), (), None)]
+    ['sign_flip']
+    """
+    arr = _floats(got)
+    if arr is None:
+        return []
+    found: dict[str, str] = {}
+    for mistake in mistakes:
+        if mistake.key in found:
+            continue
+        try:
+            message = mistake.check(arr, expected, args, reference)
+        except Exception:  # noqa: BLE001 - a check that does not apply to this value says nothing
+            continue
+        if message:
+            found[mistake.key] = message
+    return list(found.items())
+
+
 def matches(key: str, message: str, wrong: Callable[..., Any]) -> Mistake:
     """The mistake whose answer is ``wrong(*args)`` (the mistaken formula applied to the same arguments).
 
@@ -183,12 +212,12 @@ def _transposed(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference
     if ref.ndim != 2 or ref.shape[0] != ref.shape[1] or ref.shape[0] not in (3, 4) or got.shape != ref.shape:
         return None
     R = ref[:3, :3]
-    if close(R, R.T):
+    if close(ref, ref.T):
         return None
     if close(got, ref.T):
         whole = " the whole 4×4 matrix" if ref.shape[0] == 4 else ""
         return f"you returned the transpose{whole}: column k of a rotation is where the k-th axis goes (lecture 01 §1)"
-    if ref.shape[0] == 4 and close(got[:3, :3], R.T):
+    if ref.shape[0] == 4 and not close(R, R.T) and close(got[:3, :3], R.T):
         return "the rotation part is transposed (Rᵀ for R): column k of R is where the k-th axis goes (lecture 01 §1)"
     return None
 

@@ -15,7 +15,7 @@ from typing import Any
 
 from .bounds import check_answer
 from .child import ChildResult
-from .model import Exercise, NotebookResult, Question, Verdict, score_question
+from .model import Exercise, NotebookResult, Question, Verdict, reconcile, score_question
 from .text import quoted
 from .worker import NOT_ATTEMPTED
 
@@ -140,7 +140,7 @@ def apply(
     for e in child.events:
         if e.get("kind") == "call" and isinstance(e.get("qid"), str) and isinstance(e.get("case"), int):
             got.setdefault((e["qid"], e["case"]), e)
-    outcomes: dict[str, list[tuple[str, str | None]]] = {q.qid: [] for q in exercise.questions}
+    judged: dict[str, list[tuple[str, Verdict]]] = {q.qid: [] for q in exercise.questions}
     budget = time.perf_counter() + JUDGING_SECONDS
     for item in plan:
         q = exercise.question(item["qid"])
@@ -150,9 +150,14 @@ def apply(
         else:
             event = got.get((q.qid, item["case"]))
             verdict = call_verdict(q, event, item["expected"], item.get("call_args", ()), limits)
-        outcomes[q.qid].append((f"{kind} {item['case'] + 1}", verdict.reason))
-        if verdict.mistake is not None:
-            result.mistakes.setdefault(q.qid, []).append(verdict.mistake)
+        judged[q.qid].append((f"{kind} {item['case'] + 1}", verdict))
+    outcomes: dict[str, list[tuple[str, str | None]]] = {}
+    for qid, pairs in judged.items():
+        verdicts = reconcile([v for _, v in pairs])  # a mistake named only if every failing case is that mistake
+        outcomes[qid] = [(label, v.reason) for (label, _), v in zip(pairs, verdicts, strict=True)]
+        for v in verdicts:
+            if v.mistake is not None:
+                result.mistakes.setdefault(qid, []).append(v.mistake)
     for q in exercise.questions:
         result.scores[q.qid], result.question_notes[q.qid] = score_question(q.points, outcomes[q.qid])
     if child.timed_out:

@@ -15,14 +15,14 @@ import importlib.util
 import os
 import sys
 from collections.abc import Callable, Iterator, MutableMapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .compare import Comparison, compare_close
-from .diagnose import Mistake, diagnose
+from .diagnose import Mistake, diagnose_all
 
 __all__ = [
     "Question",
@@ -37,6 +37,7 @@ __all__ = [
     "Verdict",
     "score_question",
     "MAX_NOTES",
+    "reconcile",
 ]
 
 #: At most this many distinct failure reasons are kept per question (after the "k/n cases pass" line).
@@ -55,11 +56,62 @@ class Verdict:
 
     reason: str | None
     mistake: str | None = None
+    #: Set when a returned value was judged: every recognised mistake this value *equals*, as (key,
+    #: message), in the question's order (empty: none). :func:`reconcile` names a mistake only when
+    #: every failing case of the question equals it. None: not a judged value (an error, no answer).
+    candidates: tuple[tuple[str, str], ...] | None = None
+    #: What differs, without naming a mistake: said instead when the mistake is not the same on every failing case.
+    plain: str | None = None
 
     @property
     def passed(self) -> bool:
         """True when the value was right."""
         return self.reason is None
+
+    def judged(self) -> Verdict:
+        """This verdict with ``candidates`` filled in (its own mistake, if it names one) and ``plain`` defaulted."""
+        candidates = self.candidates
+        if candidates is None:
+            candidates = ((self.mistake, self.reason or ""),) if self.mistake is not None else ()
+        plain = self.plain if self.plain is not None else (None if self.mistake is not None else self.reason)
+        return replace(self, candidates=candidates, plain=plain)
+
+
+def reconcile(verdicts: Sequence[Verdict]) -> list[Verdict]:
+    """The verdicts on one question's cases, a mistake named only where *every* failing judged case equals it.
+
+    A wrong answer can coincide with a mistaken formula on one case (the angle from w to v equals the
+    unsigned angle wherever the right angle is negative): naming it from that case alone would tell
+    the student about a mistake they did not make. The mistake named is the first one (in the
+    question's order) that every failing judged case equals; when there is none, every failing case
+    says what differs instead (its ``plain`` reason). Cases that failed without a value (an error, a
+    timeout) do not take part.
+
+    >>> a = Verdict("unsigned", "unsigned_angle", (("unsigned_angle", "unsigned"), ("sign_flip", "flip")), "off 1")
+    >>> b = Verdict("flip", "sign_flip", (("sign_flip", "flip"),), "off 2")
+    >>> [v.mistake for v in reconcile([a, b])], [v.reason for v in reconcile([a, Verdict(None)])]
+    (['sign_flip', 'sign_flip'], ['unsigned', None])
+    >>> c = Verdict("values differ", None, (), "values differ")
+    >>> [(v.reason, v.mistake) for v in reconcile([a, c])]
+    [('off 1', None), ('values differ', None)]
+    """
+    out = list(verdicts)
+    failing = [i for i, v in enumerate(out) if not v.passed and v.candidates is not None]
+    if not failing:
+        return out
+    common: list[str] | None = None
+    for i in failing:
+        keys = [k for k, _ in out[i].candidates or ()]
+        common = keys if common is None else [k for k in common if k in keys]
+    for i in failing:
+        v = out[i]
+        if common:
+            message = dict(v.candidates or ())[common[0]]
+            out[i] = replace(v, reason=message, mistake=common[0])
+        elif v.mistake is not None or v.candidates:
+            plain = v.plain or "your value differs from the right answer here (no single mistake explains every case)"
+            out[i] = replace(v, reason=plain, mistake=None)
+    return out
 
 
 #: ``judge_with(got, expected, args)``: how a modelling question judges a value (see :attr:`Question.judge_with`).
@@ -129,12 +181,15 @@ class Question:
         'degrees'
         """
         if self.judge_with is not None:
-            return self.judge_with(got, expected, tuple(args))
+            verdict = self.judge_with(got, expected, tuple(args))
+            return verdict if verdict.passed else verdict.judged()
         reason = self.compare(got, expected)
         if reason is None:
             return Verdict(None)
-        found = diagnose(self.mistakes, got, expected, tuple(args), self.reference)
-        return Verdict(reason) if found is None else Verdict(found[1], found[0])
+        found = diagnose_all(self.mistakes, got, expected, tuple(args), self.reference)
+        if not found:
+            return Verdict(reason, None, (), reason)
+        return Verdict(found[0][1], found[0][0], tuple(found), reason)
 
     def right_answer(self, *args: Any) -> Any:
         """One right answer for ``args`` (``answer``, else ``reference``): what the tests feed the judge."""

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from ..course import CourseNotFoundError
-from .model import EXERCISES, BankNotFoundError, Exercise, Question, score_question
+from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, reconcile, score_question
 from .report import format_question
 from .worker import NOT_ATTEMPTED, forbidden_codes, guarded_call
 
@@ -87,13 +87,14 @@ def _short_repr(value: Any) -> str:
 def public_outcomes(q: Question, answer: Callable[..., Any]) -> list[tuple[str, str | None]]:
     """(label, reason or None when it passed) for each public case of ``q`` run on ``answer`` here."""
     codes = forbidden_codes(q.forbidden)
-    outcomes: list[tuple[str, str | None]] = []
+    outcomes: list[tuple[str, Verdict]] = []
     for i, args in enumerate(q.public, start=1):
         label = f"case {i} ({q.function}({', '.join(_short_repr(a) for a in args)}))"
         expected = q.reference(*copy.deepcopy(args))
         if not callable(expected) and not isinstance(expected, dict):
             expected = np.asarray(expected, dtype=float)
-        reason: str | None
+        reason: str | None = None
+        verdict: Verdict | None = None
         try:
             got, hit = guarded_call(answer, copy.deepcopy(args), codes)
         except NotImplementedError:
@@ -105,11 +106,12 @@ def public_outcomes(q: Question, answer: Callable[..., Any]) -> list[tuple[str, 
                 reason = f"used the course package's answer ({hit.replace(':', '.')}) instead of your own code"
             else:
                 try:
-                    reason = q.judge(got, expected, tuple(args)).reason
+                    verdict = q.judge(got, expected, tuple(args))
                 except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the check
                     reason = f"could not compare the value ({type(exc).__name__})"
-        outcomes.append((label, reason))
-    return outcomes
+        outcomes.append((label, verdict if verdict is not None else Verdict(reason)))
+    verdicts = reconcile([v for _, v in outcomes])  # a mistake named only if every failing case is that mistake
+    return [(label, v.reason) for (label, _), v in zip(outcomes, verdicts, strict=True)]
 
 
 def check(question: str, answer: Callable[..., Any]) -> None:

@@ -205,16 +205,22 @@ def test_the_printed_normal_and_the_printed_rod_length():
     assert_named(judge(name, "q1", -n, T, 1.0, 0.3), "printed_formula", "-y1")
     assert_named(judge(name, "q1", 3 * n, T, 1.0, 0.3), "unnormalised")
     p4, x5 = T[:3, 3] - 0.3 * T[:3, 0], T[:3, 0]
-    z4 = np.cross(n, x5) / np.linalg.norm(np.cross(n, x5))
-    assert judge(name, "q2", [p4 - 0.5 * z4, p4 + 0.5 * z4], T, *L).passed  # any order
-    assert_named(judge(name, "q2", [p4 + 0.3 * z4, p4 - 0.3 * z4], T, *L), "printed_formula", "l4")
-    assert_named(judge(name, "q2", [p4 + 0.5 * z4, p4 + 0.5 * z4], T, *L), "duplicates")
+    z4 = np.cross(T[:3, :3] @ n, x5) / np.linalg.norm(np.cross(T[:3, :3] @ n, x5))  # n is in F5's coordinates
+
+    def in_hand(points):  # the question asks for the points in the hand frame F5
+        return (np.asarray(points) - T[:3, 3]) @ T[:3, :3]
+
+    assert judge(name, "q2", in_hand([p4 - 0.5 * z4, p4 + 0.5 * z4]), T, *L).passed  # any order
+    assert_named(judge(name, "q2", in_hand([p4 + 0.3 * z4, p4 - 0.3 * z4]), T, *L), "printed_formula", "l4")
+    assert_named(judge(name, "q2", in_hand([p4 + 0.5 * z4, p4 + 0.5 * z4]), T, *L), "duplicates")
+    assert_named(judge(name, "q2", [p4 - 0.5 * z4, p4 + 0.5 * z4], T, *L), "frame_coordinates", "hand frame")
+    assert_named(judge(name, "q1", T[:3, :3] @ n, T, 1.0, 0.3), "frame_coordinates", "R05ᵀ")
 
 
 def test_the_unsigned_angle():
     v, w, axis = np.array([1.0, 0, 0]), np.array([-1.0, -1.0, 0]), np.array([0, 0, 1.0])
     assert judge("ex07_porter_geometric", "q3", -3 * np.pi / 4, v, w, axis).passed
-    assert_named(judge("ex07_porter_geometric", "q3", 3 * np.pi / 4, v, w, axis), "unsigned_angle", "never negative")
+    assert_named(judge("ex07_porter_geometric", "q3", 3 * np.pi / 4, v, w, axis), "unsigned_angle", "unsigned")
 
 
 def test_ik_sets_any_order_but_no_duplicate_no_missing_branch_no_negative_stroke():
@@ -260,7 +266,7 @@ def test_the_parallel_planes_representative():
     # the same construction with the elbow on the far side of the circle: a longer stroke
     x5, z5 = T[:3, 0], T[:3, 2]
     p2, p4 = np.array([0, 0, 1.0]), T[:3, 3] - 0.3 * x5
-    n = right(name, "q1", T, 1.0, 0.3)
+    n = T[:3, :3] @ right(name, "q1", T, 1.0, 0.3)  # q1 answers in the hand frame F5
     p3 = p4 - 0.5 * (p2 - p4) / np.linalg.norm(p2 - p4)
 
     def ang(v, w, a):
@@ -460,3 +466,16 @@ def test_every_mistake_the_graders_name_has_a_crafted_case_in_this_file():
     source = Path(__file__).read_text(encoding="utf-8")
     untested = [key for key in TITLES if f'"{key}"' not in source]
     assert not untested, untested
+
+
+def test_the_quintic_time_scaling_and_the_short_way_round():
+    name = "ex10_trajectories"
+    q0, q1, T, t = EXERCISES[name].question("q4").public[1]
+    dq, tau = np.angle(np.exp(1j * (q1 - q0))), t / T
+    quintic = q0 + (10 * tau**3 - 15 * tau**4 + 6 * tau**5)[:, None] * dq  # worked from lecture 10 §5
+    assert judge(name, "q4", quintic, q0, q1, T, t).passed
+    assert judge(name, "q4", np.angle(np.exp(1j * quintic)), q0, q1, T, t).passed  # angles a whole turn away
+    assert_named(judge(name, "q4", q0 + tau[:, None] * dq, q0, q1, T, t), "time_scaling", "constant speed")
+    assert_named(judge(name, "q4", q0 + (3 * tau**2 - 2 * tau**3)[:, None] * dq, q0, q1, T, t), "time_scaling", "cubic")
+    unwrapped = q0 + (10 * tau**3 - 15 * tau**4 + 6 * tau**5)[:, None] * (q1 - q0)
+    assert_named(judge(name, "q4", unwrapped, q0, q1, T, t), "unwrapped_distance", "wrap")

@@ -43,7 +43,7 @@ EXPECTED = {
     "tamper_files": (13, "ok", {}),  # the good notebook plus a cell that tampers
     "memory_hog": (10, "cell-error", {}),
     "evil_values": (5, "ok", {"q1": 0, "q2": 0}),
-    "memorizer": (2.4, "ok", {"q1": 2, "q4": 0.4}),
+    "memorizer": (2.33, "ok", {"q1": 2, "q4": 0.33}),  # q4: 1 of its 6 cases (2 public since issue 22)
 }
 
 

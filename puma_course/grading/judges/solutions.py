@@ -35,16 +35,15 @@ def _not_reaching(arr: np.ndarray, expected: dict[str, Any], target: Any) -> Ver
     ok = pose_ok(reached, target, scale)
     if np.all(ok):
         return None
-    if np.all(pose_ok(fk(_radians(arr, rev)), target, scale)):
-        return Verdict("your angles are in degrees: the course works in radians", "degrees")
-    for key, message, alt in expected.get("alternatives", ()):
-        if np.all(pose_ok(reached, alt, scale)):
-            return Verdict(message, key)
     i = int(np.flatnonzero(~ok)[0])
     label = f"row {i + 1}" if arr.shape[0] > 1 else "your configuration"
-    return Verdict(
-        f"{label} does not reach the pose: off by {_off(reached[i : i + 1], np.asarray(target))}", "not_a_solution"
-    )
+    plain = f"{label} does not reach the pose: off by {_off(reached[i : i + 1], np.asarray(target))}"
+    if np.all(pose_ok(fk(_radians(arr, rev)), target, scale)):
+        return Verdict("your angles are in degrees: the course works in radians", "degrees", None, plain)
+    for key, message, alt in expected.get("alternatives", ()):
+        if np.all(pose_ok(reached, alt, scale)):
+            return Verdict(message, key, None, plain)
+    return Verdict(plain, "not_a_solution")
 
 
 def solution_set_judge(match_tol: float = 1e-6) -> Judge:
@@ -52,7 +51,9 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
 
     The reference gives ``{"T", "solutions" (k, n), "labels", "fk", "revolute", "scale"}`` and may
     add ``"alternatives"`` (``(key, message, pose)``: rows that all reach that pose made that
-    mistake), ``"stroke"`` (a column that must not be negative) and ``"ordered"`` (True: the rows
+    mistake; ``"wrong_sets"``, ``(key, message, rows)``: the solutions a mistaken pose has, so that an empty
+    answer is that mistake where the mistaken pose is out of reach), ``"stroke"`` (a column that must not be
+    negative) and ``"ordered"`` (True: the rows
     must come in the reference's order; ``"wrong_orders"``, ``(key, message, rows)``, name the
     mistakes that produce another order).
     """
@@ -65,7 +66,10 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
         if isinstance(arr, str):
             return Verdict(arr)
         if len(arr) == 0:
-            return Verdict(f"returned no configuration; the pose has {k}", "missing_solutions")
+            message = f"returned no configuration; the pose has {k}"
+            # a mistaken pose out of reach: its (empty) set of solutions is the mistaken answer
+            named = [(key, why) for key, why, rows in expected.get("wrong_sets", ()) if len(rows) == 0]
+            return Verdict(message, "missing_solutions", (*named, ("missing_solutions", message)), message)
         if len(arr) > 4 * k:  # far more rows than solutions: said before any other work (a bounded cost)
             return Verdict(
                 f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
@@ -134,23 +138,29 @@ def nearest_judge() -> Judge:
             return why
         d, ds = float(_dist(arr[0], q_ref, rev)), _dist(sols, q_ref, rev)
         best = int(np.argmin(ds))
-        if d <= ds[best] + 1e-7:
+        if d <= ds[best] + 1e-6:
             return Verdict(None)
         mine = _dist(sols, arr[0], rev)
         label = labels[int(np.argmin(mine))] if np.min(mine) < 1e-6 else "yours"
-        plain = np.sqrt(np.sum((sols - q_ref) ** 2, axis=-1))
-        # nearest if angle differences are not wrapped: in the reference's angles, or in the student's own
-        unwrapped = int(np.argmin(plain)) == int(np.argmin(mine)) or np.linalg.norm(arr[0] - q_ref) <= plain[best]
-        if np.min(mine) < 1e-6 and unwrapped:
-            return Verdict(
-                f"you chose {label}, nearest if angle differences are not wrapped; wrapped to (-π, π] (179° and -179° "
-                f"are 2° apart) the nearest is {labels[best]}, {ds[best]:.3g} away against your {d:.3g}",
-                "unwrapped_distance",
-            )
-        return Verdict(
-            f"a solution ({label}), but not the nearest: it is {d:.3g} from q_ref, {labels[best]} is {ds[best]:.3g}",
-            "not_nearest",
+        not_nearest = (
+            f"a solution ({label}), but not the nearest: it is {d:.3g} from q_ref, {labels[best]} is {ds[best]:.3g}"
         )
+        candidates = [("not_nearest", not_nearest)]
+        # the mistake "angle differences not wrapped" is named only when the answer IS the solution nearest by
+        # the unwrapped distance (computed on the solutions, angles in (-π, π]), not guessed from a symptom
+        plain = np.sqrt(np.sum((np.where(rev, wrap_angle(sols), sols) - q_ref) ** 2, axis=-1))
+        if np.min(mine) < 1e-6 and int(np.argmin(plain)) == int(np.argmin(mine)):
+            candidates.insert(
+                0,
+                (
+                    "unwrapped_distance",
+                    f"you chose {label}, the nearest if angle differences are not wrapped; wrapped to (-π, π] "
+                    f"(179° and -179° are 2° apart) the nearest is {labels[best]}, {ds[best]:.3g} away against your "
+                    f"{d:.3g}",
+                ),
+            )
+        key, message = candidates[0]
+        return Verdict(message, key, tuple(candidates), not_nearest)
 
     return made(judge, nearest_judge)
 
@@ -174,17 +184,17 @@ def path_judge(slack: float = 0.01) -> Judge:
             return Verdict(f"expected one configuration per pose, shape ({n}, {m}), got shape {arr.shape}")
         ok = pose_ok(fk(arr), path, scale)
         if not np.all(ok):
+            i = int(np.flatnonzero(~ok)[0])
+            plain = (
+                f"the configuration for pose {i + 1} does not reach it: off by "
+                f"{_off(fk(arr[i : i + 1]), path[i : i + 1])}"
+            )
             if np.all(pose_ok(fk(_radians(arr, rev)), path, scale)):
-                return Verdict("your angles are in degrees: the course works in radians", "degrees")
+                return Verdict("your angles are in degrees: the course works in radians", "degrees", None, plain)
             for key, message, other_fk in expected.get("alternatives", ()):
                 if np.all(pose_ok(other_fk(arr), path, scale)):
-                    return Verdict(message, key)
-            i = int(np.flatnonzero(~ok)[0])
-            return Verdict(
-                f"the configuration for pose {i + 1} does not reach it: off by "
-                f"{_off(fk(arr[i : i + 1]), path[i : i + 1])}",
-                "not_a_solution",
-            )
+                    return Verdict(message, key, None, plain)
+            return Verdict(plain, "not_a_solution")
         start, ref_start = float(_dist(arr[0], q0, rev)), float(_dist(ref[0], q0, rev))
         if start > ref_start + slack:
             return Verdict(

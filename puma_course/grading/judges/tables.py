@@ -11,7 +11,7 @@ from ...kinematics import DHChain, Link
 from ...kinematics.standard_dh import standard_dh
 from ..model import Judge, Verdict
 from ..remake import made
-from ._poses import _constant, _floats, _off, pose_ok
+from ._poses import POS_TOL, _constant, _floats, _off, pose_ok
 
 # ------------------------------------------------------------------------------------------ DH tables
 TableFk = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -135,13 +135,27 @@ def _table_mistake(
                 "shows (everything else is right)",
                 "joint_sign",
             )
-    if _constant(T_got @ np.linalg.inv(T_ref), scale):
-        return Verdict(
-            "your chain moves like the mechanism, but your frame {0} is not the base frame the question fixes "
-            "(every pose is off by the same transform on the base side)",
-            "base_frame",
-        )
-    if _constant(np.linalg.inv(T_ref) @ T_got, scale):
+    for side, M in (("base", T_got @ np.linalg.inv(T_ref)), ("tool", np.linalg.inv(T_ref) @ T_got)):
+        if not _constant(M, scale):
+            continue
+        shift = M[0, :3, 3]
+        if np.max(np.abs(M[0, :3, :3] - np.eye(3))) <= 1e-6 and np.max(np.abs(shift[:2])) > POS_TOL * scale:
+            # a pure shift across z0 (or the tool's z): a wrong offset (d_i, a_(i-1)) in the middle of the chain
+            # along an axis parallel to it moves every pose the same way, so it need not be the base or tool
+            # frame: say what differs, name no mistake. A shift along z0 is frame {0}'s height (d1), along the
+            # tool's z its distance (the last d): the frames the question fixes.
+            t = ", ".join(f"{v:.4g}" for v in np.where(np.abs(M[0, :3, 3]) < 1e-9, 0.0, M[0, :3, 3]))
+            where = "in frame {0}" if side == "base" else "in the tool frame"
+            return Verdict(
+                f"your chain moves like the mechanism, but every pose is shifted by the same ({t}) {where}: check "
+                f"the offsets d_i and a_(i-1) of your table (their signs) and where your {side} frame is"
+            )
+        if side == "base":
+            return Verdict(
+                "your chain moves like the mechanism, but your frame {0} is not the base frame the question fixes "
+                "(every pose is off by the same transform on the base side)",
+                "base_frame",
+            )
         return Verdict(
             "your chain moves like the mechanism, but your last frame is not the tool frame the question fixes "
             "(every pose is off by the same transform on the tool side)",

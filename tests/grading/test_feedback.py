@@ -1,0 +1,142 @@
+"""Feedback never names a mistake the student did not make (issue 22, deliverable 3).
+
+The five answers whose feedback used to mislead are graded here one by one; README's table of the
+mistakes the graders recognise is compared with what each question's grader can name, question by
+question, both ways.
+"""
+
+from __future__ import annotations
+
+import copy
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from puma_course.grading import EXERCISES
+from puma_course.grading.model import Question, Verdict, reconcile
+from tests.fixtures.answers.generic import factory_name
+from tests.fixtures.answers.methods import METHODS
+from tests.fixtures.answers.model import grade
+
+README = Path(__file__).resolve().parents[2] / "README.md"
+SEEDS = (0, 1, 2)
+
+
+def _method(exercise: str, qid: str, name: str):
+    return next(a for a in METHODS if (a.exercise, a.qid, a.name) == (exercise, qid, name))
+
+
+@pytest.mark.parametrize(
+    ("exercise", "qid", "name", "never", "said"),
+    [
+        # the first IK solution is not "nearest if angle differences are not wrapped"
+        ("ex09_puma_ik", "q3", "the first IK solution", "unwrapped_distance", "not the nearest"),
+        # measured from w to v is a sign error, not "never negative" (it returns negative angles)
+        ("ex07_porter_geometric", "q3", "measured from w to v", "unsigned_angle", "wrong sign"),
+        # a wrong sign of d2 is not "the tool frame is wrong": a shift, the offsets named
+        ("ex02_dh_frames", "q3", "d2 with the wrong sign", "tool_frame", "offsets d_i"),
+    ],
+)
+def test_misleading_feedback_is_gone(exercise, qid, name, never, said):
+    answer = _method(exercise, qid, name)
+    for seed in SEEDS:
+        g = grade(answer, seed)
+        reasons = [v.reason or "" for v in g.failing()]
+        assert reasons, "the wrong answer must fail"
+        assert never not in g.mistakes, reasons[:2]
+        assert all(said in r for r in reasons), reasons[:2]
+        assert "never negative" not in " ".join(reasons)
+
+
+def test_unnormalised_elbow_direction_is_told_what_differs_not_that_rows_are_missing():
+    answer = _method("ex07_porter_geometric", "q2", "z4 not normalised")
+    for seed in SEEDS:
+        reasons = [v.reason or "" for v in grade(answer, seed).failing()]
+        assert reasons and not any("misses" in r for r in reasons), reasons[:2]
+        assert all("off by" in r for r in reasons), reasons[:2]
+
+
+@pytest.mark.parametrize(
+    ("exercise", "qid", "name", "key"),
+    [
+        ("ex04_mk3_fk", "q2", "twists typed as 90", "degrees"),
+        ("ex09_puma_ik", "q4", "the base on the wrong side", "order"),
+    ],
+)
+def test_mistakes_readme_lists_are_recognised(exercise, qid, name, key):
+    answer = _method(exercise, qid, name)
+    for seed in SEEDS:
+        g = grade(answer, seed)
+        assert [v.mistake for v in g.failing()] == [key] * len(g.failing())
+
+
+def test_reconcile_names_a_mistake_only_when_every_failing_case_is_it():
+    unsigned = Verdict("unsigned", "unsigned_angle", (("unsigned_angle", "unsigned"), ("sign_flip", "flip")), "d1")
+    flip = Verdict("flip", "sign_flip", (("sign_flip", "flip"),), "d2")
+    other = Verdict("values differ", None, (), "values differ")
+    error = Verdict("raised ValueError")  # no value: takes no part
+    assert [v.mistake for v in reconcile([unsigned, flip, Verdict(None)])] == ["sign_flip", "sign_flip", None]
+    assert [v.reason for v in reconcile([unsigned, other])] == ["d1", "values differ"]
+    assert [v.mistake for v in reconcile([unsigned, error])] == ["unsigned_angle", None]
+    assert reconcile([Verdict(None)]) == [Verdict(None)]
+
+
+# ---------------------------------------------------------------- README's table, question by question
+JUDGE_KEYS = {
+    "table": {"degrees", "standard_dh", "joint_sign", "base_frame", "tool_frame", "only_at_zero", "joint_type"},
+    "solution_set": {"degrees", "missing_solutions", "not_a_solution", "duplicates"},
+    "nearest": {"degrees", "not_a_solution", "not_nearest", "unwrapped_distance"},
+    "path": {"degrees", "not_a_solution", "start_jump", "jump"},
+    "rotation": {"degrees"},
+    "stroke": {"degrees", "not_a_solution", "back_plane", "not_minimal"},
+}
+
+
+def recognised(q: Question) -> set[str]:
+    """Every mistake key the grader of ``q`` can name: its diagnosis, its judge's, its reference's alternatives."""
+    keys = {m.key for m in q.mistakes}
+    if q.judge_with is not None:
+        keys |= JUDGE_KEYS[factory_name(q.judge_with).split("_judge")[0]]
+        expected = q.reference(*copy.deepcopy(q.public[0]))
+        for field in ("alternatives", "wrong_orders", "wrong_sets"):
+            keys |= {entry[0] for entry in expected.get(field, ())}
+        if expected.get("stroke") is not None:
+            keys.add("negative_stroke")
+        if expected.get("ordered"):
+            keys.add("solution_order")
+    return keys
+
+
+def readme_table() -> dict[tuple[str, str], set[str]]:
+    """(exercise prefix "ex01", qid) -> the keys README's mistakes table lists for it."""
+    text = README.read_text(encoding="utf-8")
+    start = text.index("| key | the mistake | where it is recognised |")
+    out: dict[tuple[str, str], set[str]] = {}
+    for line in text[start:].splitlines()[2:]:
+        if not line.startswith("| `"):
+            break
+        key = re.match(r"\| `([a-z_0-9]+)` \|", line).group(1)
+        where = line.rstrip(" |").rsplit(" | ", 1)[1]
+        for part in where.split(";"):
+            ex, *qids = re.findall(r"ex\d\d|q\d+", part)
+            for qid in qids:
+                out.setdefault((ex, qid), set()).add(key)
+    return out
+
+
+def test_readme_mistakes_table_matches_the_graders_question_by_question():
+    listed = readme_table()
+    actual = {(name[:4], q.qid): recognised(q) for name, ex in EXERCISES.items() for q in ex.questions if recognised(q)}
+    assert set(listed) <= set(actual), sorted(set(listed) - set(actual))
+    for where, keys in actual.items():
+        assert listed.get(where, set()) == keys, (where, sorted(keys ^ listed.get(where, set())))
+
+
+def test_every_key_of_the_graders_has_a_title():
+    from puma_course.grading.diagnose import TITLES
+
+    keys = set().union(*(recognised(q) for ex in EXERCISES.values() for q in ex.questions))
+    assert keys <= set(TITLES)
+    assert np.isfinite(len(keys))
