@@ -152,6 +152,9 @@ def test_grade_exits_non_zero_when_every_notebook_crashed_or_none_was_found(tmp_
     flat.mkdir()
     shutil.copy(ROOT / "exercises" / "ex01_rotations.ipynb", flat / "ann_ex01_rotations.ipynb")  # a flat download
     code = main(["grade", str(flat), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations", "--quiet"])
+    assert code == 2  # no student folder at all: said before grading, naming the layout (issue 24's exit code)
+    (tmp_path / "empty" / "ann").mkdir(parents=True)  # a student folder with no notebook in it
+    code = main(["grade", str(tmp_path / "empty"), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations"])
     assert code == 4
     subs = tmp_path / "subs"
     (subs / "ann").mkdir(parents=True)
