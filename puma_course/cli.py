@@ -9,6 +9,8 @@
     puma-course grade ... [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
     puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (see :mod:`puma_course.cli_platform`)
     puma-course site [--course DIR] [-o DIR] [--repo-url URL]
+    puma-course slides [--course DIR] [-o DIR] [--lecture NN ...]   (see :mod:`puma_course.instructor`)
+    puma-course keys [--course DIR] [-o DIR]
 
 ``grade`` without ``--exercise`` grades the course's exercises that some student handed in.
 
@@ -44,6 +46,8 @@ from .cli_platform import (
     write_gradebooks,
 )
 from .course import INDEX, CourseNotFoundError, course_root
+from .instructor.cli import add_parsers as add_instructor_parsers
+from .instructor.cli import run_keys, run_slides
 
 __all__ = ["main", "build_parser", "lab_command"]
 
@@ -194,6 +198,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="the course's repository, linked from the landing page (default: [tool.puma-course] repository, "
         "else [project.urls] Repository, in the course's pyproject.toml; none when neither is set)",
     )
+    add_instructor_parsers(sub, course)  # slides, keys (the instructor's kit)
     return parser
 
 
@@ -394,6 +399,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args.jupyter_args = extra
     handlers: dict[str, Any] = {"lab": _lab, "release": _release, "grade": _grade, "check": _check, "site": _site}
     handlers["gradescope"] = lambda a: gradescope(a, _course(a))
+    handlers["slides"] = lambda a: run_slides(a, _course(a))
+    handlers["keys"] = lambda a: run_keys(a, _course(a))
     try:
         return handlers[args.command](args)
     except CourseNotFoundError as exc:

@@ -180,9 +180,11 @@ def _mathjax_source() -> Path:
 
 
 def _copy_mathjax(dest: Path) -> None:
-    dest.mkdir(parents=True, exist_ok=True)
-    shutil.copy2(_mathjax_source(), dest / MATHJAX_FILE)
-    shutil.copy2(Path(__file__).with_name("MATHJAX-LICENSE"), dest / "LICENSE")
+    # with its speech-rule-engine maps and accessibility components, CDN addresses rewritten (issue 25)
+    from .offline_mathjax import copy_offline_mathjax
+
+    _mathjax_source()  # the clear message when MathJax is missing
+    copy_offline_mathjax(dest)
 
 
 _CONF = """
