@@ -130,7 +130,12 @@ def test_every_figure_of_every_lecture_has_alt_text_and_every_cell_a_slide_type(
     for cell in nb["cells"]:
         assert cell["metadata"].get("slideshow", {}).get("slide_type") in ("slide", "subslide", "fragment", "-", "skip",
                                                                            "notes"), cell["source"][:1]  # fmt: skip
-        images = [o for o in cell.get("outputs", []) if any(k.startswith("image/") for k in o.get("data", {}))]
+        images = [
+            o
+            for o in cell.get("outputs", [])
+            if any(k.startswith("image/") for k in o.get("data", {}))
+            or "_anim_img" in "".join(o.get("data", {}).get("text/html", ""))  # an animation's frames
+        ]
         if images:
             figures += 1
             alt = cell["metadata"].get("mystnb", {}).get("image", {}).get("alt", "")

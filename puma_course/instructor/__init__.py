@@ -100,6 +100,8 @@ def build_slides(
     from nbconvert import SlidesExporter
     from traitlets.config import Config
 
+    from ..site.alt_text import with_animation_alt
+
     root = _find(course)
     out_dir = Path(out) if out is not None else root / "_slides"
     chosen = _lectures(root, lectures)
@@ -116,6 +118,7 @@ def build_slides(
     files = []
     for nb_path in chosen:
         nb = nbformat.read(nb_path, as_version=4)
+        with_animation_alt(nb)
         body, _ = exporter.from_notebook_node(nb, resources={"puma_assets": ASSETS})
         body = _with_alt_text(body, nb)
         target = out_dir / f"{nb_path.stem}.slides.html"
