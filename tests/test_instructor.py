@@ -141,3 +141,12 @@ def test_every_figure_of_every_lecture_has_alt_text_and_every_cell_a_slide_type(
             alt = cell["metadata"].get("mystnb", {}).get("image", {}).get("alt", "")
             assert len(alt) > 30, f"{lecture.name}: a figure without alt text: {''.join(cell['source'])[:80]!r}"
     assert figures >= 1
+
+
+def test_the_kit_stays_out_of_the_student_edition(tmp_path):
+    from puma_course.site.build import _edition_tree
+
+    _edition_tree(ROOT, tmp_path / "edition")
+    assert not (tmp_path / "edition" / "instructor").exists()
+    assert not list((tmp_path / "edition").rglob("outcomes.json"))
+    assert not list((tmp_path / "edition").rglob("solutions"))
