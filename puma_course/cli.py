@@ -10,6 +10,8 @@
     puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (see :mod:`puma_course.cli_platform`)
     puma-course site [--course DIR] [-o DIR] [--repo-url URL]
     puma-course edition DIR [--course DIR]
+    puma-course slides [--course DIR] [-o DIR] [--lecture NN ...]   (see :mod:`puma_course.instructor`)
+    puma-course keys [--course DIR] [-o DIR]
 
 ``grade`` without ``--exercise`` grades the course's exercises that some student handed in.
 
@@ -47,6 +49,8 @@ from .cli_platform import (
 from .cli_publish import add_publish_parsers, edition, site
 from .course import INDEX, CourseNotFoundError, course_root, find_course
 from .extras import MissingExtraError, require_extra
+from .instructor.cli import add_parsers as add_instructor_parsers
+from .instructor.cli import run_keys, run_slides
 
 __all__ = ["main", "build_parser", "lab_command"]
 
@@ -186,6 +190,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     ck.add_argument("--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)")
     add_publish_parsers(sub, course)
+    add_instructor_parsers(sub, course)  # slides, keys (the instructor's kit)
     return parser
 
 
@@ -389,6 +394,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     handlers["gradescope"] = lambda a: gradescope(a, _course(a))
     handlers["site"] = lambda a: site(a, _course(a))
     handlers["edition"] = lambda a: edition(a, _course(a))
+    handlers["slides"] = lambda a: run_slides(a, _course(a))
+    handlers["keys"] = lambda a: run_keys(a, _course(a))
     try:
         require_extra(args.command)
         return handlers[args.command](args)

@@ -23,7 +23,8 @@ ALLOWED = {
     "viz": {"base", "kinematics"},
     "grading": {"base", "kinematics"},
     "site": {"base"},  # it reads the course's files; it runs nothing of the course
-    "cli": {"base", "kinematics", "symbolic", "viz", "grading", "site"},
+    "instructor": {"base", "site"},  # the instructor's kit: slides and keys from the course's files (issue 25)
+    "cli": {"base", "kinematics", "symbolic", "viz", "grading", "site", "instructor"},
     "package": {"base", "kinematics"},  # puma_course/__init__.py: the curated light re-export
 }
 
@@ -35,7 +36,7 @@ def layer_of(parts: tuple[str, ...]) -> str:
     head = parts[0]
     if head in BASE:
         return "base"
-    if head in ("kinematics", "symbolic", "viz", "grading", "site", "cli"):
+    if head in ("kinematics", "symbolic", "viz", "grading", "site", "instructor", "cli"):
         return head
     if head.startswith("cli_") or head == "lab_contents":  # the command's parts: the cli layer
         return "cli"

@@ -164,6 +164,19 @@ def _conventions_page(root: Path) -> str:
     return "\n".join(out)
 
 
+def _copy_lecture(nb: Path, dest: Path) -> None:
+    """Copy a lecture for the build, its animations given their cells' text alternatives (:mod:`.alt_text`)."""
+    import json
+
+    from .alt_text import with_animation_alt
+
+    data = json.loads(nb.read_text(encoding="utf-8"))
+    if with_animation_alt(data):
+        dest.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+    else:
+        shutil.copy2(nb, dest)
+
+
 def _mathjax_source() -> Path:
     """MathJax's component, from the ``sphinx-mathjax-offline`` distribution (which bundles MathJax 3.2.2)."""
     import importlib.util
@@ -175,9 +188,11 @@ def _mathjax_source() -> Path:
 
 
 def _copy_mathjax(dest: Path) -> None:
-    dest.mkdir(parents=True, exist_ok=True)
-    shutil.copy2(_mathjax_source(), dest / MATHJAX_FILE)
-    shutil.copy2(Path(__file__).with_name("MATHJAX-LICENSE"), dest / "LICENSE")
+    # with its speech-rule-engine maps and accessibility components, CDN addresses rewritten (issue 25)
+    from .offline_mathjax import copy_offline_mathjax
+
+    _mathjax_source()  # the clear message when MathJax is missing
+    copy_offline_mathjax(dest)
 
 
 _CONF = """
@@ -263,7 +278,7 @@ def build_site(
         (src / "notebooks").mkdir(parents=True)
         (src / "exercises").mkdir()
         for nb in lectures:
-            shutil.copy2(nb, src / "notebooks" / nb.name)
+            _copy_lecture(nb, src / "notebooks" / nb.name)
         for nb in exercises:
             shutil.copy2(nb, src / "exercises" / nb.name)
         if (root / "figures").is_dir():

@@ -9,7 +9,8 @@
   chain or robot, turned with the mouse, ghost arms, targets, animations;
 * :mod:`~puma_course.viz.widgets`: joint sliders and the :class:`Panel` joining them to a viewer;
 * :mod:`~puma_course.viz.animation`: ``jshtml(anim)``, matplotlib's animation player without its CDN link;
-* :mod:`~puma_course.viz.style`: the course's figure style (``use_course_style()``);
+* :mod:`~puma_course.viz.style`: the course's figure style (``use_course_style()``; ``use_projector_style()``
+  for a lecture hall);
 * :mod:`~puma_course.viz.panels`: the lectures' panels, :func:`robot_panel` (any robot, optional
   IK ghosts) and :func:`dh_link_panel`.
 
@@ -32,7 +33,7 @@ from .animation import jshtml
 from .arms import animate_frames, animate_robot, draw_chain, draw_robot, plot_chain, plot_robot
 from .frames import AXIS_COLORS, draw_frame, draw_frames, draw_points, new_axes, set_equal
 from .panels import RobotPanel, dh_link_panel, robot_panel
-from .style import COURSE_STYLE, use_course_style
+from .style import COURSE_STYLE, PROJECTOR_STYLE, projector_style, use_course_style, use_projector_style
 from .viewer import RobotViewer, Viewer
 from .widgets import Panel, SliderList, frame_name, joint_sliders, pose_readout
 
@@ -42,6 +43,9 @@ __all__ = [
     "jshtml",
     "COURSE_STYLE",
     "use_course_style",
+    "use_projector_style",
+    "projector_style",
+    "PROJECTOR_STYLE",
     "Panel",
     "RobotPanel",
     "RobotViewer",

@@ -18,6 +18,8 @@ from .._validate import as_array
 
 __all__ = [
     "AXIS_COLORS",
+    "AXIS_LETTERS",
+    "TRIAD_LETTERS",
     "new_axes",
     "set_equal",
     "frame_tightly",
@@ -102,20 +104,38 @@ def frame_tightly(ax: Any, points: Any, margin: float = 0.05, zoom: float = 1.0)
     ax.set_box_aspect(tuple(half), zoom=zoom)
 
 
+#: the letters at the tips of a triad's axes, so a triad reads without its colours (issue 25)
+AXIS_LETTERS = ("x", "y", "z")
+#: whether :func:`draw_frame` writes them on a named frame by default (``letters=None``); an unnamed triad
+#: (a ghost arm's, an animation's) stays bare, so the figures a reader must read are the ones lettered
+TRIAD_LETTERS = True
+
+
 def draw_frame(
-    ax: Any, T: Any, label: str | None = None, length: float = 0.1, alpha: float = 1.0, lw: float = 2.0
+    ax: Any,
+    T: Any,
+    label: str | None = None,
+    length: float = 0.1,
+    alpha: float = 1.0,
+    lw: float = 2.0,
+    letters: bool | None = None,
 ) -> list[Any]:
     """Draw one frame's triad (x red, y green, z blue) with an optional label ``{i}``.
 
     ``T`` maps the frame's coordinates into the axes' (world) coordinates: the triad's lines
-    are the columns of its rotation, from its origin. Returns three lines (and the label).
+    are the columns of its rotation, from its origin. Returns three lines, the label when given,
+    then the letters x, y, z at the axes' tips (in the axes' colours) when ``letters`` is True
+    (default: on a labelled frame, when :data:`TRIAD_LETTERS`), so a reader who does not tell red
+    from green reads the axes.
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
     >>> fig, ax = new_axes()
     >>> arts = draw_frame(ax, np.eye(4), label="{0}", length=1.0)
     >>> len(arts), arts[0].get_color(), [float(v) for v in arts[0].get_data_3d()[0]]
-    (4, 'tab:red', [0.0, 1.0])
+    (7, 'tab:red', [0.0, 1.0])
+    >>> [a.get_text() for a in arts[4:]]
+    ['x', 'y', 'z']
     >>> plt.close(fig)
     """
     T = as_array(T, "T", (4, 4))
@@ -126,20 +146,28 @@ def draw_frame(
         artists += ax.plot([o[0], e[0]], [o[1], e[1]], [o[2], e[2]], color=AXIS_COLORS[k], alpha=alpha, lw=lw)
     if label:
         artists.append(ax.text(*(o + 0.25 * length * (T[:3, 0] + T[:3, 1])), label, fontsize=9, alpha=alpha))
+    if (TRIAD_LETTERS and bool(label)) if letters is None else letters:
+        for k in range(3):
+            tip = o + 1.18 * length * T[:3, k]
+            artists.append(ax.text(*tip, AXIS_LETTERS[k], color=AXIS_COLORS[k], fontsize=8, alpha=alpha,
+                                   ha="center", va="center", fontweight="bold"))  # fmt: skip
     return artists
 
 
 def draw_frames(ax: Any, frames: Any, labels: Sequence[str] | None = None, length: float = 0.1, **kw: Any) -> list[Any]:
     """Draw a triad for every frame in ``frames`` (k, 4, 4); labels default to {0}..{k-1}.
 
-    Other keywords (``alpha``, ``lw``) go to :func:`draw_frame`.
+    Other keywords (``alpha``, ``lw``, ``letters``) go to :func:`draw_frame`; a labelled triad has its
+    axes lettered.
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
     >>> fig, ax = new_axes()
     >>> arts = draw_frames(ax, np.stack([np.eye(4)] * 2))
     >>> len(arts), [a.get_text() for a in arts if hasattr(a, "get_text")]
-    (8, ['{0}', '{1}'])
+    (14, ['{0}', 'x', 'y', 'z', '{1}', 'x', 'y', 'z'])
+    >>> len(draw_frames(ax, np.stack([np.eye(4)] * 2), letters=False))
+    8
     >>> plt.close(fig)
     """
     F = as_array(frames, "frames", (4, 4), batch=True).reshape(-1, 4, 4)

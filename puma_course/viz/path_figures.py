@@ -34,11 +34,26 @@ from matplotlib.ticker import MaxNLocator
 from .._validate import as_array, as_mask
 from ..kinematics.trajectories import unwrap
 
-__all__ = ["JOINT_COLORS", "MIN_LEGEND_SIZE", "joint_path_figure", "joint_axis_labels"]
+__all__ = [
+    "JOINT_COLORS",
+    "JOINT_LINESTYLES",
+    "JOINT_MARKERS",
+    "MIN_LEGEND_SIZE",
+    "joint_path_figure",
+    "joint_axis_labels",
+]
 
 #: One colour per joint index, the same in every panel (matplotlib's tab10 cycle).
 JOINT_COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
                 "tab:pink", "tab:gray", "tab:olive", "tab:cyan")  # fmt: skip
+
+#: One line style and one marker per joint index besides its colour, so curves that lie on top of each
+#: other (θ4 and θ6 near a wrist singularity) and readers who do not tell colours apart still separate
+#: them. No style is dashed: across the course a dashed line means a joint axis.
+JOINT_LINESTYLES = ("-", "-.", ":", "-", "-.", ":", "-", "-.", ":", "-")
+JOINT_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "<", ">")
+#: markers per curve (spread evenly; each joint's start offset so markers of coinciding curves do not coincide)
+MARKERS_PER_CURVE = 8
 
 #: The smallest legend text, in points, that a projector shows legibly.
 MIN_LEGEND_SIZE = 9.0
@@ -152,7 +167,13 @@ def joint_path_figure(
             ax = axes[r, c]
             for j in js:
                 y = np.degrees(vals[:, j]) if rev[j] else vals[:, j]
-                (line,) = ax.plot(xc, y, color=JOINT_COLORS[j % len(JOINT_COLORS)], label=names[j])
+                n = len(y)
+                step = max(1, n // MARKERS_PER_CURVE)
+                (line,) = ax.plot(
+                    xc, y, color=JOINT_COLORS[j % len(JOINT_COLORS)], label=names[j],
+                    linestyle=JOINT_LINESTYLES[j % len(JOINT_LINESTYLES)], marker=JOINT_MARKERS[j % len(JOINT_MARKERS)],
+                    markevery=((j * step) // max(1, len(js)) % step, step), markersize=5, markerfacecolor="white",
+                )  # fmt: skip
                 handles.setdefault(j, line)
             if c == 0:
                 ax.set_ylabel(label)
@@ -166,7 +187,7 @@ def joint_path_figure(
                                       .get_size_in_points()))  # fmt: skip
     order = [j for j in sel if j in handles]
     fig.legend([handles[j] for j in order], [names[j] for j in order], loc="outside right center", fontsize=size,
-               handlelength=1.6)  # fmt: skip
+               handlelength=2.6)  # fmt: skip
     if suptitle:
         fig.suptitle(suptitle)
     return fig, axes

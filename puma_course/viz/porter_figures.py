@@ -115,9 +115,32 @@ def _plane_patch(ax: Any, a1: float, pts: np.ndarray, color: str = "0.5", alpha:
     return corners
 
 
+#: each joint's axis in Porter's frames F0..F5: (frame index, axis column) -- α1 about z0 through p0, α2 about y1
+#: (= y2) through p2, the stroke q2 along x2 from p2, α3 about y2 (= y3) through p3, α4 about z3 (= z4) through p4,
+#: α5 about x4 (= x5) through p4 and p5 (lecture 05, the table of section 1)
+JOINT_AXES = ((0, 2), (2, 1), (2, 0), (3, 1), (4, 2), (5, 0))
+
+
+def joint_axis_lines(frames: Any) -> np.ndarray:
+    """Each joint's axis as a point and a unit direction, from the frames F0..F5: (6, 2, 3) (or (N, 6, 2, 3)).
+
+    >>> L = joint_axis_lines(Porter(1.0, 0.5, 0.3).frames(np.zeros(6)))
+    >>> (L[1] + 0.0).tolist()  # α2 turns about y through p2 = (0, 0, l1)
+    [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0]]
+    """
+    F = as_array(frames, "frames", (6, 4, 4), batch=True, what="Porter's frames F0..F5, shape (6, 4, 4)")
+    idx = np.array(JOINT_AXES)
+    points = F[..., idx[:, 0], :3, 3]
+    directions = np.take_along_axis(F[..., idx[:, 0], :3, :], idx[:, 1][:, None, None], axis=-1)[..., 0]
+    return np.stack([points, directions], axis=-2)
+
+
 def plot_frames(arm: Porter, Q: Any, titles: Sequence[str] | None = None, *, figsize: tuple[float, float] | None = None,
                 elev: float = 22.0, azim: float = -60.0) -> Figure:  # fmt: skip
     """One 3-D panel per configuration in ``Q`` (k, 6): links, frames F0..F5 with their triads and names.
+
+    The dashed lines are the joint axes (:func:`joint_axis_lines`), as in every lecture's figures: a
+    frame's z axis is a joint axis in a Denavit-Hartenberg chain, not in Porter's.
 
     All panels share one cube of limits (so they compare at a glance) filled by the arms.
 
@@ -137,7 +160,9 @@ def plot_frames(arm: Porter, Q: Any, titles: Sequence[str] | None = None, *, fig
     fig = plt.figure(figsize=figsize or (5.2 * k, 5.0))
     for j in range(k):
         ax = _axes(fig, (1, k, j + 1), elev, azim)
-        draw_chain(ax, F[j], labels=[""] * 6, length=L)
+        draw_chain(ax, F[j], labels=[""] * 6, length=L, axes=False)
+        for o, u in joint_axis_lines(F[j]):
+            ax.plot(*np.stack([o - 0.6 * L * u, o + 0.6 * L * u]).T, ls="--", lw=1, color="tab:blue", alpha=0.5)
         _frame(ax, box, 0.02)
         if titles is not None:
             ax.set_title(titles[j])

@@ -8,11 +8,13 @@ figure's size. Animations keep their own ``dpi`` argument (see :func:`~.arms.ani
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
 from typing import Any
 
 import matplotlib as mpl
 
-__all__ = ["COURSE_STYLE", "use_course_style"]
+__all__ = ["COURSE_STYLE", "PROJECTOR_STYLE", "use_course_style", "use_projector_style", "projector_style"]
 
 #: matplotlib rcParams of the course (``plt.rcParams.update(COURSE_STYLE)``)
 COURSE_STYLE: dict[str, Any] = {
@@ -43,3 +45,52 @@ def use_course_style() -> None:
     """
     params: Any = mpl.rcParams  # matplotlib types its keys as literals; the style's keys are checked by the test
     params.update(COURSE_STYLE)
+
+
+#: the course style for a lecture hall: about 1.5 times the fonts and lines, read from the back row of a
+#: room whose projector shows a 1216-px-wide figure strip (:func:`use_projector_style`, :func:`projector_style`)
+PROJECTOR_STYLE: dict[str, Any] = {
+    **COURSE_STYLE,
+    "font.size": 16,
+    "axes.titlesize": 17,
+    "axes.labelsize": 16,
+    "xtick.labelsize": 14,
+    "ytick.labelsize": 14,
+    "legend.fontsize": 14,
+    "lines.linewidth": 3.0,
+    "lines.markersize": 8,
+    "axes.linewidth": 1.5,
+    "xtick.major.width": 1.5,
+    "ytick.major.width": 1.5,
+    "grid.linewidth": 1.2,
+}
+
+
+def use_projector_style() -> None:
+    """Switch every following figure to :data:`PROJECTOR_STYLE` (larger fonts, thicker lines): one call.
+
+    Call it instead of :func:`use_course_style` (or after it) when teaching from the notebooks on a
+    projector; ``use_course_style()`` switches back.
+
+    >>> use_projector_style()
+    >>> import matplotlib as mpl
+    >>> mpl.rcParams["font.size"] >= 16 and mpl.rcParams["lines.linewidth"] >= 3
+    True
+    >>> use_course_style()
+    """
+    params: Any = mpl.rcParams
+    params.update(PROJECTOR_STYLE)
+
+
+@contextlib.contextmanager
+def projector_style() -> Iterator[None]:
+    """The projector style for the figures drawn inside a ``with`` block; the style before it comes back after.
+
+    >>> import matplotlib as mpl
+    >>> with projector_style():
+    ...     mpl.rcParams["font.size"]
+    16.0
+    """
+    params: Any = PROJECTOR_STYLE  # matplotlib types its keys as literals (see use_course_style)
+    with mpl.rc_context(params):
+        yield

@@ -186,3 +186,29 @@ def test_building_the_site_in_a_clean_clone_leaves_git_status_clean(tmp_path):
     status = subprocess.run(["git", "status", "--porcelain", "--ignored=no"], cwd=clone, capture_output=True, text=True)
     assert status.stdout == "", f"the build left files git sees:\n{status.stdout}"
     assert not (clone / "jupyter_execute").exists()
+
+
+def test_every_image_of_every_lecture_page_has_its_text_alternative(built):
+    """The lectures' figures carry ``mystnb.image.alt``; MyST-NB renders it as the ``<img>``'s ``alt`` (issue 25)."""
+    out, _ = built
+    for page in sorted((out / "notebooks").glob("*.html")):
+        imgs = re.findall(r"<img\b[^>]*>", page.read_text(encoding="utf-8"))
+        assert imgs, f"{page.name}: no figure"
+        for img in imgs:
+            alt = re.search(r"""\balt=(["'])(.*?)\1""", img)
+            assert alt and len(html.unescape(alt.group(2)).strip()) > 20, f"{page.name}: {img[:160]}"
+
+
+def test_no_file_of_the_site_names_a_cdn_host(built):
+    """MathJax's speech-rule-engine maps are bundled and its fall-back addresses rewritten (issue 25)."""
+    from puma_course.instructor import CDN_HOSTS
+
+    out, _ = built
+    named = []
+    for path in out.rglob("*"):
+        if path.is_file() and path.suffix in (".html", ".js", ".css", ".json", ".txt", ".svg", ".map"):
+            text = path.read_text(encoding="utf-8", errors="replace")
+            named += [f"{path.relative_to(out)}: {host}" for host in CDN_HOSTS if host in text]
+    assert not named, named
+    assert (out / "_static" / "mathjax" / "sre" / "mathmaps" / "en.json").is_file()
+    assert (out / "_static" / "mathjax" / "a11y" / "explorer.js").is_file()

@@ -80,8 +80,9 @@ def test_draw_robot_artists_and_bad_input():
     np.testing.assert_array_equal(_xyz(links), ARM.points(q))  # exactly the robot's polyline: offset d3 visible
     np.testing.assert_allclose(_xyz(links)[-1], ARM.fk(q)[:3, 3])  # ... ending at the wrist centre
     arts = A.draw_robot(ax, ARM, q, triads=[0, -1], labels=["{0}", "", "", "", "", "", "{6}"])
-    assert [a.get_text() for a in arts if hasattr(a, "get_text")] == ["{0}", "{6}"]
-    assert len(arts) == 1 + 2 * 4
+    # a labelled triad has its axes lettered x, y, z too (issue 25)
+    assert [a.get_text() for a in arts if hasattr(a, "get_text")] == ["{0}", "x", "y", "z", "{6}", "x", "y", "z"]
+    assert len(arts) == 1 + 2 * (4 + 3)
     assert len(A.draw_robot(ax, ARM, q, triads="none")) == 1
     fig.canvas.draw()
     with pytest.raises(ValueError, match="q"):

@@ -55,7 +55,11 @@ def test_draw_frame_axes_point_along_rotation_columns():
     fig, ax = V.new_axes()
     T = homogeneous(rotz(np.pi / 2), [1.0, 2.0, 3.0])
     arts = V.draw_frame(ax, T, label="{1}", length=0.5)
-    assert len(arts) == 4  # three axes + a label
+    assert len(arts) == 4 + 3  # three axes + a label + the letters x, y, z at the tips (issue 25)
+    assert [a.get_text() for a in arts[4:]] == ["x", "y", "z"]
+    assert [a.get_color() for a in arts[4:]] == list(V.AXIS_COLORS)
+    np.testing.assert_allclose(arts[4].get_position_3d(), [1.0, 2.0 + 1.18 * 0.5, 3.0], atol=1e-12)
+    assert len(V.draw_frame(ax, T, label="{1}", length=0.5, letters=False)) == 4
     x_line = arts[0]
     xs, ys, zs = x_line.get_data_3d()
     np.testing.assert_allclose([xs[1] - xs[0], ys[1] - ys[0], zs[1] - zs[0]], [0.0, 0.5, 0.0], atol=1e-12)
@@ -72,5 +76,10 @@ def test_draw_points_and_frames():
     (line,) = V.draw_points(ax, np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0.0]]))
     np.testing.assert_allclose(np.transpose(line.get_data_3d()), [[0, 0, 0], [1, 0, 0], [1, 1, 0]])
     arts = V.draw_frames(ax, np.stack([np.eye(4)] * 3))
-    assert len(arts) == 3 * 4
-    assert [a.get_text() for a in arts if hasattr(a, "get_text")] == ["{0}", "{1}", "{2}"]
+    assert len(arts) == 3 * (4 + 3)  # per frame: three axes, a label, the letters x, y, z (issue 25)
+    assert [a.get_text() for a in arts if hasattr(a, "get_text")] == [
+        t for i in range(3) for t in (f"{{{i}}}", "x", "y", "z")
+    ]
+    plain = V.draw_frames(ax, np.stack([np.eye(4)] * 3), letters=False)
+    assert len(plain) == 3 * 4
+    assert [a.get_text() for a in plain if hasattr(a, "get_text")] == ["{0}", "{1}", "{2}"]

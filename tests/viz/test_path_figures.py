@@ -9,7 +9,14 @@ import pytest
 from puma_course import Porter, Puma560
 from puma_course.kinematics import trajectories as tr
 from puma_course.viz import use_course_style
-from puma_course.viz.path_figures import JOINT_COLORS, MIN_LEGEND_SIZE, joint_axis_labels, joint_path_figure
+from puma_course.viz.path_figures import (
+    JOINT_COLORS,
+    JOINT_LINESTYLES,
+    JOINT_MARKERS,
+    MIN_LEGEND_SIZE,
+    joint_axis_labels,
+    joint_path_figure,
+)
 
 
 @pytest.fixture
@@ -144,3 +151,24 @@ def test_bad_input_is_refused_naming_the_argument(kwargs, match):
     paths = kwargs.pop("paths")
     with pytest.raises(ValueError, match=match):
         joint_path_figure(paths, **kwargs)
+
+
+def test_every_joint_has_its_own_line_style_and_marker_besides_its_colour():
+    """θ4 and θ6 on top of each other stay apart by style and marker positions; nothing is dashed (issue 25)."""
+    q = np.zeros((40, 6))  # all six curves coincide
+    fig, axes = joint_path_figure(q, revolute=Puma560().revolute)
+    lines = axes[0, 0].lines
+    styles = [(line.get_linestyle(), line.get_marker()) for line in lines]
+    assert len(set(styles)) == 6, styles
+    assert "--" not in [line.get_linestyle() for line in lines]  # a dashed line means a joint axis
+    t4, t6 = lines[3], lines[5]
+    assert (t4.get_linestyle(), t4.get_marker()) != (t6.get_linestyle(), t6.get_marker())
+    m4, m6 = (set(range(line.get_markevery()[0], 40, line.get_markevery()[1])) for line in (t4, t6))
+    assert m4 and m6 and not m4 & m6, (m4, m6)  # their markers do not coincide
+    assert [line.get_linestyle() for line in lines] == [
+        {"-": "-", "-.": "-.", ":": ":"}[ls] for ls in JOINT_LINESTYLES[:6]
+    ]
+    assert [line.get_marker() for line in lines] == list(JOINT_MARKERS[:6])
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)

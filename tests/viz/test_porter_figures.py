@@ -158,3 +158,43 @@ def test_plot_construction_and_parallel_planes_are_readable():
     assert len(fig.axes[0].get_legend().get_texts()) == 3
     with pytest.raises(ValueError, match="^q_ref"):
         PF.plot_parallel_planes(ARM, ARM.fk(Q_PARALLEL), np.zeros((2, 6)))
+
+
+def test_the_dashed_lines_are_the_joint_axes_each_joint_moves_the_chain_about():
+    """Independent truth: moving one joint turns every later point about its line (or slides it along it)."""
+    rng = np.random.default_rng(7)
+    q = rng.uniform(-1.0, 1.0, 6)
+    q[2] = 0.9
+    lines = PF.joint_axis_lines(ARM.frames(q))
+    assert lines.shape == (6, 2, 3)
+    np.testing.assert_allclose(np.linalg.norm(lines[:, 1], axis=1), 1.0)
+    for j, (o, u) in enumerate(lines):
+        moved = q.copy()
+        moved[j] += 0.37
+        # every frame's origin and the tips of its three axes, before and after the joint moves
+        F0, F1 = ARM.frames(q), ARM.frames(moved)
+        before = np.concatenate(
+            [F0[:, :3, 3], (F0[:, :3, 3][:, :, None] + F0[:, :3, :3]).transpose(0, 2, 1).reshape(-1, 3)]
+        )
+        after = np.concatenate(
+            [F1[:, :3, 3], (F1[:, :3, 3][:, :, None] + F1[:, :3, :3]).transpose(0, 2, 1).reshape(-1, 3)]
+        )
+        assert np.abs(after - before).max() > 0.05 or j == 5  # the joint moves something (α5: only the hand's axes)
+        if j == 2:  # the stroke: every point from p3 on slides along u by the change, the others stay
+            shift = after - before
+            moved_rows = np.abs(shift).max(axis=1) > 1e-12
+            np.testing.assert_allclose(
+                shift[moved_rows], np.broadcast_to(0.37 * u, shift[moved_rows].shape), atol=1e-12
+            )
+            continue
+        # a rotation about the line (o, u): the component along u and the distance to the line are kept
+        for b, a in zip(before, after, strict=True):
+            assert abs(np.dot(a - o, u) - np.dot(b - o, u)) < 1e-12
+            assert abs(np.linalg.norm(np.cross(a - o, u)) - np.linalg.norm(np.cross(b - o, u))) < 1e-12
+    fig = PF.plot_frames(ARM, [q])
+    dashed = [ln for ln in fig.axes[0].lines if ln.get_linestyle() == "--"]
+    assert len(dashed) == 6
+    for ln, (o, u) in zip(dashed, lines, strict=True):
+        a, b = np.transpose(ln.get_data_3d())
+        np.testing.assert_allclose(np.cross(b - a, u), 0.0, atol=1e-12)  # along the joint's axis
+        np.testing.assert_allclose((a + b) / 2, o, atol=1e-12)  # through the joint
