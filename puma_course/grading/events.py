@@ -16,6 +16,7 @@ from typing import Any
 from .bounds import check_answer
 from .child import ChildResult
 from .model import Exercise, NotebookResult, Question, Verdict, score_question
+from .plan import Plan
 from .text import quoted
 from .worker import NOT_ATTEMPTED
 
@@ -115,7 +116,7 @@ def cell_note(event: dict[str, Any], limits: str) -> str | None:
 def apply(
     result: NotebookResult,
     exercise: Exercise,
-    plan: list[dict[str, Any]],
+    plan: Plan,
     child: ChildResult,
     *,
     timeout_cell: float,
@@ -143,14 +144,14 @@ def apply(
     outcomes: dict[str, list[tuple[str, str | None]]] = {q.qid: [] for q in exercise.questions}
     budget = time.perf_counter() + JUDGING_SECONDS
     for item in plan:
-        q = exercise.question(item["qid"])
-        kind = "public case" if item["case"] < len(q.public) else "hidden case"
+        q = exercise.question(item.qid)
+        kind = "public case" if item.case < len(q.public) else "hidden case"
         if time.perf_counter() > budget:  # a second line behind the answers' bounds (bounds.check_answer)
             verdict = Verdict(f"not judged: judging this notebook's answers took longer than {JUDGING_SECONDS:g} s")
         else:
-            event = got.get((q.qid, item["case"]))
-            verdict = call_verdict(q, event, item["expected"], item.get("call_args", ()), limits)
-        outcomes[q.qid].append((f"{kind} {item['case'] + 1}", verdict.reason))
+            event = got.get((q.qid, item.case))
+            verdict = call_verdict(q, event, item.expected, item.call_args, limits)
+        outcomes[q.qid].append((f"{kind} {item.case + 1}", verdict.reason))
         if verdict.mistake is not None:
             result.mistakes.setdefault(q.qid, []).append(verdict.mistake)
     for q in exercise.questions:

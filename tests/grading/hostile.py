@@ -408,10 +408,10 @@ def home_table(exercises: list[str], student: str) -> str:
         for seed in KNOWN_SEEDS:
             for plan in (make_plan(ex, seed), make_plan(ex, from_seed(seed), student)):
                 for call in plan:
-                    if (call["qid"], call["case"]) in public:
+                    if (call.qid, call.case) in public:
                         continue
-                    answer = ex.question(call["qid"]).right_answer(*call["call_args"])
-                    table.setdefault(call["function"], {})[table_key(call["call_args"])] = np.asarray(
+                    answer = ex.question(call.qid).right_answer(*call.call_args)
+                    table.setdefault(call.function, {})[table_key(call.call_args)] = np.asarray(
                         answer, dtype=float
                     ).tolist()
     return json.dumps(table)

@@ -24,8 +24,8 @@ EX = EXERCISES["ex01_rotations"]
 
 def test_hidden_inputs_depend_on_the_seed_and_are_reproducible():
     a, b, c = make_plan(EX, 1), make_plan(EX, 1), make_plan(EX, 2)
-    assert [x["args"] for x in a] == [x["args"] for x in b]
-    assert [x["args"] for x in a] != [x["args"] for x in c]
+    assert [x.args for x in a] == [x.args for x in b]
+    assert [x.args for x in a] != [x.args for x in c]
 
 
 def test_the_worker_never_receives_expected_values(monkeypatch, tmp_path):

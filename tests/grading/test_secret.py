@@ -73,12 +73,12 @@ def test_the_seeds_and_run_ids_are_the_documented_hmacs():
 
 def _public(ex, plan):
     public = {(q.qid, k) for q in ex.questions for k in range(len(q.public))}
-    return [(c["qid"], table_key(c["call_args"])) for c in plan if (c["qid"], c["case"]) in public]
+    return [(c.qid, table_key(c.call_args)) for c in plan if (c.qid, c.case) in public]
 
 
 def _hidden(ex, plan):
     public = {(q.qid, k) for q in ex.questions for k in range(len(q.public))}
-    return [(c["qid"], table_key(c["call_args"])) for c in plan if (c["qid"], c["case"]) not in public]
+    return [(c.qid, table_key(c.call_args)) for c in plan if (c.qid, c.case) not in public]
 
 
 @pytest.mark.parametrize("name", sorted(EXERCISES))
