@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from puma_course.grading.diagnose import matches
-from puma_course.grading.judges import path_judge, solution_set_judge
+from puma_course.grading.judge.diagnose import matches
+from puma_course.grading.judge.judges import path_judge, solution_set_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys

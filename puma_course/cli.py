@@ -247,10 +247,10 @@ def _grade(args: argparse.Namespace) -> int:
     import warnings
 
     from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade, load_bank
-    from .grading.runner import LimitsWarning
-    from .grading.sandbox import choose
+    from .grading.output.summary import run_outcome, summary_note
+    from .grading.run.runner import LimitsWarning
+    from .grading.run.sandbox import choose
     from .grading.secret import command_key
-    from .grading.summary import run_outcome, summary_note
 
     root = _course(args)
     load_bank(root)  # the questions of the course being graded (its bank/, beside solutions/)

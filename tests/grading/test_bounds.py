@@ -16,11 +16,11 @@ import numpy as np
 import pytest
 
 from puma_course.grading import EXERCISES
-from puma_course.grading.bounds import MAX_NUMBERS, check_answer, number_bound, shape_of
-from puma_course.grading.child import ChildResult
-from puma_course.grading.events import apply, call_verdict
+from puma_course.grading.judge.bounds import MAX_NUMBERS, check_answer, number_bound, shape_of
 from puma_course.grading.model import NotebookResult
-from puma_course.grading.runner import make_plan
+from puma_course.grading.run.child import ChildResult
+from puma_course.grading.run.events import apply, call_verdict
+from puma_course.grading.run.runner import make_plan
 
 EX09 = EXERCISES["ex09_puma_ik"]
 
@@ -127,7 +127,7 @@ def test_number_bound_follows_the_reference_and_never_exceeds_the_worker_cap():
 
 def test_judging_a_notebook_has_a_time_limit(monkeypatch):
     """Past the judging budget the remaining cases are not judged (failed), whatever the judges cost."""
-    import puma_course.grading.events as ev
+    import puma_course.grading.run.events as ev
 
     monkeypatch.setattr(ev, "JUDGING_SECONDS", 0.0)
     plan = make_plan(EX09, seed=3)

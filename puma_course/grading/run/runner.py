@@ -26,19 +26,19 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from ..course import is_course
+from ...course import is_course
+from ..model import EXERCISES, Exercise, NotebookResult
+from ..output.report import write_csv, write_feedback
+from ..output.summary import write_summary
+from ..output.text import quoted
+from ..plan import Plan, make_plan
+from ..secret import Secret, choose_key
 from . import child, events, limits
 from .collect import Collected
-from .model import EXERCISES, Exercise, NotebookResult
-from .plan import Plan, make_plan
-from .report import write_csv, write_feedback
 from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
 from .sandbox import Sandbox, child_env, choose
-from .secret import Secret, choose_key
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
-from .summary import write_summary
-from .text import quoted
 
 __all__ = [
     "GradingIntegrityWarning",
@@ -52,11 +52,11 @@ __all__ = [
 ]
 
 #: The folder that holds the ``puma_course`` package (in a course checkout, the course itself).
-PACKAGE_PARENT = Path(__file__).resolve().parents[2]
+PACKAGE_PARENT = Path(__file__).resolve().parents[3]
 _PACKAGE_DIR = PACKAGE_PARENT / "puma_course"
 #: Notebooks of a class read into memory before any student code runs, when there is no OS sandbox.
 PRE_READ_BYTES = 512 << 20
-#: Limits the worker sets on itself (see :func:`puma_course.grading.worker.limit_resources`).
+#: Limits the worker sets on itself (see :func:`puma_course.grading.run.worker.limit_resources`).
 LIMITS = {"memory": 4 << 30, "file_size": 64 << 20, "open_files": 256, "processes": 64}
 
 
@@ -239,7 +239,7 @@ def grade(
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
-    Writes ``output`` (CSV: see :func:`~puma_course.grading.report.write_csv`), the class summary next
+    Writes ``output`` (CSV: see :func:`~puma_course.grading.output.report.write_csv`), the class summary next
     to it (:func:`~.summary.write_summary`) and, if ``feedback`` is given, one Markdown file per student.
     ``sandbox`` is "auto" (bubblewrap where it runs, else none with a :class:`SandboxWarning`), "bwrap",
     "none", or a :class:`~.sandbox.Sandbox` chosen earlier; ``timeout_student`` caps the time of all of

@@ -3,7 +3,7 @@
 :func:`class_summary` reads the graded results (:class:`~puma_course.grading.model.NotebookResult`,
 one per student and exercise) and counts, for every question, how many students passed it, partly
 passed it, failed it or did not attempt it, their mean points, and the mistakes the grader diagnosed
-(:mod:`puma_course.grading.diagnose`), each counted once per student who made it. :func:`write_summary`
+(:mod:`puma_course.grading.judge.diagnose`), each counted once per student who made it. :func:`write_summary`
 writes it as Markdown next to the grades CSV (``grades.csv`` -> ``grades-summary.md``) and returns a few
 lines for the terminal: the questions the class found hardest and their commonest mistake.
 ``puma-course grade`` calls it after grading.
@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .diagnose import TITLES
-from .model import EXERCISES, NotebookResult, Question
+from ..judge.diagnose import TITLES
+from ..model import EXERCISES, NotebookResult, Question
 from .report import replace_atomically, verdict
 from .text import one_line
 

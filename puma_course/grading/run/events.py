@@ -4,7 +4,7 @@ The events come through a pipe the student's code can also write to, so nothing 
 trusted: a value is only a candidate answer (judged against the reference computed here), an
 error is a code from a fixed list (worded here) plus, at most, the student's own text (an
 exception's message, a type's name), which goes into the feedback only through
-:func:`~puma_course.grading.text.quoted`. A field of the wrong type is ignored, a case the plan
+:func:`~puma_course.grading.output.text.quoted`. A field of the wrong type is ignored, a case the plan
 does not have is ignored, and only the first answer to a case counts.
 """
 
@@ -13,11 +13,11 @@ from __future__ import annotations
 import time
 from typing import Any
 
-from .bounds import check_answer
+from ..judge.bounds import check_answer
+from ..model import Exercise, NotebookResult, Question, Verdict, score_question
+from ..output.text import quoted
+from ..plan import Plan
 from .child import ChildResult
-from .model import Exercise, NotebookResult, Question, Verdict, score_question
-from .plan import Plan
-from .text import quoted
 from .worker import NOT_ATTEMPTED
 
 __all__ = ["apply", "malformed_note", "call_verdict", "cell_note", "JUDGING_SECONDS"]
