@@ -1,7 +1,7 @@
 """The answer keys of the question bank: package functions (``"module:attr"``) that answer a question.
 
 Calling one of a question's keys while that question is graded fails the case (the worker's
-tripwires, :mod:`puma_course.grading.worker`); the self-check flags it the same way. Names only,
+tripwires, :mod:`puma_course.grading.run.worker`); the self-check flags it the same way. Names only,
 no imports: a test checks that every key still names a function of the package.
 """
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from puma_course.grading.diagnose import (
+from puma_course.grading.judge.diagnose import (
     SIGN_FLIP,
     TRANSLATION,
     TRANSPOSED,

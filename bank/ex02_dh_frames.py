@@ -11,9 +11,17 @@ from typing import Any
 
 import numpy as np
 
-from puma_course.grading.compare import compare_angles_at
-from puma_course.grading.diagnose import INVERSE, SIGN_FLIP, TRANSPOSED, degrees_in, degrees_out, matches, sign_flip
-from puma_course.grading.judges import table_judge
+from puma_course.grading.judge.compare import compare_angles_at
+from puma_course.grading.judge.diagnose import (
+    INVERSE,
+    SIGN_FLIP,
+    TRANSPOSED,
+    degrees_in,
+    degrees_out,
+    matches,
+    sign_flip,
+)
+from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys

@@ -11,8 +11,8 @@ from typing import Any
 
 import numpy as np
 
-from puma_course.grading.diagnose import degrees_in, matches
-from puma_course.grading.judges import table_judge
+from puma_course.grading.judge.diagnose import degrees_in, matches
+from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys

@@ -11,9 +11,9 @@ from typing import Any
 
 import numpy as np
 
-from puma_course.grading.compare import compare_solution_set
-from puma_course.grading.diagnose import DUPLICATES, angle_2pi, degrees_out, matches, matches_set, unit_axis_out
-from puma_course.grading.judges import stroke_judge
+from puma_course.grading.judge.compare import compare_solution_set
+from puma_course.grading.judge.diagnose import DUPLICATES, angle_2pi, degrees_out, matches, matches_set, unit_axis_out
+from puma_course.grading.judge.judges import stroke_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys

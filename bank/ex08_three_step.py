@@ -12,9 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from puma_course.grading.compare import compare_angles
-from puma_course.grading.diagnose import TRANSPOSED, degrees_out, matches
-from puma_course.grading.judges import rotation_judge
+from puma_course.grading.judge.compare import compare_angles
+from puma_course.grading.judge.diagnose import TRANSPOSED, degrees_out, matches
+from puma_course.grading.judge.judges import rotation_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from puma_course.grading.judges import nearest_judge, solution_set_judge
+from puma_course.grading.judge.judges import nearest_judge, solution_set_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys

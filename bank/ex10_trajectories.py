@@ -11,9 +11,9 @@ from typing import Any
 
 import numpy as np
 
-from puma_course.grading.compare import compare_angles
-from puma_course.grading.diagnose import matches
-from puma_course.grading.judges import path_judge, solution_set_judge
+from puma_course.grading.judge.compare import compare_angles
+from puma_course.grading.judge.diagnose import matches
+from puma_course.grading.judge.judges import path_judge, solution_set_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys

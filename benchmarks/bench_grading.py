@@ -15,7 +15,7 @@ times on a shared machine vary with its load: runs alternate between the sandbox
 of ``--repeat`` counts.
 
 It also times the grader's own steps that run no student code: the plan (every expected value,
-computed from the question bank in the grader's process, :func:`puma_course.grading.runner.make_plan`),
+computed from the question bank in the grader's process, :func:`puma_course.grading.run.runner.make_plan`),
 building the stage (the worker and each exercise's student-side package) and the release check of
 the course. For comparison it times executing a few notebooks in a fresh Jupyter kernel with
 nbclient, the way nbgrader's autograde runs them. Figures are printed, never asserted.
@@ -35,9 +35,9 @@ from pathlib import Path
 import nbformat
 
 from puma_course.grading import EXERCISES, grade, release
-from puma_course.grading.runner import make_plan
-from puma_course.grading.sandbox import Sandbox, child_env, choose
-from puma_course.grading.stage import Stage
+from puma_course.grading.run.runner import make_plan
+from puma_course.grading.run.sandbox import Sandbox, child_env, choose
+from puma_course.grading.run.stage import Stage
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -7,7 +7,7 @@ Three attacks from issue 21, each graded beside a classmate, figures printed (ne
 1. **Forged results**: the notebook writes straight into the result pipe one answer per IK case holding
    4,000 copies of a row (ex09 q1/q2) after a 1.9 MB line. Printed: the attacker's and an honest
    classmate's grading time, the grader's peak memory (resident, the whole process) and the time the
-   grader spends judging the forged events (:func:`puma_course.grading.events.apply`), with the peak
+   grader spends judging the forged events (:func:`puma_course.grading.run.events.apply`), with the peak
    memory Python allocated in it.
 2. **Memory**: three forks and the worker each fill ``--memory-gib`` GiB and hold it. Printed: the
    notebook's peak memory (its control group's ``max_usage``) with per-process limits only ("before": a
@@ -37,12 +37,12 @@ from pathlib import Path
 import nbformat
 
 from puma_course.grading import EXERCISES, grade
-from puma_course.grading import limits as lim
-from puma_course.grading.child import ChildResult
-from puma_course.grading.events import apply
+from puma_course.grading.run import limits as lim
 from puma_course.grading.model import NotebookResult
-from puma_course.grading.runner import make_plan
-from puma_course.grading.sandbox import choose
+from puma_course.grading.run.child import ChildResult
+from puma_course.grading.run.events import apply
+from puma_course.grading.run.runner import make_plan
+from puma_course.grading.run.sandbox import choose
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -252,10 +252,10 @@ def _grade(args: argparse.Namespace) -> int:
     import warnings
 
     from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade, load_bank
-    from .grading.runner import LimitsWarning
-    from .grading.sandbox import choose
+    from .grading.output.summary import run_outcome, summary_note
+    from .grading.run.runner import LimitsWarning
+    from .grading.run.sandbox import choose
     from .grading.secret import command_key
-    from .grading.summary import run_outcome, write_summary
 
     root = _course(args)
     load_bank(root)  # the questions of the course being graded (its bank/, beside solutions/)
@@ -313,7 +313,7 @@ def _grade(args: argparse.Namespace) -> int:
         )
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")
-    print(write_summary(results, args.output, unmatched=collected.problems if collected else ())[1])
+    print(summary_note(results, args.output))  # grade() wrote the CSV, the feedback and this summary
     write_gradebooks(args, results, names, collected)
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:

@@ -5,7 +5,7 @@
     puma-course gradescope EXERCISE -o autograder.zip [--course DIR]
 
 Part of the ``cli`` layer (light to import: the grader is imported only when a command runs).
-See :mod:`puma_course.grading.collect`, :mod:`puma_course.grading.gradebook` and
+See :mod:`puma_course.grading.run.collect`, :mod:`puma_course.grading.output.gradebook` and
 :mod:`puma_course.grading.gradescope`.
 """
 
@@ -89,7 +89,7 @@ def collect_or_explain(args: argparse.Namespace, names: Sequence[str]) -> tuple[
     if args.layout == "folders":
         found, seen = _student_folders(args.submissions)
     else:
-        from .grading.collect import collect
+        from .grading.run.collect import collect
 
         collected = collect(args.submissions, args.layout, list(names))
         found, seen = collected.notebooks(), collected.seen
@@ -112,7 +112,7 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
     """The exercises ``grade`` grades and the platform download collected (None for ``folders``), or
     (None, None) when there is nothing to grade (said on stderr). Without ``--exercise``: the course's
     exercises that some student handed in; the others are named once, never graded as ``missing``."""
-    from .grading.submissions import exercises_to_grade
+    from .grading.run.submissions import exercises_to_grade
 
     names, collected = args.exercise, None
     if args.layout == "folders" and not collect_or_explain(args, names or [])[1]:
@@ -136,9 +136,9 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
 
 
 def open_limits(box: Any) -> Any:
-    """A control group per notebook for this run (:func:`puma_course.grading.limits.open_run`), said on stderr:
+    """A control group per notebook for this run (:func:`puma_course.grading.run.limits.open_run`), said on stderr:
     the limits in force, or loudly that they hold per process only."""
-    from .grading import limits
+    from .grading.run import limits
 
     groups = limits.open_run()
     if groups.enforced:
@@ -170,7 +170,7 @@ def _suggest_layout(seen: Sequence[str]) -> None:
 
 def write_gradebooks(args: argparse.Namespace, results: Sequence[Any], names: Sequence[str], collected: Any) -> None:
     """Write each ``--gradebook`` next to the CSV, and say where, and what an import will lack."""
-    from .grading.gradebook import read_roster, write_gradebook
+    from .grading.output.gradebook import read_roster, write_gradebook
 
     if collected is not None and collected.problems:
         print(f"{len(collected.problems)} file(s) of the download not graded (listed above and in the summary)")

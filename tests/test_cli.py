@@ -307,7 +307,7 @@ def test_unknown_subcommand_exits_with_usage():
 
 
 def test_grade_warns_and_exits_3_when_the_package_changes_during_grading(tmp_path, monkeypatch, capsys):
-    from puma_course.grading import runner
+    from puma_course.grading.run import runner
 
     digests = iter([{"a.py": b"1"}, {"a.py": b"2"}])
     monkeypatch.setattr(runner, "package_digest", lambda *_: next(digests))

@@ -11,7 +11,7 @@ for and import the module of their topic:
 * :mod:`.motion`: the three-step procedure, PUMA-560 inverse kinematics, paths (exercises 8 to 10).
 
 References run in the grader's process; their warnings (singular poses) are silenced. A modelling
-question's reference returns a dict for its judge (:mod:`puma_course.grading.judges`), holding the
+question's reference returns a dict for its judge (:mod:`puma_course.grading.judge.judges`), holding the
 reference robot's forward kinematics as a callable. The answer keys (package functions a question
 forbids) are named in :mod:`puma_course_bank._keys`.
 """

@@ -26,9 +26,9 @@ instructor's course folder.
 from __future__ import annotations
 
 from .model import EXERCISES, BankNotFoundError, Exercise, NotebookResult, Question, load_bank
+from .output.report import format_check_report
 from .release import release, release_notebook
-from .report import format_check_report
-from .runner import GradingIntegrityWarning, SandboxWarning, grade, grade_notebook
+from .run.runner import GradingIntegrityWarning, SandboxWarning, grade, grade_notebook
 from .selfcheck import check, use_exercise
 
 __all__ = [

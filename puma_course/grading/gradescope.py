@@ -45,8 +45,8 @@ from typing import Any
 
 from .. import _version
 from .model import EXERCISES, Exercise, NotebookResult, load_bank
-from .report import format_question
-from .submissions import read_path
+from .output.report import format_question
+from .run.submissions import read_path
 
 __all__ = ["build_autograder", "run", "results_json", "wheel_name", "SETUP_SH", "RUN_AUTOGRADER"]
 
@@ -271,8 +271,8 @@ def _forget_bank(source: Path) -> None:
 
 
 def _run(base: Path) -> dict[str, Any]:
-    from .runner import grade
-    from .sandbox import choose
+    from .run.runner import grade
+    from .run.sandbox import choose
 
     start = time.perf_counter()
     config = json.loads((base / "source" / "autograder.json").read_text(encoding="utf-8"))

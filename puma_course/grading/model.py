@@ -21,8 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from .compare import Comparison, compare_close
-from .diagnose import Mistake, diagnose_all
+from .judge.compare import Comparison, compare_close
+from .judge.diagnose import Mistake, diagnose_all
 
 __all__ = [
     "Question",
@@ -129,9 +129,9 @@ class Question:
     ``forbidden`` names package functions (``"module:attr"``) that are this
     question's answer key; calling them while being graded fails the case.
 
-    ``mistakes`` are the common wrong answers (:mod:`puma_course.grading.diagnose`) recognised
+    ``mistakes`` are the common wrong answers (:mod:`puma_course.grading.judge.diagnose`) recognised
     before the generic reason of ``compare``. A modelling question, graded for what is right rather
-    than against one answer, sets ``judge_with`` instead (:mod:`puma_course.grading.judges`); its
+    than against one answer, sets ``judge_with`` instead (:mod:`puma_course.grading.judge.judges`); its
     ``reference`` may then return whatever that judge needs (a dict, with callables), and ``answer``
     gives one right answer (the tests use it; default: ``reference`` itself).
 
@@ -172,7 +172,7 @@ class Question:
         A modelling question asks its ``judge_with``; otherwise ``compare`` decides, and a failing
         value that matches one of the question's ``mistakes`` is named as that mistake.
 
-        >>> from puma_course.grading.diagnose import DEGREES_OUT
+        >>> from puma_course.grading.judge.diagnose import DEGREES_OUT
         >>> q = Question("q1", "double", 2, "twice x", public=((1.0,),), hidden=lambda rng: [],
         ...              reference=lambda x: 2 * x, mistakes=(DEGREES_OUT,))
         >>> q.judge(2.0, 2.0, (1.0,)).passed, q.judge(3.0, 2.0, (1.0,)).reason[:25]

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import copy
 import zlib
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -16,7 +17,31 @@ import numpy as np
 from .model import Exercise
 from .secret import Secret
 
-__all__ = ["make_plan"]
+__all__ = ["Call", "Plan", "make_plan"]
+
+
+@dataclass(frozen=True)
+class Call:
+    """One planned call: question ``qid``'s case ``case`` calls ``function`` on ``args`` (JSON-ready).
+
+    ``expected`` (what the reference returned) and ``call_args`` (the original arguments, for the
+    judge) stay in the grader's process: :meth:`job` is what the worker receives.
+    """
+
+    qid: str
+    case: int
+    function: str
+    args: list[Any]
+    expected: Any
+    call_args: tuple[Any, ...]
+
+    def job(self) -> dict[str, Any]:
+        """The call as the worker receives it: without ``expected`` or ``call_args``."""
+        return {"qid": self.qid, "case": self.case, "function": self.function, "args": self.args}
+
+
+Plan = list[Call]
+"""A notebook's plan: its calls in order (public cases of each question first, then hidden ones)."""
 
 
 def _jsonable(value: Any) -> Any:
@@ -27,7 +52,7 @@ def _jsonable(value: Any) -> Any:
     return value
 
 
-def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> list[dict[str, Any]]:
+def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> Plan:
     """Every call to make (public + hidden cases) with its expected value, computed here.
 
     Each question draws its hidden inputs from its own generator (adding a question does not change
@@ -37,14 +62,14 @@ def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> list
 
     >>> from puma_course.grading import EXERCISES
     >>> calls = make_plan(EXERCISES["ex01_rotations"], seed=1)
-    >>> calls[0]["qid"], calls[0]["function"], calls[0]["args"], calls[0]["expected"].shape
+    >>> calls[0].qid, calls[0].function, calls[0].args, calls[0].expected.shape
     ('q1', 'elementary_rotation', ['x', 0.3], (3, 3))
 
     ``expected`` is whatever the question's reference returns (an array for most questions; a
     question judged by equivalence may return what its judge needs) and ``call_args`` keeps the
     original arguments for the judge; neither ever reaches the student's process.
     """
-    calls = []
+    calls: Plan = []
     for q in exercise.questions:
         if isinstance(seed, Secret):
             rng = np.random.default_rng(seed.case_seed(student, exercise.name, q.qid))
@@ -54,14 +79,5 @@ def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> list
             expected = q.reference(*copy.deepcopy(args))
             if not callable(expected):
                 expected = np.asarray(expected, dtype=float) if not isinstance(expected, dict) else expected
-            calls.append(
-                {
-                    "qid": q.qid,
-                    "case": case,
-                    "function": q.function,
-                    "args": [_jsonable(a) for a in args],
-                    "expected": expected,
-                    "call_args": tuple(args),
-                }
-            )
+            calls.append(Call(q.qid, case, q.function, [_jsonable(a) for a in args], expected, tuple(args)))
     return calls

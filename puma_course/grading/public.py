@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from .diagnose import Mistake
+from .judge.diagnose import Mistake
 from .model import BANK_MODULE, Exercise, Question
 from .remake import Made, remake
 

@@ -7,7 +7,7 @@ The student edition stores its public questions this way (:mod:`puma_course.grad
 with the question bank's own functions among the arguments replaced by recorded values.
 
 >>> import pickle
->>> from puma_course.grading.compare import compare_angles_at
+>>> from puma_course.grading.judge.compare import compare_angles_at
 >>> cmp = pickle.loads(pickle.dumps(compare_angles_at([0])))
 >>> cmp([0.1], np.array([0.1])) is None
 True

@@ -2,7 +2,7 @@
 
 :func:`check` runs the question's *public* cases in the notebook's own process and prints the
 same per-question line the grader's feedback and ``puma-course check`` print
-(:func:`puma_course.grading.report.format_question`). Calling the package's own answer (the
+(:func:`puma_course.grading.output.report.format_question`). Calling the package's own answer (the
 question's answer key) fails a case here exactly as it does when graded.
 """
 
@@ -16,8 +16,8 @@ import numpy as np
 
 from ..course import CourseNotFoundError
 from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, reconcile, score_question
-from .report import format_question
-from .worker import NOT_ATTEMPTED, forbidden_codes, guarded_call
+from .output.report import format_question
+from .run.worker import NOT_ATTEMPTED, forbidden_codes, guarded_call
 
 __all__ = ["use_exercise", "check", "public_outcomes", "registry"]
 

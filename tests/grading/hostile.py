@@ -56,9 +56,9 @@ import nbformat
 import pytest
 
 from puma_course.grading import EXERCISES, NotebookResult, grade
-from puma_course.grading.limits import Usage, open_run
-from puma_course.grading.sandbox import Sandbox, choose
-from puma_course.grading.text import csv_safe
+from puma_course.grading.output.text import csv_safe
+from puma_course.grading.run.limits import Usage, open_run
+from puma_course.grading.run.sandbox import Sandbox, choose
 from tests.support import ROOT
 
 HOSTILE = ROOT / "tests" / "fixtures" / "hostile"
@@ -398,7 +398,7 @@ def home_table(exercises: list[str], student: str) -> str:
     """
     import numpy as np
 
-    from puma_course.grading.runner import make_plan
+    from puma_course.grading.run.runner import make_plan
     from puma_course.grading.secret import from_seed
 
     table: dict[str, dict[str, Any]] = {}
@@ -408,10 +408,10 @@ def home_table(exercises: list[str], student: str) -> str:
         for seed in KNOWN_SEEDS:
             for plan in (make_plan(ex, seed), make_plan(ex, from_seed(seed), student)):
                 for call in plan:
-                    if (call["qid"], call["case"]) in public:
+                    if (call.qid, call.case) in public:
                         continue
-                    answer = ex.question(call["qid"]).right_answer(*call["call_args"])
-                    table.setdefault(call["function"], {})[table_key(call["call_args"])] = np.asarray(
+                    answer = ex.question(call.qid).right_answer(*call.call_args)
+                    table.setdefault(call.function, {})[table_key(call.call_args)] = np.asarray(
                         answer, dtype=float
                     ).tolist()
     return json.dumps(table)

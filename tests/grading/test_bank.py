@@ -14,7 +14,7 @@ from puma_course import MK3, Porter, Puma560, transforms
 from puma_course.grading import EXERCISES, Exercise, Question
 from puma_course.grading.model import register
 from puma_course.grading.plan import _jsonable
-from puma_course.grading.worker import forbidden_codes, resolve
+from puma_course.grading.run.worker import forbidden_codes, resolve
 from puma_course_bank import _formulas
 from puma_course_bank._reference import chains, motion, porter_chain
 from tests.support import ROOT
@@ -160,9 +160,9 @@ def test_bank_files_call_the_kinematics_only_through_reference(name):
         "typing",
         "numpy",
         "puma_course.grading.model",
-        "puma_course.grading.compare",
-        "puma_course.grading.diagnose",
-        "puma_course.grading.judges",
+        "puma_course.grading.judge.compare",
+        "puma_course.grading.judge.diagnose",
+        "puma_course.grading.judge.judges",
         "._inputs",
         "._formulas",
         "._reference",

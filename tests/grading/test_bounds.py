@@ -16,28 +16,28 @@ import numpy as np
 import pytest
 
 from puma_course.grading import EXERCISES
-from puma_course.grading.bounds import MAX_NUMBERS, check_answer, number_bound, shape_of
-from puma_course.grading.child import ChildResult
-from puma_course.grading.events import apply, call_verdict
+from puma_course.grading.judge.bounds import MAX_NUMBERS, check_answer, number_bound, shape_of
 from puma_course.grading.model import NotebookResult
-from puma_course.grading.runner import make_plan
+from puma_course.grading.run.child import ChildResult
+from puma_course.grading.run.events import apply, call_verdict
+from puma_course.grading.run.runner import make_plan
 
 EX09 = EXERCISES["ex09_puma_ik"]
 
 
 def _ik_plan() -> list[dict]:
-    return [c for c in make_plan(EX09, seed=3) if c["qid"] == "q2"]
+    return [c for c in make_plan(EX09, seed=3) if c.qid == "q2"]
 
 
 def _right(call: dict) -> np.ndarray:
-    return np.array(EX09.question("q2").right_answer(*call["call_args"]), dtype=float)
+    return np.array(EX09.question("q2").right_answer(*call.call_args), dtype=float)
 
 
 def test_right_answers_still_pass():
     q = EX09.question("q2")
     for call in _ik_plan():
         event = {"value": _right(call).tolist()}
-        assert call_verdict(q, event, call["expected"], call["call_args"], "10 s").passed
+        assert call_verdict(q, event, call.expected, call.call_args, "10 s").passed
 
 
 def test_each_solution_listed_twice_with_the_copy_moved_2e7_fails():
@@ -45,7 +45,7 @@ def test_each_solution_listed_twice_with_the_copy_moved_2e7_fails():
     for call in _ik_plan():
         sols = _right(call)
         doubled = np.concatenate([sols, sols + 2e-7])
-        verdict = call_verdict(q, {"value": doubled.tolist()}, call["expected"], call["call_args"], "10 s")
+        verdict = call_verdict(q, {"value": doubled.tolist()}, call.expected, call.call_args, "10 s")
         assert not verdict.passed and verdict.mistake == "duplicates", verdict
 
 
@@ -55,7 +55,7 @@ def test_a_duplicate_within_the_match_tolerance_is_a_duplicate():
     call = _ik_plan()[0]
     sols = _right(call).copy()
     sols[1] = sols[0] + np.array([5e-7, 0, 0, 0, 0, 0])
-    verdict = call_verdict(q, {"value": sols.tolist()}, call["expected"], call["call_args"], "10 s")
+    verdict = call_verdict(q, {"value": sols.tolist()}, call.expected, call.call_args, "10 s")
     assert not verdict.passed and "same configuration" in verdict.reason, verdict
 
 
@@ -64,9 +64,9 @@ def test_forged_answers_with_4000_copies_fail_every_case_in_milliseconds():
     plan = make_plan(EX09, seed=3)
     events = [{"kind": "ready"}]
     for call in plan:
-        if call["qid"] == "q2":
+        if call.qid == "q2":
             row = _right(call)[0].tolist()
-            events.append({"kind": "call", "qid": "q2", "case": call["case"], "value": [row] * 4000})
+            events.append({"kind": "call", "qid": "q2", "case": call.case, "value": [row] * 4000})
     # the events as the pipe carries them: each line within the 2 MB line cap
     assert all(len(json.dumps(e)) < 2_000_000 for e in events)
     result = NotebookResult.blank("forger", EX09)
@@ -87,7 +87,7 @@ def test_a_line_asking_for_a_huge_array_is_refused_without_building_it():
     call = _ik_plan()[0]
     value = [[0.125] * 6] * 50_000
     t0 = time.perf_counter()
-    why = check_answer(value, call["expected"])
+    why = check_answer(value, call.expected)
     assert why is not None and "more than" in why
     assert time.perf_counter() - t0 < 0.5
 
@@ -113,25 +113,25 @@ def test_number_bound_follows_the_reference_and_never_exceeds_the_worker_cap():
     assert number_bound(np.zeros((3, 3))) == 64
     assert number_bound(np.zeros((100, 100))) == MAX_NUMBERS
     call = _ik_plan()[0]
-    k, n = np.asarray(call["expected"]["solutions"]).shape
-    assert number_bound(call["expected"]) >= k * n
+    k, n = np.asarray(call.expected["solutions"]).shape
+    assert number_bound(call.expected) >= k * n
     # every question's right answer to every planned case is within its bound
     for ex in EXERCISES.values():
         for c in make_plan(ex, seed=5):
-            q = ex.question(c["qid"])
-            right = q.right_answer(*c["call_args"])
+            q = ex.question(c.qid)
+            right = q.right_answer(*c.call_args)
             value = np.asarray(right, dtype=float).tolist() if not callable(right) else None
             if value is not None:
-                assert check_answer(value, c["expected"]) is None, (ex.name, q.qid, np.shape(right))
+                assert check_answer(value, c.expected) is None, (ex.name, q.qid, np.shape(right))
 
 
 def test_judging_a_notebook_has_a_time_limit(monkeypatch):
     """Past the judging budget the remaining cases are not judged (failed), whatever the judges cost."""
-    import puma_course.grading.events as ev
+    import puma_course.grading.run.events as ev
 
     monkeypatch.setattr(ev, "JUDGING_SECONDS", 0.0)
     plan = make_plan(EX09, seed=3)
-    events = [{"kind": "call", "qid": c["qid"], "case": c["case"], "value": 0.0} for c in plan]
+    events = [{"kind": "call", "qid": c.qid, "case": c.case, "value": 0.0} for c in plan]
     result = NotebookResult.blank("slow", EX09)
     apply(result, EX09, plan, ChildResult(events=events, done=True), timeout_cell=10, stop_note="")
     assert result.score == 0

@@ -1,10 +1,10 @@
-"""puma_course.grading.compare: each comparison accepts what is right and says what is wrong."""
+"""puma_course.grading.judge.compare: each comparison accepts what is right and says what is wrong."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from puma_course.grading.compare import compare_angles, compare_angles_at, compare_close, compare_solution_set
+from puma_course.grading.judge.compare import compare_angles, compare_angles_at, compare_close, compare_solution_set
 
 
 def test_compare_close_accepts_equal_and_reports_differences():

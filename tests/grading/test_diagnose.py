@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from puma_course.grading import EXERCISES
-from puma_course.grading.diagnose import TITLES, Mistake, close, diagnose, matches
+from puma_course.grading.judge.diagnose import TITLES, Mistake, close, diagnose, matches
 from puma_course.grading.model import Verdict
 
 

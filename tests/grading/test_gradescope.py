@@ -25,7 +25,7 @@ from puma_course import __version__
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, NotebookResult
 from puma_course.grading.gradescope import _bank_files, results_json, wheel_name
-from puma_course.grading.sandbox import choose
+from puma_course.grading.run.sandbox import choose
 from tests.support import ROOT
 
 EX = "ex01_rotations"

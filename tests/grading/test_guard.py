@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from puma_course.grading import Exercise, Question
-from puma_course.grading.runner import grade_notebook
+from puma_course.grading.run.runner import grade_notebook
 
 KEY = ("puma_course.transforms:rodrigues",)
 
@@ -91,7 +91,7 @@ def test_the_tripwire_leaves_no_path_back_to_the_original():
     import sys
     import types
 
-    from puma_course.grading.worker.guard import forbidden_codes, guarded_call, install_tripwires
+    from puma_course.grading.run.worker.guard import forbidden_codes, guarded_call, install_tripwires
 
     mod = types.ModuleType("puma_course_guard_probe")
     exec("def key(x):\n    '''The answer.'''\n    return 2 * x\n", mod.__dict__)

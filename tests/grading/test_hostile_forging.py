@@ -12,7 +12,7 @@ import re
 import pytest
 
 from puma_course.grading import EXERCISES
-from puma_course.grading.text import quoted
+from puma_course.grading.output.text import quoted
 from tests.grading.hostile import check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile

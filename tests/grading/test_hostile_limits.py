@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import pytest
 
-from puma_course.grading.limits import CPUS
+from puma_course.grading.run.limits import CPUS
 from tests.grading.hostile import LIMITS, check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile

@@ -14,8 +14,8 @@ import warnings
 import pytest
 
 from puma_course.grading import grade
-from puma_course.grading.sandbox import choose
-from puma_course.grading.summary import write_summary
+from puma_course.grading.output.summary import write_summary
+from puma_course.grading.run.sandbox import choose
 from tests.support import ROOT
 
 pytestmark = pytest.mark.hostile

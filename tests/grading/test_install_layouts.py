@@ -25,7 +25,7 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from puma_course.grading.sandbox import choose
+from puma_course.grading.run.sandbox import choose
 from tests.support import ROOT
 
 pytestmark = [

@@ -1,4 +1,4 @@
-"""The control group per notebook (puma_course/grading/limits.py): the files it writes (cgroup v2 and v1, on a
+"""The control group per notebook (puma_course/grading/run/limits.py): the files it writes (cgroup v2 and v1, on a
 fake hierarchy), and on this machine, when it allows them, a real group holding a whole process tree."""
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from puma_course.grading import limits
-from puma_course.grading.limits import describe, open_run
+from puma_course.grading.run import limits
+from puma_course.grading.run.limits import describe, open_run
 
 
 def _v2(tmp_path: Path, own: str = "/") -> tuple[Path, Path]:

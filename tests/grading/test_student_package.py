@@ -1,4 +1,4 @@
-"""puma_course.grading.student: the student-side package holds the self-check stub and the allowed names, nothing else.
+"""grading.run.student: the student-side package holds the self-check stub and the allowed names, nothing else.
 
 Each test builds a student-side package and imports it in a fresh ``python -I -S`` (so the real package
 is not on the path), as the worker does.
@@ -15,8 +15,8 @@ import pytest
 
 from puma_course import MK3, Porter, Puma560, ThreeStepArm, rodrigues
 from puma_course.grading import EXERCISES
-from puma_course.grading.sandbox import choose
-from puma_course.grading.student import build, requirements
+from puma_course.grading.run.sandbox import choose
+from puma_course.grading.run.student import build, requirements
 
 
 def _run(folder, code: str) -> dict:

@@ -9,7 +9,7 @@ import pytest
 
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, NotebookResult
-from puma_course.grading.summary import class_summary, question_summaries, summary_path, write_summary
+from puma_course.grading.output.summary import class_summary, question_summaries, summary_path, write_summary
 from tests.support import ROOT
 
 EX = EXERCISES["ex01_rotations"]

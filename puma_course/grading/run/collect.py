@@ -29,8 +29,8 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..output.text import display_name, quoted
 from .submissions import Notebook, StudentFiles, StudentFolder, read_path
-from .text import display_name, quoted
 
 __all__ = ["LAYOUTS", "Submitter", "Collected", "collect", "parse_canvas_name", "parse_moodle_name"]
 

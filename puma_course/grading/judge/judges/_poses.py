@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from ...transforms import wrap_angle
+from ....transforms import wrap_angle
 
 #: Tolerances of the pose tests: rotation entries, and positions relative to the mechanism's size.
 ROT_TOL, POS_TOL = 1e-6, 1e-6

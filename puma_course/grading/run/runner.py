@@ -26,18 +26,19 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from ..course import is_course
+from ...course import is_course
+from ..model import EXERCISES, Exercise, NotebookResult
+from ..output.report import write_csv, write_feedback
+from ..output.summary import write_summary
+from ..output.text import quoted
+from ..plan import Plan, make_plan
+from ..secret import Secret, choose_key
 from . import child, events, limits
 from .collect import Collected
-from .model import EXERCISES, Exercise, NotebookResult
-from .plan import make_plan
-from .report import write_csv, write_feedback
 from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
 from .sandbox import Sandbox, child_env, choose
-from .secret import Secret, choose_key
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
-from .text import quoted
 
 __all__ = [
     "GradingIntegrityWarning",
@@ -51,11 +52,11 @@ __all__ = [
 ]
 
 #: The folder that holds the ``puma_course`` package (in a course checkout, the course itself).
-PACKAGE_PARENT = Path(__file__).resolve().parents[2]
+PACKAGE_PARENT = Path(__file__).resolve().parents[3]
 _PACKAGE_DIR = PACKAGE_PARENT / "puma_course"
 #: Notebooks of a class read into memory before any student code runs, when there is no OS sandbox.
 PRE_READ_BYTES = 512 << 20
-#: Limits the worker sets on itself (see :func:`puma_course.grading.worker.limit_resources`).
+#: Limits the worker sets on itself (see :func:`puma_course.grading.run.worker.limit_resources`).
 LIMITS = {"memory": 4 << 30, "file_size": 64 << 20, "open_files": 256, "processes": 64}
 
 
@@ -88,9 +89,7 @@ def _box(sandbox: str | Sandbox) -> Sandbox:
     return sandbox if isinstance(sandbox, Sandbox) else choose(sandbox)
 
 
-def _job(
-    exercise: Exercise, plan: list[dict[str, Any]], timeout_cell: float, timeout: float, paths: list[str], nproc: bool
-) -> bytes:
+def _job(exercise: Exercise, plan: Plan, timeout_cell: float, timeout: float, paths: list[str], nproc: bool) -> bytes:
     """The worker's first line: what to call (never what is expected), its limits, its import path.
 
     The process limit is set only inside the sandbox's user namespace, where it counts the worker's
@@ -100,7 +99,7 @@ def _job(
     if not nproc:
         limits.pop("processes")
     job = {
-        "calls": [{k: v for k, v in item.items() if k not in ("expected", "call_args")} for item in plan],
+        "calls": [item.job() for item in plan],
         "timeout_cell": timeout_cell,
         "max_size": 10_000,
         "forbidden": {q.qid: list(q.forbidden) for q in exercise.questions if q.forbidden},
@@ -114,7 +113,7 @@ def _job(
 def _run_worker(
     data: bytes,
     exercise: Exercise,
-    plan: list[dict[str, Any]],
+    plan: Plan,
     stage: Stage,
     box: Sandbox,
     timeout_cell: float,
@@ -152,7 +151,7 @@ def _grade_data(
     data: bytes,
     exercise: Exercise,
     student: str,
-    plan: list[dict[str, Any]],
+    plan: Plan,
     stage: Stage,
     box: Sandbox,
     timeout_cell: float,
@@ -188,7 +187,7 @@ def grade_notebook(
     seed: int | Secret = 0,
     timeout_cell: float = 10.0,
     timeout_total: float = 60.0,
-    plan: list[dict[str, Any]] | None = None,
+    plan: Plan | None = None,
     data: bytes | None = None,
     *,
     sandbox: str | Sandbox = "none",
@@ -240,10 +239,11 @@ def grade(
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
 
-    Writes ``output`` (CSV: see :func:`~puma_course.grading.report.write_csv`) and, if ``feedback``
-    is given, one Markdown file per student. ``sandbox`` is "auto" (bubblewrap where it runs, else
-    none with a :class:`SandboxWarning`), "bwrap", "none", or a :class:`~.sandbox.Sandbox` chosen
-    earlier; ``timeout_student`` caps the time of all of a student's notebooks together;
+    Writes ``output`` (CSV: see :func:`~puma_course.grading.output.report.write_csv`), the class summary next
+    to it (:func:`~.summary.write_summary`) and, if ``feedback`` is given, one Markdown file per student.
+    ``sandbox`` is "auto" (bubblewrap where it runs, else none with a :class:`SandboxWarning`), "bwrap",
+    "none", or a :class:`~.sandbox.Sandbox` chosen earlier; ``timeout_student`` caps the time of all of
+    a student's notebooks together;
     ``private`` names more folders the sandbox must hide (the course's ``solutions/``, say).
     ``cgroups`` True puts each notebook in a control group of its own with limits for its whole process
     tree (:mod:`.limits`; where that cannot be done here: a :class:`LimitsWarning` and the CSV's ``limits``
@@ -403,4 +403,5 @@ def _grade_class(
     if feedback is not None:
         unsandboxed = box.reason if box.kind != "bwrap" else None
         write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
+    write_summary(results, output, unmatched=collected.problems if collected is not None else ())
     return results

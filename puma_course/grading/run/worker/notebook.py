@@ -71,7 +71,7 @@ def notebook_cells(data: bytes) -> list[str]:
     >>> notebook_cells(b'{"cells": 3}')
     Traceback (most recent call last):
     ...
-    puma_course.grading.worker.notebook.NotebookError: no-cells
+    puma_course.grading.run.worker.notebook.NotebookError: no-cells
     """
     try:
         nb = json.loads(data)

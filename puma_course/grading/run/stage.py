@@ -1,9 +1,9 @@
 """The grading run's own folder: the worker's code and one student-side package per exercise, read-only.
 
 A :class:`Stage` is built once per run (and removed at its end): ``bin/puma_worker`` is a copy of
-:mod:`puma_course.grading.worker` (standard library only, so it runs without the package), and
+:mod:`puma_course.grading.run.worker` (standard library only, so it runs without the package), and
 ``lib/<exercise>/puma_course`` is the student-side package of each exercise
-(:mod:`puma_course.grading.student`). Under bubblewrap a worker sees ``bin`` and its own exercise's
+(:mod:`puma_course.grading.run.student`). Under bubblewrap a worker sees ``bin`` and its own exercise's
 ``lib`` folder only; without it, the files are made read-only and :meth:`Stage.changed` tells
 whether a student's process wrote to them anyway.
 """
@@ -16,8 +16,8 @@ import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 
+from ..model import Exercise
 from . import student
-from .model import Exercise
 
 __all__ = ["Stage", "WORKER_DIR"]
 

@@ -35,8 +35,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from .collect import Submitter
-from .model import EXERCISES, NotebookResult
+from ..model import EXERCISES, NotebookResult
+from ..run.collect import Submitter
 from .report import _replace_atomically
 from .text import csv_safe
 

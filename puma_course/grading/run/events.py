@@ -4,7 +4,7 @@ The events come through a pipe the student's code can also write to, so nothing 
 trusted: a value is only a candidate answer (judged against the reference computed here), an
 error is a code from a fixed list (worded here) plus, at most, the student's own text (an
 exception's message, a type's name), which goes into the feedback only through
-:func:`~puma_course.grading.text.quoted`. A field of the wrong type is ignored, a case the plan
+:func:`~puma_course.grading.output.text.quoted`. A field of the wrong type is ignored, a case the plan
 does not have is ignored, and only the first answer to a case counts.
 """
 
@@ -13,10 +13,11 @@ from __future__ import annotations
 import time
 from typing import Any
 
-from .bounds import check_answer
+from ..judge.bounds import check_answer
+from ..model import Exercise, NotebookResult, Question, Verdict, reconcile, score_question
+from ..output.text import quoted
+from ..plan import Plan
 from .child import ChildResult
-from .model import Exercise, NotebookResult, Question, Verdict, reconcile, score_question
-from .text import quoted
 from .worker import NOT_ATTEMPTED
 
 __all__ = ["apply", "malformed_note", "call_verdict", "cell_note", "JUDGING_SECONDS"]
@@ -115,7 +116,7 @@ def cell_note(event: dict[str, Any], limits: str) -> str | None:
 def apply(
     result: NotebookResult,
     exercise: Exercise,
-    plan: list[dict[str, Any]],
+    plan: Plan,
     child: ChildResult,
     *,
     timeout_cell: float,
@@ -143,14 +144,14 @@ def apply(
     judged: dict[str, list[tuple[str, Verdict]]] = {q.qid: [] for q in exercise.questions}
     budget = time.perf_counter() + JUDGING_SECONDS
     for item in plan:
-        q = exercise.question(item["qid"])
-        kind = "public case" if item["case"] < len(q.public) else "hidden case"
+        q = exercise.question(item.qid)
+        kind = "public case" if item.case < len(q.public) else "hidden case"
         if time.perf_counter() > budget:  # a second line behind the answers' bounds (bounds.check_answer)
             verdict = Verdict(f"not judged: judging this notebook's answers took longer than {JUDGING_SECONDS:g} s")
         else:
-            event = got.get((q.qid, item["case"]))
-            verdict = call_verdict(q, event, item["expected"], item.get("call_args", ()), limits)
-        judged[q.qid].append((f"{kind} {item['case'] + 1}", verdict))
+            event = got.get((q.qid, item.case))
+            verdict = call_verdict(q, event, item.expected, item.call_args, limits)
+        judged[q.qid].append((f"{kind} {item.case + 1}", verdict))
     outcomes: dict[str, list[tuple[str, str | None]]] = {}
     for qid, pairs in judged.items():
         verdicts = reconcile([v for _, v in pairs])  # a mistake named only if every failing case is that mistake

@@ -10,7 +10,7 @@ reads their notebooks without ever stopping the run:
 * a notebook larger than :data:`MAX_NOTEBOOK_BYTES` is not read (``malformed``); an unreadable
   folder or file is ``unreadable``; a missing one ``missing``;
 * **any name** works: names that are not UTF-8, that start with dashes, or that are as long as
-  the file system allows are shown through :func:`~puma_course.grading.text.display_name`,
+  the file system allows are shown through :func:`~puma_course.grading.output.text.display_name`,
   which also keeps two names apart when they would display alike.
 
 Files are opened relative to their folder's descriptor with ``O_NOFOLLOW``, so a name swapped for
@@ -27,7 +27,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .text import display_name, quoted
+from ..output.text import display_name, quoted
 
 __all__ = [
     "StudentFolder",

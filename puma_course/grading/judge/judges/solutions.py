@@ -7,10 +7,10 @@ from typing import Any
 
 import numpy as np
 
-from ...transforms import wrap_angle
+from ....transforms import wrap_angle
+from ...model import Judge, Verdict
+from ...remake import made
 from ..diagnose import close
-from ..model import Judge, Verdict
-from ..remake import made
 from ._poses import POS_TOL, _dist, _floats, _off, _radians, _wrapped, pose_ok
 
 

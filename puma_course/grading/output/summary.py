@@ -3,7 +3,7 @@
 :func:`class_summary` reads the graded results (:class:`~puma_course.grading.model.NotebookResult`,
 one per student and exercise) and counts, for every question, how many students passed it, partly
 passed it, failed it or did not attempt it, their mean points, and the mistakes the grader diagnosed
-(:mod:`puma_course.grading.diagnose`), each counted once per student who made it. :func:`write_summary`
+(:mod:`puma_course.grading.judge.diagnose`), each counted once per student who made it. :func:`write_summary`
 writes it as Markdown next to the grades CSV (``grades.csv`` -> ``grades-summary.md``) and returns a few
 lines for the terminal: the questions the class found hardest and their commonest mistake.
 ``puma-course grade`` calls it after grading.
@@ -18,12 +18,20 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .diagnose import TITLES
-from .model import EXERCISES, NotebookResult, Question
+from ..judge.diagnose import TITLES
+from ..model import EXERCISES, NotebookResult, Question
 from .report import replace_atomically, verdict
 from .text import one_line
 
-__all__ = ["QuestionSummary", "question_summaries", "class_summary", "write_summary", "summary_path", "run_outcome"]
+__all__ = [
+    "QuestionSummary",
+    "question_summaries",
+    "class_summary",
+    "write_summary",
+    "summary_note",
+    "summary_path",
+    "run_outcome",
+]
 
 #: Statuses of notebooks that were not graded at all (they count as "not submitted").
 UNGRADED = ("missing", "malformed")
@@ -163,6 +171,12 @@ def write_summary(
     """
     path = summary_path(output)
     replace_atomically(path, class_summary(results, unmatched))  # whole or not at all; a planted link is replaced
+    return path, summary_note(results, output, lines)
+
+
+def summary_note(results: Sequence[NotebookResult], output: str | os.PathLike[str], lines: int = 8) -> str:
+    """The short text :func:`write_summary` returns: the summary's file and the hardest ``lines`` questions."""
+    path = summary_path(output)
     hard = sorted((s for s in question_summaries(results) if s.submitted), key=lambda s: s.passed / s.submitted)
     text = [f"class summary: {path}"]
     for s in hard[:lines]:
@@ -171,7 +185,7 @@ def write_summary(
         common = s.common(1)
         why = f"; commonest mistake: {TITLES.get(common[0][0], common[0][0])} ({common[0][1]})" if common else ""
         text.append(f"  {s.exercise} {s.question.qid} {s.question.function}: {s.passed}/{s.submitted} passed{why}")
-    return path, "\n".join(text)
+    return "\n".join(text)
 
 
 def run_outcome(results: Sequence[Any], submissions: Path, names: Sequence[str]) -> tuple[int, str]:

@@ -10,7 +10,7 @@ import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-from .model import EXERCISES
+from ..model import EXERCISES
 
 __all__: list[str] = []
 
@@ -66,7 +66,7 @@ def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[
 
 def _reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
     """The file stems in the feedback folder that belong to the grader's own files (the CSV, the class summary)."""
-    from .summary import summary_path
+    from ..output.summary import summary_path
 
     folder = os.path.realpath(feedback)
     own = [Path(output), summary_path(output)]

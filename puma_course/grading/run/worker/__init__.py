@@ -1,10 +1,10 @@
 """The child side of grading: parse one notebook, run its code cells, call the student's functions, report plain data.
 
-The grader (:mod:`puma_course.grading.runner`) copies this folder out of the package and runs it
+The grader (:mod:`puma_course.grading.run.runner`) copies this folder out of the package and runs it
 in a fresh ``python -I -S -B`` process (under the OS sandbox when there is one), so it needs the
 standard library only (numpy once student code runs) and imports nothing from the course package:
 the ``puma_course`` a student's cell imports is the student-side copy named in the job
-(:mod:`puma_course.grading.student`). Its standard input holds one JSON line, the job::
+(:mod:`puma_course.grading.run.student`). Its standard input holds one JSON line, the job::
 
     {"calls": [{"qid", "case", "function", "args"}, ...], "timeout_cell": s, "max_size": n,
      "forbidden": {qid: ["module:attr", ...]}, "path": [folder, ...], "limits": {...}, "filename": name}

@@ -22,9 +22,9 @@ import tempfile
 from collections.abc import Collection, Sequence
 from pathlib import Path
 
-from .model import EXERCISES, Exercise, NotebookResult, Question
+from ..model import EXERCISES, Exercise, NotebookResult, Question
+from ..run.worker import NOT_ATTEMPTED
 from .text import csv_safe, file_stem, one_line, quoted
-from .worker import NOT_ATTEMPTED
 
 __all__ = [
     "verdict",

@@ -1,0 +1,442 @@
+"""Naming the mistake: recognise a common wrong answer before the generic "values differ".
+
+A :class:`Mistake` is a key (what the class summary counts, e.g. ``"transposed"``), a title for the
+instructor, and a check ``check(got, expected, args, reference) -> message or None`` that says whether
+the returned value is exactly what that mistake produces. Most checks rebuild the wrong answer from
+the right one (``R.T`` for a transposed rotation, the degrees of an angle, one row negated) or from the
+arguments with the mistaken formula (the standard-DH link matrix, the factors in reverse order, the
+axis left unnormalised); :func:`matches` turns such a "wrong formula" into a mistake.
+
+:func:`diagnose` tries a question's mistakes in order and returns the first that fits. It runs in the
+grader's process on plain numbers; a check that cannot apply (another shape, a failing formula) is
+skipped, never raised. :data:`TITLES` names every key the graders emit (here and in
+:mod:`puma_course.grading.judge.judges`), so the class summary can say what a key means.
+
+>>> R = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+>>> diagnose((TRANSPOSED, SIGN_FLIP), R.T, R, (), None)[0]
+'transposed'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..remake import made
+
+__all__ = [
+    "Mistake",
+    "TITLES",
+    "diagnose",
+    "diagnose_all",
+    "close",
+    "matches",
+    "matches_set",
+    "DUPLICATES",
+    "TRANSPOSED",
+    "INVERSE",
+    "SIGN_FLIP",
+    "DEGREES_OUT",
+    "sign_flip",
+    "degrees_out",
+    "degrees_in",
+    "angle_2pi",
+    "unit_axis_out",
+    "negated",
+    "TRANSLATION",
+]
+
+#: Every mistake key the graders emit, with the title an instructor reads in the class summary.
+TITLES: dict[str, str] = {
+    "transposed": "a transposed rotation (Rᵀ for R)",
+    "degrees": "degrees where radians were expected",
+    "standard_dh": "the standard (distal) DH link matrix instead of Craig's modified one",
+    "order": "factors multiplied in the wrong order (fixed vs moving axes)",
+    "unnormalised": "an axis not normalised to length 1",
+    "sign_flip": "one row, column or entry with the wrong sign",
+    "angle_2pi": "an angle off by a whole turn (2π)",
+    "solution_order": "the right solutions in another order",
+    "duplicates": "the same solution listed twice",
+    "inverse": "the inverse transform (parent and child swapped)",
+    "translation": "the inverse's translation is not -Rᵀp",
+    "range": "the same rotation, outside the range asked for",
+    "printed_formula": "a misprinted formula of the source, used as printed",
+    "only_at_zero": "a DH table that is right at q = 0 only",
+    "joint_sign": "a joint axis pointing the wrong way",
+    "joint_type": "revolute and prismatic joints mixed up",
+    "base_frame": "frame {0} is not the base frame the question fixes",
+    "tool_frame": "the last frame is not the tool frame the question fixes",
+    "straight_start": "the straight start assumed instead of the given bent one",
+    "branch": "the other elbow branch",
+    "missing_solutions": "solutions missing from the set",
+    "not_a_solution": "rows that do not reach the pose",
+    "not_nearest": "a solution, but not the nearest one",
+    "unwrapped_distance": "angle differences not wrapped to (-π, π]",
+    "jump": "a joint jump along the path (a branch switch)",
+    "start_jump": "the path does not start at the given configuration",
+    "negative_stroke": "the q2 < 0 branch kept",
+    "unsigned_angle": "the unsigned angle |v × w| instead of the signed one",
+    "wrong_axis": "an offset along the wrong axis of the frame",
+    "offset_sign": "an offset with the wrong sign",
+    "not_minimal": "not Porter's minimal stroke",
+    "back_plane": "the arm plane entered from the back",
+    "time_scaling": "another time scaling than the one asked for (linear, cubic, t not divided by the duration)",
+    "frame_coordinates": "a vector or point written in another frame's coordinates than the one asked for",
+}
+
+#: ``check(got, expected, args, reference)``: a message for the student if ``got`` is this mistake, else None.
+Check = Callable[[np.ndarray, Any, tuple[Any, ...], Any], str | None]
+
+
+@dataclass(frozen=True)
+class Mistake:
+    """A recognisable wrong answer: its ``key`` (one of :data:`TITLES`) and the ``check`` that spots it.
+
+    >>> m = Mistake("degrees", lambda got, exp, args, ref: "degrees!" if got[0] > 7 else None)
+    >>> m.check(np.array([90.0]), None, (), None)
+    'degrees!'
+    """
+
+    key: str
+    check: Check
+
+    def __post_init__(self) -> None:
+        if self.key not in TITLES:
+            raise ValueError(f"key: expected one of {sorted(TITLES)}, got {self.key!r}")
+
+    @property
+    def title(self) -> str:
+        """What the mistake is, for the instructor's summary."""
+        return TITLES[self.key]
+
+
+def _floats(value: Any) -> np.ndarray | None:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return None
+    return arr if np.all(np.isfinite(arr)) else None
+
+
+def close(got: Any, ref: Any, tol: float = 1e-6) -> bool:
+    """True when ``got`` equals ``ref`` within ``tol`` relative to the size of ``ref`` (shapes squeezed).
+
+    >>> close([1.0, 2.0], np.array([1.0, 2.0 + 1e-9])), close([[1.0]], np.array(1.0)), close([1.0], [1.0, 2.0])
+    (True, True, False)
+    """
+    a, b = _floats(got), _floats(ref)
+    if a is None or b is None:
+        return False
+    if a.shape != b.shape:
+        if a.size != b.size or np.squeeze(a).shape != np.squeeze(b).shape:
+            return False
+        a = a.reshape(b.shape)
+    scale = max(1.0, float(np.max(np.abs(b)))) if b.size else 1.0
+    return bool(b.size == 0 or np.max(np.abs(a - b)) <= tol * scale)
+
+
+def diagnose(
+    mistakes: Sequence[Mistake], got: Any, expected: Any, args: tuple[Any, ...], reference: Any
+) -> tuple[str, str] | None:
+    """The first of ``mistakes`` that ``got`` is, as (key, message for the student), or None.
+
+    ``expected`` is the reference value for ``args`` and ``reference`` the question's reference
+    function (for checks that recompute it with a mistaken input). A check that raises is skipped.
+
+    >>> diagnose((DEGREES_OUT,), [90.0], np.array([np.pi / 2]), (), None)[0]
+    'degrees'
+    >>> diagnose((DEGREES_OUT,), [1.0], np.array([2.0]), (), None) is None
+    True
+    """
+    arr = _floats(got)
+    if arr is None:
+        return None
+    for mistake in mistakes:
+        try:
+            message = mistake.check(arr, expected, args, reference)
+        except Exception:  # noqa: BLE001 - a check that does not apply to this value says nothing
+            continue
+        if message:
+            return mistake.key, message
+    return None
+
+
+def diagnose_all(
+    mistakes: Sequence[Mistake], got: Any, expected: Any, args: tuple[Any, ...], reference: Any
+) -> list[tuple[str, str]]:
+    """Every one of ``mistakes`` that ``got`` is, as (key, message), in order (the first message per key).
+
+    >>> diagnose_all((DEGREES_OUT, sign_flip()), [-90.0], np.array([np.pi / 2]), (), None)
+    []
+    >>> [k for k, _ in diagnose_all((DEGREES_OUT, SIGN_FLIP), [-1.0], np.array([1.0]), (), None)]
+    ['sign_flip']
+    """
+    arr = _floats(got)
+    if arr is None:
+        return []
+    found: dict[str, str] = {}
+    for mistake in mistakes:
+        if mistake.key in found:
+            continue
+        try:
+            message = mistake.check(arr, expected, args, reference)
+        except Exception:  # noqa: BLE001 - a check that does not apply to this value says nothing
+            continue
+        if message:
+            found[mistake.key] = message
+    return list(found.items())
+
+
+def matches(key: str, message: str, wrong: Callable[..., Any]) -> Mistake:
+    """The mistake whose answer is ``wrong(*args)`` (the mistaken formula applied to the same arguments).
+
+    >>> m = matches("order", "reversed", lambda a, b: b @ a)
+    >>> A, B = np.diag([1.0, 2.0]), np.array([[0.0, 1.0], [1.0, 0.0]])
+    >>> m.check(B @ A, A @ B, (A, B), None)
+    'reversed'
+    """
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        if isinstance(expected, np.ndarray) and close(expected, wrong(*args)):
+            return None  # the mistake gives the right answer here: nothing to say
+        return message if close(got, wrong(*args)) else None
+
+    return Mistake(key, made(check, matches, key, message, wrong, attr="check"))
+
+
+def _transposed(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+    ref = np.asarray(expected, dtype=float)
+    if ref.ndim != 2 or ref.shape[0] != ref.shape[1] or ref.shape[0] not in (3, 4) or got.shape != ref.shape:
+        return None
+    R = ref[:3, :3]
+    if close(ref, ref.T):
+        return None
+    if close(got, ref.T):
+        whole = " the whole 4×4 matrix" if ref.shape[0] == 4 else ""
+        return f"you returned the transpose{whole}: column k of a rotation is where the k-th axis goes (lecture 01 §1)"
+    if ref.shape[0] == 4 and not close(R, R.T) and close(got[:3, :3], R.T):
+        return "the rotation part is transposed (Rᵀ for R): column k of R is where the k-th axis goes (lecture 01 §1)"
+    return None
+
+
+#: A transposed rotation (Rᵀ), or a 4×4 whose rotation block (or whole matrix) is transposed.
+TRANSPOSED = Mistake("transposed", _transposed)
+
+
+def _inverse(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+    ref = np.asarray(expected, dtype=float)
+    if ref.shape != (4, 4) or got.shape != (4, 4):
+        return None
+    R, p = ref[:3, :3], ref[:3, 3]
+    inv = np.eye(4)
+    inv[:3, :3], inv[:3, 3] = R.T, -R.T @ p
+    if close(inv, ref) or not close(got, inv):
+        return None
+    return "you returned the inverse: the transform maps the child's coordinates into the parent's, not back"
+
+
+#: The inverse of the expected rigid transform (the frames swapped).
+INVERSE = Mistake("inverse", _inverse)
+
+
+def sign_flip(names: Sequence[str] | None = None) -> Mistake:
+    """One row or one column of a matrix (one entry of a vector) negated, the rest right.
+
+    ``names`` name a vector's entries in the message (default "entry i").
+
+    >>> R = np.array([[1.0, 0.0], [0.0, 2.0]])
+    >>> sign_flip().check(np.array([[1.0, 0.0], [0.0, -2.0]]), R, (), None)
+    'row 2 has the wrong sign (the rest is right): check the sign of the terms in that row'
+    """
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        ref = np.asarray(expected, dtype=float)
+        if got.shape != ref.shape or ref.ndim not in (1, 2):
+            return None
+        scale = max(1.0, float(np.max(np.abs(ref))))
+        if ref.ndim == 1:
+            for i in range(ref.size):
+                flipped = ref.copy()
+                flipped[i] = -flipped[i]
+                if abs(ref[i]) > 1e-6 * scale and close(got, flipped):
+                    what = names[i] if names is not None and i < len(names) else f"entry {i + 1}"
+                    return f"{what} has the wrong sign (the rest is right)"
+            return None
+        for axis, word in ((0, "row"), (1, "column")):
+            for i in range(ref.shape[axis]):
+                flipped = ref.copy()
+                line = flipped[i] if axis == 0 else flipped[:, i]
+                if np.max(np.abs(line)) <= 1e-6 * scale:
+                    continue
+                line *= -1.0
+                if close(got, flipped):
+                    hint = "terms in that row" if axis == 0 else "terms in that column"
+                    return f"{word} {i + 1} has the wrong sign (the rest is right): check the sign of the {hint}"
+        return None
+
+    return Mistake("sign_flip", made(check, sign_flip, names, attr="check"))
+
+
+#: :func:`sign_flip` with generic entry names.
+SIGN_FLIP = sign_flip()
+
+
+def degrees_out(indices: Sequence[int] | None = None) -> Mistake:
+    """Angles returned in degrees: ``got`` is the answer with the entries ``indices`` (default all) in degrees.
+
+    >>> degrees_out([1]).check(np.array([2.0, 90.0]), np.array([2.0, np.pi / 2]), (), None)[:28]
+    'the angles you returned look'
+    """
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        ref = np.asarray(expected, dtype=float)
+        if got.size != ref.size:
+            return None
+        flat = ref.reshape(-1).copy()
+        idx = list(range(flat.size)) if indices is None else list(indices)
+        if np.max(np.abs(flat[idx]), initial=0.0) < 1e-3:
+            return None
+        flat[idx] = np.degrees(flat[idx])
+        if close(got.reshape(-1), flat):
+            return "the angles you returned look like degrees: the course works in radians (no np.degrees)"
+        return None
+
+    return Mistake("degrees", made(check, degrees_out, indices, attr="check"))
+
+
+#: Every returned number taken as an angle in degrees.
+DEGREES_OUT = degrees_out()
+
+
+def degrees_in(*positions: int) -> Mistake:
+    """The arguments at ``positions`` (angles in radians) used as if they were degrees (``np.radians`` applied).
+
+    >>> m = degrees_in(0)
+    >>> m.check(np.array([np.cos(np.radians(0.5))]), np.array([np.cos(0.5)]), (0.5,), lambda t: [np.cos(t)])[:24]
+    'your result is what the '
+    """
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        changed = tuple(np.radians(np.asarray(a, dtype=float)) if i in positions else a for i, a in enumerate(args))
+        if close(got, reference(*changed)):
+            return (
+                "your result is what the formula gives for angles in degrees: the angles you receive are "
+                "radians already, and np.cos/np.sin take radians (no np.radians)"
+            )
+        return None
+
+    return Mistake("degrees", made(check, degrees_in, *positions, attr="check"))
+
+
+def angle_2pi(indices: Sequence[int] | None = None, where: str = "the range asked for") -> Mistake:
+    """Angles (the entries ``indices``, default all) off by a non-zero whole number of turns.
+
+    >>> angle_2pi().check(np.array([0.5 + 2 * np.pi]), np.array([0.5]), (), None)[:30]
+    'the angle is right up to a who'
+    """
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        ref = np.asarray(expected, dtype=float).reshape(-1)
+        g = got.reshape(-1)
+        if g.size != ref.size:
+            return None
+        idx = np.arange(ref.size) if indices is None else np.asarray(indices)
+        turns = (g[idx] - ref[idx]) / (2 * np.pi)
+        whole = np.round(turns)
+        rest = np.delete(np.arange(ref.size), idx)
+        if np.all(np.abs(turns - whole) < 1e-7) and np.any(whole != 0) and close(g[rest], ref[rest]):
+            return f"the angle is right up to a whole turn (off by 2π): return it in {where}"
+        return None
+
+    return Mistake("angle_2pi", made(check, angle_2pi, indices, where, attr="check"))
+
+
+def unit_axis_out(stop: int = 3) -> Mistake:
+    """The axis (the first ``stop`` entries) in the right direction but not of length 1.
+
+    >>> unit_axis_out().check(np.array([0.0, 0.0, 2.0, 1.0]), np.array([0.0, 0.0, 1.0, 1.0]), (), None)[:24]
+    'the axis you returned ha'
+    """
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        ref = np.asarray(expected, dtype=float).reshape(-1)
+        g = got.reshape(-1)
+        if g.size != ref.size:
+            return None
+        norm = float(np.linalg.norm(g[:stop]))
+        fixed = g.copy()
+        if norm < 1e-12 or abs(norm - 1.0) < 1e-6:
+            return None
+        fixed[:stop] = g[:stop] / norm
+        if close(fixed, ref):
+            return f"the axis you returned has length {norm:.4g}, not 1: divide it by its norm"
+        return None
+
+    return Mistake("unnormalised", made(check, unit_axis_out, stop, attr="check"))
+
+
+def matches_set(key: str, message: str, wrong: Callable[..., Any], tol: float = 1e-6) -> Mistake:
+    """Like :func:`matches` for an answer that is a set of rows (any order): ``got`` is the rows of ``wrong(*args)``.
+
+    >>> m = matches_set("printed_formula", "printed", lambda: np.array([[1.0, 0.0], [0.0, 1.0]]))
+    >>> m.check(np.array([[0.0, 1.0], [1.0, 0.0]]), np.zeros((2, 2)), (), None)
+    'printed'
+    """
+
+    def same_rows(a: np.ndarray, b: np.ndarray) -> bool:
+        if a.ndim != 2 or a.shape != b.shape:
+            return False
+        scale = max(1.0, float(np.max(np.abs(b))))
+        d = np.max(np.abs(a[:, None, :] - b[None, :, :]), axis=-1) <= tol * scale
+        return bool(d.any(axis=0).all() and d.any(axis=1).all())
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        bad = np.asarray(wrong(*args), dtype=float)
+        if same_rows(np.asarray(expected, dtype=float), bad):
+            return None
+        return message if same_rows(got, bad) else None
+
+    return Mistake(key, made(check, matches_set, key, message, wrong, tol, attr="check"))
+
+
+def negated(key: str, message: str) -> Mistake:
+    """The whole answer with its sign flipped (for an axis-angle pair, (-k, -θ): the same rotation, outside the range).
+
+    >>> negated("range", "flip both signs").check(np.array([-1.0, 2.0]), np.array([1.0, -2.0]), (), None)
+    'flip both signs'
+    """
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        return message if close(got, -np.asarray(expected, dtype=float)) else None
+
+    return Mistake(key, made(check, negated, key, message, attr="check"))
+
+
+def _translation(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+    ref_ = np.asarray(expected, dtype=float)
+    if got.shape != (4, 4) or not close(got[:3, :3], ref_[:3, :3]) or close(got[:3, 3], ref_[:3, 3]):
+        return None
+    return "the rotation part is right, the translation is not: the inverse moves by -Rᵀp (not -p or p)"
+
+
+#: An inverse transform whose rotation part is right and whose translation is not.
+TRANSLATION = Mistake("translation", _translation)
+
+
+def _duplicates(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+    if got.ndim != 2 or len(got) < 2:
+        return None
+    scale = max(1.0, float(np.max(np.abs(got))))
+    d = np.max(np.abs(got[:, None, :] - got[None, :, :]), axis=-1) <= 1e-9 * scale
+    twice = np.argwhere(np.triu(d, k=1))
+    if not twice.size:
+        return None
+    i, j = (int(v) + 1 for v in twice[0])
+    return f"rows {i} and {j} are the same: list each answer once"
+
+
+#: A set answer with the same row twice.
+DUPLICATES = Mistake("duplicates", _duplicates)
