@@ -37,8 +37,8 @@ from pathlib import Path
 import nbformat
 
 from puma_course.grading import EXERCISES, grade
-from puma_course.grading.run import limits as lim
 from puma_course.grading.model import NotebookResult
+from puma_course.grading.run import limits as lim
 from puma_course.grading.run.child import ChildResult
 from puma_course.grading.run.events import apply
 from puma_course.grading.run.runner import make_plan

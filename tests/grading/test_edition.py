@@ -178,7 +178,8 @@ def solutions():
         cwd = os.getcwd()
         try:
             os.chdir(ROOT / "solutions")
-            with contextlib.redirect_stdout(io.StringIO()):
+            # the notebooks set numpy's print options: keep them out of this process (doctests run here too)
+            with contextlib.redirect_stdout(io.StringIO()), np.printoptions():
                 for cell in nbformat.read(ROOT / "solutions" / f"{name}.ipynb", as_version=4).cells:
                     if cell.cell_type == "code":
                         exec(compile(cell.source, f"{name}.ipynb", "exec"), ns)  # noqa: S102 - the course's own

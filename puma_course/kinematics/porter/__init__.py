@@ -186,7 +186,9 @@ class Porter(Robot):
         if isinstance(guarded, str):
             return self._none(guarded, method)
         Q, keys, labels = guarded
-        if nr is not None:  # the start configuration among the solutions at compound near-singular poses
+        if nr is not None and (method == "explicit" or planes == "both"):
+            # the start configuration among the solutions at compound near-singular poses; only where every
+            # configuration is returned (Ver.2 on the front plane alone may not hold the start's branch at all)
             Q = self._keep_start(Q[None], np.ones((1, len(Q)), dtype=bool), nr[None], Tm)[0]
         present = {k for f in keys for k in f}
         if self.q2_max is not None:
