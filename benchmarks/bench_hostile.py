@@ -45,6 +45,9 @@ from puma_course.grading.run.runner import make_plan
 from puma_course.grading.run.sandbox import choose
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from tests.grading.hostile import SLOWISH  # noqa: E402  (the slowish classmate of the hostile tests, one cell)
 
 FORGE = """
 import json, os, time
@@ -89,19 +92,6 @@ for _ in range(60):
             os.execv(sys.executable, [sys.executable, "-c", "while True: pass"])
     except OSError:
         break
-"""
-
-SLOWISH = """
-import time as _time
-def _slowly(fn):
-    def wrapper(*args, **kwargs):
-        end = _time.process_time() + 0.05
-        while _time.process_time() < end:
-            pass
-        return fn(*args, **kwargs)
-    return wrapper
-for _name in {functions!r}:
-    globals()[_name] = _slowly(globals()[_name])
 """
 
 
