@@ -297,7 +297,7 @@ def schedule_markdown(course: str | Path | None = None) -> str:
         "Generated from `schedule.json` by `puma_course.instructor.schedule_markdown()`; edit the JSON, then run",
         "`python -c \"from puma_course.instructor import schedule_markdown as s; open('instructor/schedule.md', 'w')"
         '.write(s())"`.',
-        "Sections are the lectures' `##` headings; Errata sections are reading.",
+        "Sections are the lectures' `##` headings; appendices and Errata sections are reading.",
         "",
     ]
     for k, meeting in enumerate(data["meetings"], 1):
