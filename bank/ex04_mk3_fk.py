@@ -17,8 +17,8 @@ from puma_course.grading.judge.diagnose import degrees_in, matches
 from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.model import Exercise, Question
 
-from . import _formulas as F
 from . import _keys as keys
+from ._formulas import approach_only, kept_axis, turned_back
 from ._reference import chains as ref
 
 H = np.pi / 2
@@ -167,25 +167,25 @@ EXERCISE = Exercise(
                     "rotation_sense",
                     "your rotation turns the frame the wrong way: the approach leaves the arm plane by twice as "
                     "much instead of landing in it (turn by the angle about z × z', not z' × z)",
-                    lambda T, s: F.turned_back(T, ref.mk3_rail_nearest(T, s)),
+                    lambda T, s: turned_back(T, ref.mk3_rail_nearest(T, s)),
                 ),
                 matches(
                     "projected_only",
                     "you replaced the approach vector by its projection but kept x and y: turn the whole frame, "
                     "so the result is still a rotation",
-                    lambda T, s: F.approach_only(T, ref.mk3_rail_nearest(T, s)),
+                    lambda T, s: approach_only(T, ref.mk3_rail_nearest(T, s)),
                 ),
                 matches(
                     "not_smallest_turn",
                     "your approach is right, but x5 was kept and re-orthogonalised: that is a rotation, not the "
                     "smallest one; turn the whole frame about z × z'",
-                    lambda T, s: F.kept_axis(T, ref.mk3_rail_nearest(T, s), 0),
+                    lambda T, s: kept_axis(T, ref.mk3_rail_nearest(T, s), 0),
                 ),
                 matches(
                     "not_smallest_turn",
                     "your approach is right, but y5 was kept and re-orthogonalised: that is a rotation, not the "
                     "smallest one; turn the whole frame about z × z'",
-                    lambda T, s: F.kept_axis(T, ref.mk3_rail_nearest(T, s), 1),
+                    lambda T, s: kept_axis(T, ref.mk3_rail_nearest(T, s), 1),
                 ),
             ),
             hint="Which vertical plane must hold the approach z on the rail (lecture 04 §6, with question 3's "
