@@ -65,6 +65,10 @@ _PLANE = np.array([0.0, 0.0, 1.0, 1.0])  # + π for the back branches
 _EL = np.array([1.0, -1.0, 1.0, -1.0])
 _H = math.pi / 2
 _BLOCK = 10_000
+#: An approach whose projection onto the arm plane is shorter than this (within 1e-6 rad of perpendicular to the
+#: plane) counts as perpendicular in :meth:`MK3.nearest_attainable`: every plane direction is then 90° away to 1e-6
+#: rad, and a shorter projection would carry a direction error above 1e-10 rad.
+_PERPENDICULAR = 1e-6
 #: The smallest accepted ``tol`` (on the sine of z5's angle to the arm plane): below 1e-12 rounding noise
 #: would refuse reachable poses (384 of 2,000 random ones at 1e-16).
 TOL_MIN = 1e-12
@@ -197,8 +201,8 @@ class MK3(DHChain):
 
         * a goal whose approach is in the plane (|m · z| <= ``tol``, the tolerance of :meth:`ik`) comes back
           unchanged, as does a goal whose tool point is on the base axis (every vertical plane holds it);
-        * an approach perpendicular to the plane (horizontal, along m) is 90° from every direction in it:
-          it is turned to point straight down (the MK3's working posture), ``unique`` False;
+        * an approach perpendicular to the plane (horizontal, along m; within 1e-6 rad) is 90° from every
+          direction in it: it is turned to point straight down (the MK3's working posture), ``unique`` False;
         * if the position itself is out of reach, the pose with the nearest orientation is returned
           with ``success`` False and the solver's ``reason``.
 
@@ -228,24 +232,25 @@ class MK3(DHChain):
                 message = "the approach vector lies in the arm plane: the goal is attainable as it is"
             else:
                 zp = z - s * m
-                c = math.sqrt(max(0.0, 1.0 - s * s))  # |zp|
-                if c <= 1e-9:  # z along ±m: every direction in the plane is 90° away
+                c = math.hypot(*zp)
+                if c <= _PERPENDICULAR:  # z along ±m (horizontal): every direction in the plane is 90° away
                     unique = False
                     zn = np.array([0.0, 0.0, -1.0])
-                    angle = _H
                     message = (
                         "the approach vector is perpendicular to the arm plane: every direction in the plane is "
                         "90° away, and the tool is turned to point straight down"
                     )
                 else:
-                    zn = zp / math.hypot(*zp)
-                    angle = math.asin(min(abs(s), 1.0))
+                    zn = zp / c
+                k = np.cross(z, zn)
+                sk = math.hypot(*k)
+                angle = math.atan2(sk, float(z[0] * zn[0] + z[1] * zn[1] + z[2] * zn[2]))  # asin |m · z| if unique
+                axis = k / sk
+                if unique:
                     message = (
                         f"the approach vector was {math.degrees(angle):.3g}° out of the arm plane: the goal's frame "
                         "is turned by that much about z × z', z' its projection onto the plane"
                     )
-                k = np.cross(z, zn)
-                axis = k / math.hypot(*k)
                 Rk = rodrigues(axis, angle)
                 R = (Rk[:, :, None] * out[:3, :3][None, :, :]).sum(axis=1)  # Rk @ R without a BLAS call
                 R[:, 2] = zn  # exactly in the plane (the product carries rounding)

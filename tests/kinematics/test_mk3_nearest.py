@@ -115,9 +115,23 @@ def test_an_approach_perpendicular_to_the_plane_is_turned_down():
     T2, info = ARM.nearest_attainable(T)
     assert np.allclose(T2[:3, :3], np.diag([1.0, -1.0, -1.0]), atol=1e-15)
     assert np.array_equal(T2[:3, 3], [400.0, 0.0, 300.0])
-    assert info.angle == math.pi / 2 and not info.unique and info.success
+    assert abs(info.angle - math.pi / 2) < 1e-15 and not info.unique and info.success
     # every attainable orientation at this point is at least 90° away (the brute search agrees)
     assert abs(brute_nearest(T)[0] - math.pi / 2) < 1e-6
+
+
+@pytest.mark.parametrize("tilt", [1e-7, 5e-7, 2e-6, 1e-4])
+def test_an_approach_nearly_perpendicular_to_the_plane_gives_a_rotation_turned_the_least(tilt):
+    # §6's goal with its approach tipped by `tilt` towards -z0 (in the plane): unique from 1e-6 rad on
+    T = homogeneous(rotx(-np.pi / 2 - tilt), [400.0, 0.0, 300.0])
+    T2, info = ARM.nearest_attainable(T)
+    R = T2[:3, :3]
+    assert np.allclose(R.T @ R, np.eye(3), atol=1e-12) and abs(np.linalg.det(R) - 1.0) < 1e-12
+    assert abs(T2[1, 2]) < 1e-12 and info.success
+    assert info.unique == (tilt > 1e-6)
+    assert np.allclose(T2[:3, 2], [0.0, 0.0, -1.0], atol=1e-9)  # the projection and the choice agree here
+    assert abs(float(rotation_angle(T[:3, :3], R)) - info.angle) < 1e-9
+    assert abs(info.angle - (np.pi / 2 - tilt)) < 1e-9
 
 
 def test_a_tool_point_on_the_base_axis_keeps_the_goal():
