@@ -26,8 +26,8 @@ _COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple")
 
 
 def _arrow(ax: Any, start: np.ndarray, d: np.ndarray, colour: str, dashed: bool) -> None:
-    ax.annotate("", xy=start + ARROW * d, xytext=start,
-                arrowprops=dict(arrowstyle="-|>", color=colour, lw=2.0 if dashed else 2.5, ls="--" if dashed else "-"))  # fmt: skip
+    style = dict(arrowstyle="-|>", color=colour, lw=2.0 if dashed else 2.5, ls="--" if dashed else "-")
+    ax.annotate("", xy=start + ARROW * d, xytext=start, arrowprops=style)
 
 
 def plot_nearest_attainable(arm: MK3, goals: Sequence[Any], names: Sequence[str], *, face_on: int = 0) -> Figure:
