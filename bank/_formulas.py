@@ -115,3 +115,36 @@ def camera_head_frame(pan: float, tilt: float) -> np.ndarray:
 def camera_fixed_axes(pan: float, tilt: float) -> np.ndarray:
     """The mistake: tilt about the base's fixed y0 after the pan (Ry(tilt) Rz(pan)), not about the turned head's y."""
     return _camera_at(roty(tilt) @ rotz(pan), CAMERA_IN_HEAD)
+
+
+# ---------------------------------------------------------------- exercise 4 q4: the nearest attainable pose, mistaken
+def _goal_and_nearest(T: Any, near: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    T, near = np.asarray(T, dtype=float), np.asarray(near, dtype=float)
+    return T, near, near[:3, :3] @ T[:3, :3].T  # the rotation that turned the goal into the nearest pose
+
+
+def turned_back(T: Any, near: Any) -> np.ndarray:
+    """The goal turned by the nearest pose's rotation the wrong way (-θ for θ): its approach leaves the plane more."""
+    T, near, Q = _goal_and_nearest(T, near)
+    out = T.copy()
+    out[:3, :3] = Q.T @ T[:3, :3]
+    return out
+
+
+def approach_only(T: Any, near: Any) -> np.ndarray:
+    """Only the approach vector replaced by its projection into the plane; x and y kept (not a rotation)."""
+    out = np.asarray(T, dtype=float).copy()
+    out[:3, 2] = np.asarray(near, dtype=float)[:3, 2]
+    return out
+
+
+def kept_axis(T: Any, near: Any, axis: int) -> np.ndarray:
+    """The new approach with the goal's x (``axis`` 0) or y (1) axis re-orthogonalised against it (Gram-Schmidt):
+    a rotation with its approach in the plane, but not the smallest one."""
+    T = np.asarray(T, dtype=float)
+    z = np.asarray(near, dtype=float)[:3, 2]
+    a = T[:3, axis] - (T[:3, axis] @ z) * z
+    a = a / math.hypot(*a)
+    out = T.copy()
+    out[:3, axis], out[:3, 1 - axis], out[:3, 2] = a, (np.cross(z, a) if axis == 0 else np.cross(a, z)), z
+    return out

@@ -2,7 +2,9 @@
 
 The modelling question: the MK3 mounted on a carriage that slides along a rail (a seventh axis,
 common in welding cells) is a new 6-joint chain; its table, with the rail's frame as {0} and the
-MK3's flange as the last frame, is graded by the poses it reaches.
+MK3's flange as the last frame, is graded by the poses it reaches. Question 4 asks what a five-joint
+arm can reach on that rail: the nearest attainable pose of a goal (lecture 04 §8), its arm plane through
+the carriage's base axis, not the rail frame's z axis (so lecture 04's cells do not answer it).
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys
+from ._formulas import approach_only, kept_axis, turned_back
 from ._reference import chains as ref
 
 H = np.pi / 2
@@ -137,6 +140,57 @@ EXERCISE = Exercise(
             hint="The rail's joint comes first: which way must z_1 point, and which twist about x_0 turns z_0 into it "
             "(lecture 02 §3)? Then find where joint 2's axis meets the rail's. Your q2, shifted by the carriage, is "
             "the pose to compare with.",
+        ),
+        Question(
+            "q4",
+            "rail_nearest_pose",
+            3,
+            "the nearest pose the MK3 on its rail can take",
+            public=(
+                (ref.mk3_rail_goal([0.4, 0.9, -1.2, 0.6, 0.3], [0.2, -0.5, 1.0], 0.9, 300.0), 300.0),
+                (ref.mk3_rail_goal([-0.6, 0.5, -0.9, 1.0, 0.7], [0.0, 0.0, 1.0], 0.0, -250.0), -250.0),
+            ),
+            hidden=lambda rng: ref.mk3_nearest_cases(rng, 4),
+            reference=ref.mk3_rail_nearest,
+            forbidden=(
+                "puma_course.kinematics.mk3:MK3.nearest_attainable",
+                "puma_course_bank._reference.chains:mk3_rail_nearest",
+            ),
+            mistakes=(
+                matches(
+                    "base_frame",
+                    "your arm plane passes through the rail frame's z0 axis: the MK3's base axis stands on the "
+                    "carriage, at x = 0, y = s (question 3's picture)",
+                    lambda T, s: ref.mk3_rail_nearest(T, 0.0),
+                ),
+                matches(
+                    "rotation_sense",
+                    "your rotation turns the frame the wrong way: the approach leaves the arm plane by twice as "
+                    "much instead of landing in it (turn by the angle about z × z', not z' × z)",
+                    lambda T, s: turned_back(T, ref.mk3_rail_nearest(T, s)),
+                ),
+                matches(
+                    "projected_only",
+                    "you replaced the approach vector by its projection but kept x and y: turn the whole frame, "
+                    "so the result is still a rotation",
+                    lambda T, s: approach_only(T, ref.mk3_rail_nearest(T, s)),
+                ),
+                matches(
+                    "not_smallest_turn",
+                    "your approach is right, but x5 was kept and re-orthogonalised: that is a rotation, not the "
+                    "smallest one; turn the whole frame about z × z'",
+                    lambda T, s: kept_axis(T, ref.mk3_rail_nearest(T, s), 0),
+                ),
+                matches(
+                    "not_smallest_turn",
+                    "your approach is right, but y5 was kept and re-orthogonalised: that is a rotation, not the "
+                    "smallest one; turn the whole frame about z × z'",
+                    lambda T, s: kept_axis(T, ref.mk3_rail_nearest(T, s), 1),
+                ),
+            ),
+            hint="Which vertical plane must hold the approach z on the rail (lecture 04 §6, with question 3's "
+            "base)? Then lecture 04 §8: project z onto it, normalise, and turn the whole frame about z × z' by the "
+            "angle between them (Rodrigues, lecture 01). A goal whose approach is in the plane comes back unchanged.",
         ),
     ),
     allowed=("puma_course.kinematics.dh:mdh",),

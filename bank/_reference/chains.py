@@ -231,6 +231,42 @@ def mk3_rail_expected(c: float, d1: float, a1: float, a2: float, a3: float, d5: 
     )
 
 
+def mk3_rail_nearest(T: Any, s: float) -> np.ndarray:
+    """The nearest attainable pose of the MK3 on its rail (carriage at ``s``): the goal T (rail frame, mm)
+    turned the least so its approach lies in the vertical plane through the MK3's base axis (x = 0, y = s)
+    and the tool point; the position kept (Craig's Motoman L-3, ``MK3.nearest_attainable``)."""
+    B = transforms.transl([0.0, float(s), 0.0])
+    near, _ = MK3().nearest_attainable(transforms.inverse_transform(B) @ np.asarray(T, dtype=float))
+    return B @ near
+
+
+def mk3_rail_goal(q: Any, axis: Any, angle: float, s: float) -> np.ndarray:
+    """A goal for the MK3 on its rail: the pose at ``q`` (carriage at ``s``) with its orientation turned by
+    ``angle`` about ``axis`` (rail frame; 0 leaves it attainable)."""
+    T = MK3().fk(np.asarray(q, dtype=float))
+    if angle:
+        T[:3, :3] = transforms.rodrigues(axis, angle) @ T[:3, :3]
+    return transforms.transl([0.0, float(s), 0.0]) @ T
+
+
+def mk3_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """``n`` goals (T, s) for the MK3 on its rail: poses it reaches, turned about a random axis so the approach
+    leaves the arm plane by 15° to 65°, the tool point at least 100 mm off the base axis and the nearest pose
+    within reach; the carriage 100 to 600 mm from the rail's middle, either way."""
+    arm, out = MK3(), []
+    lo, hi = np.sin(np.radians(15.0)), np.sin(np.radians(65.0))
+    while len(out) < n:
+        T = arm.fk(rng.uniform(-np.pi, np.pi, 5))
+        T[:3, :3] = transforms.rodrigues(rng.normal(size=3), rng.uniform(0.3, 1.2)) @ T[:3, :3]
+        p, z = T[:3, 3], T[:3, 2]
+        h = float(np.hypot(p[0], p[1]))
+        if h < 100.0 or not lo <= abs(-p[1] * z[0] + p[0] * z[1]) / h <= hi or not arm.nearest_attainable(T)[1].success:
+            continue
+        s = float(rng.choice([-1.0, 1.0]) * rng.uniform(100.0, 600.0))
+        out.append((transforms.transl([0.0, s, 0.0]) @ T, s))
+    return out
+
+
 def mk3_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     """``n`` cases (q, d1, a1, a2, a3, d5) with lengths around the lecture's (mm)."""
     base = np.array([360.0, 135.0, 250.0, 215.0, 100.0])

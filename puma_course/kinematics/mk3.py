@@ -27,22 +27,28 @@ and p = Rz(θ1) (a1 + a2 c2 + a3 c23 + d5 S, 0, d1 + a2 s2 + a3 s23 - d5 C). So:
 * θ2 + θ3 + θ4 = atan2(M[0, 2], -M[2, 2]) and θ5 = atan2(-M[1, 0], -M[1, 1]) are always defined;
 * θ2, θ3 are the planar two-link solution for w seen from joint 2: r = c1 wx + s1 wy - a1,
   z = wz - d1, c3 = (r² + z² - a2² - a3²) / (2 a2 a3), elbow up or down; θ4 closes the sum.
+
+The nearest attainable pose (Craig's treatment of the Motoman L-3): a goal whose approach vector z leaves
+the vertical plane through the base axis and the tool point p is turned, as a whole, about the axis
+K = z × z' by the smallest angle that brings z into that plane (z' the normalised projection of z onto it,
+the angle asin |m · z| with m the plane's unit normal); the position is kept. :meth:`MK3.nearest_attainable`.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from .._validate import as_robot_length, as_tol
-from ..transforms import wrap_angle
+from ..transforms import rodrigues, wrap_angle
 from ._ops import ARRAY
 from .dh import DHChain, Link
 from .ik import IKBatch, IKSolutions
 
-__all__ = ["MK3", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS"]
+__all__ = ["MK3", "Attainable", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS"]
 
 #: The lecture's lengths (millimetres).
 DEFAULTS = {"d1": 360.0, "a1": 135.0, "a2": 250.0, "a3": 215.0, "d5": 100.0}
@@ -59,6 +65,10 @@ _PLANE = np.array([0.0, 0.0, 1.0, 1.0])  # + π for the back branches
 _EL = np.array([1.0, -1.0, 1.0, -1.0])
 _H = math.pi / 2
 _BLOCK = 10_000
+#: An approach whose projection onto the arm plane is shorter than this (within 1e-6 rad of perpendicular to the
+#: plane) counts as perpendicular in :meth:`MK3.nearest_attainable`: every plane direction is then 90° away to 1e-6
+#: rad, and a shorter projection would carry a direction error above 1e-10 rad.
+_PERPENDICULAR = 1e-6
 #: The smallest accepted ``tol`` (on the sine of z5's angle to the arm plane): below 1e-12 rounding noise
 #: would refuse reachable poses (384 of 2,000 random ones at 1e-16).
 TOL_MIN = 1e-12
@@ -105,6 +115,26 @@ def _branch(o: Any, P: tuple[Any, ...], R: tuple[Any, ...], L: tuple[float, ...]
     j2 = o.hypot(r, z) < ltol
     t2 = o.where(j2, 0.0 if near is None else near[1], o.atan2(z, r) - o.atan2(a3 * o.sin(t3), a2 + a3 * o.cos(t3)))
     return t1, t2, t3, t234 - t2 - t3, t5, reach, el_sing, j2
+
+
+@dataclass(frozen=True)
+class Attainable:
+    """What :meth:`MK3.nearest_attainable` did to a goal pose.
+
+    ``angle`` is the rotation applied to the goal's orientation (radians, in [0, π/2]; 0 when the goal's
+    approach already lies in the arm plane) about the unit ``axis`` (zeros when nothing turned);
+    ``unique`` is False when the approach was perpendicular to the arm plane (every direction in the plane
+    is then 90° away: the tool is turned to point straight down); ``success`` says whether the arm reaches
+    the returned pose (``reason`` says why not: the position itself is out of reach); ``message`` is one
+    sentence on what was done.
+    """
+
+    angle: float
+    axis: np.ndarray = field(repr=False)
+    unique: bool
+    success: bool
+    reason: str
+    message: str
 
 
 class MK3(DHChain):
@@ -158,6 +188,76 @@ class MK3(DHChain):
             f"through the base axis and the wrist point w = p - d5 z5): this pose leaves it (tool point "
             f"{off_p:.3g} mm off that plane, z5 at {math.degrees(math.asin(min(off_z, 1.0))):.3g}° to it)"
         )
+
+    def nearest_attainable(self, T: Any, *, tol: float = 1e-9) -> tuple[np.ndarray, Attainable]:
+        """The attainable pose nearest the goal T: its orientation turned the least, its position kept.
+
+        Craig's treatment of the Motoman L-3: a five-joint arm reaches only poses whose approach vector
+        z5 lies in the arm plane, the vertical plane through the base axis and the tool point p. The goal's
+        whole frame is turned about K = z × z' by the angle asin |m · z| that takes z onto z', its normalised
+        projection onto that plane (m the plane's unit normal, (-py, px, 0) / |(px, py)|); no rotation moving
+        z onto the plane is smaller, and z5's spin is kept as far as it can be. The position p is kept.
+        Returns the pose (4, 4) and an :class:`Attainable`.
+
+        * a goal whose approach is in the plane (|m · z| <= ``tol``, the tolerance of :meth:`ik`) comes back
+          unchanged, as does a goal whose tool point is on the base axis (every vertical plane holds it);
+        * an approach perpendicular to the plane (horizontal, along m; within 1e-6 rad) is 90° from every
+          direction in it: it is turned to point straight down (the MK3's working posture), ``unique`` False;
+        * if the position itself is out of reach, the pose with the nearest orientation is returned
+          with ``success`` False and the solver's ``reason``.
+
+        >>> from puma_course.transforms import rotx
+        >>> arm = MK3()
+        >>> T = arm.fk([0.3, 1.6, 1.2, 0.2, 0.4])
+        >>> T[:3, :3] = T[:3, :3] @ rotx(0.2)  # z5 turned 0.2 rad about x5: out of the arm plane
+        >>> T2, info = arm.nearest_attainable(T)
+        >>> bool(arm.ik(T).success), bool(arm.ik(T2).success), info.success, bool(np.allclose(T2[:3, 3], T[:3, 3]))
+        (False, True, True, True)
+        """
+        tol = as_tol(tol, "tol", lower=TOL_MIN)
+        Tm = self._check_poses(T)
+        if Tm.shape[0] != 1:
+            raise ValueError(f"T: expected one pose (4, 4), got shape {Tm.shape}")
+        out = Tm[0].copy()
+        px, py = float(out[0, 3]), float(out[1, 3])
+        z = out[:3, 2].copy()
+        h = math.hypot(px, py)
+        axis, angle, unique = np.zeros(3), 0.0, True
+        if h <= self._ltol:
+            message = "the tool point is on the base axis: every vertical plane holds it, the goal is kept"
+        else:
+            m = np.array([-py / h, px / h, 0.0])  # the arm plane's unit normal
+            s = float(m[0] * z[0] + m[1] * z[1])  # sine of z's angle to the plane
+            if abs(s) <= tol:
+                message = "the approach vector lies in the arm plane: the goal is attainable as it is"
+            else:
+                zp = z - s * m
+                c = math.hypot(*zp)
+                if c <= _PERPENDICULAR:  # z along ±m (horizontal): every direction in the plane is 90° away
+                    unique = False
+                    zn = np.array([0.0, 0.0, -1.0])
+                    message = (
+                        "the approach vector is perpendicular to the arm plane: every direction in the plane is "
+                        "90° away, and the tool is turned to point straight down"
+                    )
+                else:
+                    zn = zp / c
+                k = np.cross(z, zn)
+                sk = math.hypot(*k)
+                angle = math.atan2(sk, float(z[0] * zn[0] + z[1] * zn[1] + z[2] * zn[2]))  # asin |m · z| if unique
+                axis = k / sk
+                if unique:
+                    message = (
+                        f"the approach vector was {math.degrees(angle):.3g}° out of the arm plane: the goal's frame "
+                        "is turned by that much about z × z', z' its projection onto the plane"
+                    )
+                Rk = rodrigues(axis, angle)
+                R = (Rk[:, :, None] * out[:3, :3][None, :, :]).sum(axis=1)  # Rk @ R without a BLAS call
+                R[:, 2] = zn  # exactly in the plane (the product carries rounding)
+                out[:3, :3] = R
+        sol = self.ik(out, tol=max(tol, 1e-9))
+        info = Attainable(angle, axis, unique, bool(sol.success), "" if sol.success else sol.reason, message)
+        return out, info
 
     def ik(self, T: Any, near: Any = None, *, tol: float = 1e-9) -> IKSolutions:
         """Every joint vector reaching T: up to four (front/back arm plane x elbow up/down).

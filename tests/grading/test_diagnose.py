@@ -479,3 +479,43 @@ def test_the_quintic_time_scaling_and_the_short_way_round():
     assert_named(judge(name, "q4", q0 + (3 * tau**2 - 2 * tau**3)[:, None] * dq, q0, q1, T, t), "time_scaling", "cubic")
     unwrapped = q0 + (10 * tau**3 - 15 * tau**4 + 6 * tau**5)[:, None] * (q1 - q0)
     assert_named(judge(name, "q4", unwrapped, q0, q1, T, t), "unwrapped_distance", "wrap")
+
+
+def test_the_nearest_attainable_pose_on_the_rail_and_its_mistakes():
+    # worked by hand: the carriage at s = 200 mm, the tool point 300 mm ahead of the base axis (y = 200 too), so the
+    # arm plane is y = 200 with normal m = e_y; the goal's approach z = Rz(30°) Ry(120°) e_z = (0.75, 0.433, -0.5)
+    # leaves it by asin(0.433) = 25.66°, and Rodrigues turns the frame about z × z' onto z' = (0.832, 0, -0.555)
+    name, s = "ex04_mk3_fk", 200.0
+    R = rot("z", np.radians(30.0)) @ rot("y", np.radians(120.0))
+    T = homogeneous(R, [300.0, 200.0, 250.0])
+    z = R[:, 2]
+    zn = np.array([z[0], 0.0, z[2]]) / np.hypot(z[0], z[2])
+    assert np.allclose(zn, [0.83205, 0.0, -0.5547], atol=1e-5)
+    k = np.cross(z, zn) / np.linalg.norm(np.cross(z, zn))
+    th = np.arcsin(z[1])
+    assert abs(np.degrees(th) - 25.66) < 0.01
+
+    def turned(angle):
+        K = skew(k)
+        return homogeneous((np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K) @ R, T[:3, 3])
+
+    assert judge(name, "q4", turned(th), T, s).passed
+    assert judge(name, "q4", T, T, s).passed is False  # the goal itself is not attainable
+    assert_named(judge(name, "q4", turned(-th), T, s), "rotation_sense", "wrong way")
+    only_z = T.copy()
+    only_z[:3, 2] = zn
+    assert_named(judge(name, "q4", only_z, T, s), "projected_only", "whole frame")
+    keep_x = T.copy()
+    x = R[:, 0] - (R[:, 0] @ zn) * zn
+    keep_x[:3, 0], keep_x[:3, 1], keep_x[:3, 2] = x / np.linalg.norm(x), np.cross(zn, x / np.linalg.norm(x)), zn
+    assert_named(judge(name, "q4", keep_x, T, s), "not_smallest_turn", "x5 was kept")
+    # the plane through the rail frame's z0 axis: the normal (-200, 300, 0) / |.| instead of e_y
+    m0 = np.array([-200.0, 300.0, 0.0]) / np.hypot(200.0, 300.0)
+    z0 = (z - (m0 @ z) * m0) / np.linalg.norm(z - (m0 @ z) * m0)
+    k0 = np.cross(z, z0) / np.linalg.norm(np.cross(z, z0))
+    K0, t0 = skew(k0), np.arcsin(abs(m0 @ z))
+    rail_origin = homogeneous((np.eye(3) + np.sin(t0) * K0 + (1 - np.cos(t0)) * K0 @ K0) @ R, T[:3, 3])
+    assert_named(judge(name, "q4", rail_origin, T, s), "base_frame", "carriage")
+    # an attainable goal (its approach in the plane y = 200) comes back unchanged
+    Ta = homogeneous(rot("y", np.radians(120.0)), [300.0, 200.0, 250.0])
+    assert judge(name, "q4", Ta, Ta, s).passed

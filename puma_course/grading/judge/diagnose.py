@@ -85,6 +85,9 @@ TITLES: dict[str, str] = {
     "back_plane": "the arm plane entered from the back",
     "time_scaling": "another time scaling than the one asked for (linear, cubic, t not divided by the duration)",
     "frame_coordinates": "a vector or point written in another frame's coordinates than the one asked for",
+    "rotation_sense": "a rotation turned the wrong way (by -θ for θ)",
+    "projected_only": "only the approach vector moved into the plane: the frame's other axes not turned with it",
+    "not_smallest_turn": "a rotation that brings the approach into the plane, but not the smallest one",
 }
 
 #: ``check(got, expected, args, reference)``: a message for the student if ``got`` is this mistake, else None.
