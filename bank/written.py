@@ -74,7 +74,7 @@ axes intersect). It names the free choices (the signs of $x_1$ and $x_2$) and th
 
 POSITION_ENTRY = Written(
     points=5,
-    title="one entry of 0T6 of the robot on its pedestal, by hand",
+    title=r"one entry of ${}^0T_6$ of the robot on its pedestal, by hand",
     prompt=r"""
 For the PUMA-560 on its pedestal, holding its tool, of question 2 (joint values $q$ counted as its controller
 counts them), **derive by hand** the entry $p_z$ of ${}^0T_6$: the height of the tool's tip above the floor, as a

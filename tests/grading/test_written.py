@@ -239,15 +239,24 @@ def test_the_round_trip_collect_mark_merge(handed_in, tmp_path, capsys):
     assert "Not marked yet (4 points)." in (feedback / "cy.md").read_text(encoding="utf-8")
 
 
-def test_collect_written_reads_a_canvas_download_too(tmp_path):
-    canvas = tmp_path / "canvas"
+@pytest.mark.parametrize(
+    ("layout", "where", "key"),
+    [
+        ("canvas", f"smithjohn_101_1001_{EX}.ipynb", "smithjohn_101"),
+        ("moodle", f"Ann O'Neil_42_assignsubmission_file_/{EX}.ipynb", "Ann O'Neil_42"),
+    ],
+)
+def test_collect_written_reads_the_platforms_downloads_too(tmp_path, layout, where, key):
+    download = tmp_path / layout
     _hand_in(tmp_path / "tmp", ANN, attach=True)
-    canvas.mkdir()
-    shutil.copy(tmp_path / "tmp" / f"{EX}.ipynb", canvas / f"smithjohn_101_1001_{EX}.ipynb")
-    args = ["collect-written", str(canvas), "-o", str(tmp_path / "m"), "--course", str(ROOT), "--layout", "canvas"]
+    (download / where).parent.mkdir(parents=True, exist_ok=True)
+    shutil.copy(tmp_path / "tmp" / f"{EX}.ipynb", download / where)
+    args = ["collect-written", str(download), "-o", str(tmp_path / "m"), "--course", str(ROOT), "--layout", layout]
     assert main(args) == 0
-    assert _rows(tmp_path / "m" / f"{EX}-{QID}-marks.csv")[1][:3] == ["smithjohn_101", EX, QID]
-    assert "### `smithjohn_101`" in (tmp_path / "m" / f"{EX}-{QID}.md").read_text(encoding="utf-8")
+    assert _rows(tmp_path / "m" / f"{EX}-{QID}-marks.csv")[1][:3] == [key, EX, QID]
+    doc = (tmp_path / "m" / f"{EX}-{QID}.md").read_text(encoding="utf-8")
+    assert f"### `{key}`" in doc and "z_2 = -y_0" in doc
+    assert len(list((tmp_path / "m" / "attachments").glob("*.png"))) == 1
 
 
 HEAD = ["student", "exercise", "question", "points", "comment", "z axes", "origin 1", "origin 2", "x axes"]
