@@ -135,8 +135,9 @@ def _declared() -> dict[str, tuple[Written, ...]]:
 def written_questions(exercise: str | Exercise) -> tuple[WrittenQuestion, ...]:
     """The written questions of ``exercise`` (a name or the exercise), numbered after its auto-graded ones.
 
-    >>> [(w.qid, w.points) for w in written_questions("ex02_dh_frames")]
-    [('q4', 4)]
+    >>> (w,) = written_questions("ex02_dh_frames")
+    >>> w.points, int(w.qid[1:]) == len(EXERCISES["ex02_dh_frames"].questions) + 1
+    (4, True)
     """
     name = exercise if isinstance(exercise, str) else exercise.name
     items = _declared().get(name, ())
@@ -168,8 +169,8 @@ def prompt_source(w: WrittenQuestion) -> str:
 def written_summary(exercise: str | Exercise) -> str:
     """What the points summary adds for the exercise's written questions ("" when it has none).
 
-    >>> written_summary("ex02_dh_frames")
-    ' Written, marked by your instructor: q4 4.'
+    >>> written_summary("ex02_dh_frames").replace(written_questions("ex02_dh_frames")[0].qid, "qN")
+    ' Written, marked by your instructor: qN 4.'
     """
     items = written_questions(exercise)
     if not items:

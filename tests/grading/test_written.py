@@ -43,7 +43,7 @@ from puma_course.kinematics.puma560 import Puma560
 from tests.support import ROOT
 
 EX = "ex02_dh_frames"
-QID = "q4"
+QID = written_questions(EX)[0].qid  # q4 while the exercise has three auto-graded questions
 PNG = b"\x89PNG\r\n\x1a\n" + bytes(range(40))
 
 
