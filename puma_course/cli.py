@@ -7,7 +7,7 @@
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
     puma-course grade ... [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
-    puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (see :mod:`puma_course.cli_platform`)
+    puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (also collect-written: see cli_platform)
     puma-course site [--course DIR] [-o DIR] [--repo-url URL]
     puma-course edition DIR [--course DIR]
     puma-course slides [--course DIR] [-o DIR] [--lecture NN ...]   (see :mod:`puma_course.instructor`)
@@ -47,6 +47,7 @@ from .cli_platform import (
     write_gradebooks,
 )
 from .cli_publish import add_publish_parsers, edition, site
+from .cli_written import collect_written
 from .course import INDEX, CourseNotFoundError, course_root, find_course
 from .extras import MissingExtraError, require_extra
 from .instructor.cli import add_parsers as add_instructor_parsers
@@ -57,7 +58,6 @@ __all__ = ["main", "build_parser", "lab_command"]
 _COURSE_HELP = (
     "the course folder (default: the nearest folder, at or above the current one, that holds solutions/ or notebooks/)"
 )
-
 
 #: notebooks open unmodified whatever the student's Python (see :mod:`puma_course.lab_contents`)
 CONTENTS_MANAGER = "--ServerApp.contents_manager_class=puma_course.lab_contents.CourseContentsManager"
@@ -392,6 +392,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args.jupyter_args = extra
     handlers: dict[str, Any] = {"lab": _lab, "release": _release, "grade": _grade, "check": _check}
     handlers["gradescope"] = lambda a: gradescope(a, _course(a))
+    handlers["collect-written"] = lambda a: collect_written(a, _course(a))
     handlers["site"] = lambda a: site(a, _course(a))
     handlers["edition"] = lambda a: edition(a, _course(a))
     handlers["slides"] = lambda a: run_slides(a, _course(a))

@@ -3,6 +3,7 @@
     puma-course grade SUBMISSIONS -o grades.csv [--layout folders|canvas|moodle]
                       [--gradebook canvas|moodle|wide ...] [--roster MOODLE-EXPORT.csv]
     puma-course gradescope EXERCISE -o autograder.zip [--course DIR]
+    puma-course collect-written SUBMISSIONS -o DIR [--anonymise]   (see :mod:`puma_course.cli_written`)
 
 Part of the ``cli`` layer (light to import: the grader is imported only when a command runs).
 See :mod:`puma_course.grading.run.collect`, :mod:`puma_course.grading.output.gradebook` and
@@ -18,6 +19,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from .cli_written import add_marks_argument, add_written_parser, check_marks, merge_marks
+
 __all__ = ["add_grade_arguments", "add_gradescope_parser", "collect_or_explain", "write_gradebooks", "gradescope"]
 
 LAYOUT_SHAPES = {
@@ -28,7 +31,8 @@ LAYOUT_SHAPES = {
 
 
 def add_grade_arguments(gr: argparse.ArgumentParser) -> None:
-    """``--layout``, ``--gradebook`` and ``--roster`` of ``puma-course grade``."""
+    """``--layout``, ``--gradebook``, ``--roster`` and ``--marks`` of ``puma-course grade``."""
+    add_marks_argument(gr)
     gr.add_argument(
         "--layout",
         choices=tuple(LAYOUT_SHAPES),
@@ -55,7 +59,8 @@ def add_grade_arguments(gr: argparse.ArgumentParser) -> None:
 
 
 def add_gradescope_parser(sub: Any, course: argparse.ArgumentParser) -> None:
-    """The ``gradescope`` sub-command."""
+    """The ``gradescope`` sub-command (and ``collect-written``, :mod:`puma_course.cli_written`)."""
+    add_written_parser(sub, course)
     gs = sub.add_parser(
         "gradescope",
         parents=[course],
@@ -132,6 +137,7 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
             names = [n for n in names if n not in absent]
     if absent:
         print(f"not graded (nobody handed them in; --exercise grades them): {', '.join(absent)}", file=sys.stderr)
+    check_marks(args, names, collected)  # a bad marks file stops the command before anything is graded
     return list(names), collected
 
 
@@ -174,10 +180,11 @@ def write_gradebooks(args: argparse.Namespace, results: Sequence[Any], names: Se
 
     if collected is not None and collected.problems:
         print(f"{len(collected.problems)} file(s) of the download not graded (listed above and in the summary)")
+    written = merge_marks(args, results)  # --marks: into the CSV and the feedback; the points for the gradebooks
     roster = read_roster(args.roster) if args.roster is not None else None
     for fmt in dict.fromkeys(args.gradebook or []):
         people = collected.by_key() if collected is not None else None
-        path, notes = write_gradebook(fmt, args.output, results, names, people, roster)
+        path, notes = write_gradebook(fmt, args.output, results, names, people, roster, written)
         print(f"gradebook ({fmt}): {path}")
         for note in notes:
             print(f"  {note}", file=sys.stderr)

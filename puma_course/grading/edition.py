@@ -93,6 +93,8 @@ JupyterLab opens at this folder with `START_HERE.ipynb`, the index of every lect
 
 Read a lecture top to bottom and run it (Run > Run All Cells); change the numbers and run again.
 Each exercise in `exercises/` asks for functions: write each answer where the notebook says so.
+Some also ask a **written** question: write it in the Markdown cell below the question (formulas between
+`$…$`; a sketch is a photo or drawing dragged into that cell). Your instructor marks it by hand.
 
 ## Self-check
 

@@ -19,6 +19,11 @@ summary of every question's points (tagged ``points-summary``). A solution that 
 ``points:N`` tag, or a generated cell, is refused (ValueError): an edited tag would otherwise
 look as if it changed the grading.
 
+**Written questions** (:mod:`.written`, declared in the course's ``bank/written.py``): before the
+notebook's closing Markdown cell the generator puts, per written question, a prompt cell (tagged
+``written-prompt:qN``: the points, the question) and a Markdown answer cell tagged ``written:qN``, and the
+points summary names them. Their rubric and worked answer stay in the bank.
+
 **What ``release(check_only=True)`` compares** (``puma-course release --check``, and the test
 suite) is what a student works with: the order of the cells, their types, their sources and
 their tags (:func:`essentials`). It ignores what Jupyter rewrites when a notebook is opened,
@@ -38,6 +43,7 @@ from pathlib import Path
 from typing import Any
 
 from .model import EXERCISES, Exercise, Question
+from .written import ANSWER_TAG, PLACEHOLDER, PROMPT_TAG, prompt_source, written_questions, written_summary
 
 __all__ = [
     "STUB",
@@ -160,7 +166,7 @@ def _answer_cells(nb: Any, exercise: Exercise) -> dict[int, Question]:
                     f"nb: expected no {POINTS_TAG}N tag in {where}, got {tag!r}; points come from the question bank "
                     f"({', '.join([*worth, bank])}) and the release writes the tag: remove it from the solution"
                 )
-            if tag.startswith(HEADING_TAG) or tag == SUMMARY_TAG:
+            if tag.startswith((HEADING_TAG, ANSWER_TAG, PROMPT_TAG)) or tag == SUMMARY_TAG:
                 raise ValueError(f"nb: expected no cell that the release generates, got {where} tagged {tag!r}")
             if not tag.startswith(QUESTION_TAG):
                 continue
@@ -226,15 +232,34 @@ def release_notebook(nb: Any, exercise: Exercise | None = None) -> Any:
         new["id"] = cell.get("id") or f"cell-{index + 1}"
         out.cells.append(new)
         if summary_due and exercise is not None:
-            summary = nbformat.v4.new_markdown_cell(points_summary(exercise), metadata={"tags": [SUMMARY_TAG]})
+            text = points_summary(exercise) + written_summary(exercise)
+            summary = nbformat.v4.new_markdown_cell(text, metadata={"tags": [SUMMARY_TAG]})
             summary["id"] = SUMMARY_TAG
             out.cells.append(summary)
             summary_due = False
+    if exercise is not None:
+        _add_written(out, exercise)
     ids = [c["id"] for c in out.cells]
     if len(set(ids)) != len(ids):
         twice = sorted({i for i in ids if ids.count(i) > 1})
         raise ValueError(f"nb: expected distinct cell ids, got {twice} more than once")
     return out
+
+
+def _add_written(out: Any, exercise: Exercise) -> None:
+    """Put each written question's prompt and answer cell before the notebook's closing cell (the last one,
+    when it is Markdown), else at the end (see :mod:`.written`)."""
+    import nbformat
+
+    cells = []
+    for w in written_questions(exercise):
+        prompt = nbformat.v4.new_markdown_cell(prompt_source(w), metadata={"tags": [PROMPT_TAG + w.qid]})
+        prompt["id"] = f"written-prompt-{w.qid}"
+        answer = nbformat.v4.new_markdown_cell(PLACEHOLDER, metadata={"tags": [ANSWER_TAG + w.qid]})
+        answer["id"] = f"written-{w.qid}"
+        cells += [prompt, answer]
+    at = len(out.cells) - 1 if out.cells and out.cells[-1].cell_type == "markdown" else len(out.cells)
+    out.cells[at:at] = cells
 
 
 def notebook_text(nb: Any) -> str:

@@ -1,7 +1,8 @@
 """The student edition: everything a student needs, nothing of the key, and the same self-check verdicts.
 
 * ``puma-course edition DIR`` writes the lectures, exercises, figures, package and the public cases'
-  data, and no solution, bank, hidden test or reference code (every file searched, as bytes);
+  data, and no solution, bank, hidden test or reference code, and no rubric or worked answer of a written
+  question (every file searched, as bytes);
 * writing it again updates DIR in place and leaves a ``.git`` alone;
 * the edition's self-check (the public cases as data, :mod:`puma_course.grading.public`) gives the
   same outcome, diagnosis and hint as the instructor's bank on every public case of every question,
@@ -34,6 +35,7 @@ from puma_course.grading.model import score_question
 from puma_course.grading.public import DATA_FILE, _key, dumps, public_exercise
 from puma_course.grading.remake import Made
 from puma_course.grading.selfcheck import public_outcomes
+from puma_course.grading.written import written_exercises, written_questions
 from puma_course_bank import _reference
 from tests.support import ROOT
 
@@ -91,11 +93,24 @@ def _reference_sources() -> list[str]:
     return sources
 
 
+def _written_key() -> list[str]:
+    """The marker's side of every written question (bank/written.py): rubric lines, a full answer, the worked answer."""
+    texts = []
+    for name in written_exercises():
+        for w in written_questions(name):
+            texts += [c.text for c in w.spec.criteria]
+            texts += [line.strip() for line in (w.spec.full_answer + "\n" + w.spec.worked).splitlines()]
+    texts = [t for t in texts if len(t) > 25]
+    assert len(texts) > 20
+    return texts
+
+
 def _leaks(folder: Path) -> list[str]:
     """(file, what) for every solution line or bank function found in any file under ``folder``."""
     needles = [(f"solution {n}", line) for n, lines in _solution_lines().items() for line in lines]
     needles += [(f"answer of {n}", "\n".join(b)) for n, blocks in _answer_blocks().items() for b in blocks if b]
     needles += [("bank source", src) for src in _reference_sources()]
+    needles += [("written rubric or worked answer", text) for text in _written_key()]
     found = []
     for path in folder.rglob("*"):
         if path.is_file() and not path.is_symlink():
@@ -142,7 +157,8 @@ def test_the_leak_search_finds_a_planted_solution_and_bank_function(tmp_path):
     some_line = next(iter(_solution_lines().values()))[0]
     (tmp_path / "a.txt").write_text("x\n" + some_line + "\n", encoding="utf-8")
     (tmp_path / "b.py").write_text(inspect.getsource(_reference.chains.camera_pose), encoding="utf-8")
-    assert len(_leaks(tmp_path)) >= 2
+    (tmp_path / "c.md").write_text("  " + _written_key()[-1] + "\n", encoding="utf-8")
+    assert len(_leaks(tmp_path)) >= 3 and any("written rubric" in leak for leak in _leaks(tmp_path))
 
 
 def test_writing_again_updates_in_place_and_leaves_git_alone(edition):

@@ -37,6 +37,7 @@ from pathlib import Path
 
 from ..model import EXERCISES, NotebookResult
 from ..run.collect import Submitter
+from ..written import written_questions
 from .report import _replace_atomically
 from .text import csv_safe
 
@@ -109,17 +110,27 @@ def gradebook_rows(
     names: Sequence[str],
     people: Mapping[str, Submitter] | None = None,
     roster: Mapping[str, RosterEntry] | None = None,
+    written: Mapping[str, Mapping[str, float]] | None = None,
 ) -> tuple[list[list[str]], list[str]]:
     """The gradebook's rows (header first) and what the instructor must know about them.
 
     ``people`` maps a graded student (the ``student`` of the results) to the identifiers collected
     from the download; ``roster`` (Moodle) maps a full name to the identifiers Moodle's import maps.
+    ``written`` (``grade --marks``, :mod:`.marks`) maps a student to the marked written points per exercise:
+    each exercise with written questions then has a column ``<exercise> written`` after the exercises (with
+    its points possible), counted in the total.
     """
     if fmt not in FORMATS:
         raise ValueError(f"gradebook: expected one of {', '.join(FORMATS)}, got {fmt!r}")
     people = people or {}
     scores = _totals(results, names)
     points = [number(EXERCISES[n].max_score) for n in names]
+    if written is not None:
+        marked = [n for n in names if written_questions(n)]
+        for student, mine in scores.items():
+            mine.update({f"{n} written": float((written.get(student) or {}).get(n, 0.0)) for n in marked})
+        points += [number(sum(w.points for w in written_questions(n))) for n in marked]
+        names = [*names, *(f"{n} written" for n in marked)]
     notes: list[str] = []
     rows: list[list[str]]
     if fmt == "canvas":
@@ -183,9 +194,10 @@ def write_gradebook(
     names: Sequence[str],
     people: Mapping[str, Submitter] | None = None,
     roster: Mapping[str, RosterEntry] | None = None,
+    written: Mapping[str, Mapping[str, float]] | None = None,
 ) -> tuple[Path, list[str]]:
     """Write the gradebook next to the grades file ``output`` (UTF-8, CRLF rows as the csv module writes them)."""
-    rows, notes = gradebook_rows(fmt, results, names, people, roster)
+    rows, notes = gradebook_rows(fmt, results, names, people, roster, written)
     path = gradebook_path(output, fmt)
     buffer = io.StringIO()
     csv.writer(buffer).writerows(rows)

@@ -32,6 +32,7 @@ __all__ = [
     "format_check_report",
     "feedback_markdown",
     "write_feedback",
+    "feedback_paths",
     "write_csv",
     "csv_rows",
     "safe_name",
@@ -212,16 +213,29 @@ def write_feedback(
     by_student: dict[str, list[NotebookResult]] = {}
     for r in results:
         by_student.setdefault(r.student, []).append(r)
+    files = feedback_paths(out, list(by_student), reserved)
+    for student, mine in by_student.items():
+        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed))
+    return files
+
+
+def feedback_paths(
+    folder: str | os.PathLike[str], students: Sequence[str], reserved: Sequence[str] = ()
+) -> dict[str, Path]:
+    """The feedback file of each student (in the order given) in ``folder``, as :func:`write_feedback` names them.
+
+    >>> {s: p.name for s, p in feedback_paths("fb", ["Ann Lee", "Ann_Lee", "grades"], ["grades"]).items()}
+    {'Ann Lee': 'Ann_Lee.md', 'Ann_Lee': 'Ann_Lee_2.md', 'grades': 'grades_2.md'}
+    """
     used: set[str] = {r.lower() for r in reserved}
     files = {}
-    for student, mine in by_student.items():
+    for student in students:
         stem = base = file_stem(student)
         k = 2
         while stem.lower() in used:  # two names that make the same file name (also on case-insensitive disks)
             stem, k = f"{base}_{k}", k + 1
         used.add(stem.lower())
-        files[student] = out / f"{stem}.md"
-        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed))
+        files[student] = Path(folder) / f"{stem}.md"
     return files
 
 

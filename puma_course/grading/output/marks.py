@@ -1,0 +1,230 @@
+"""The marker's marks merged into the grades: ``puma-course grade SUBMISSIONS -o grades.csv --marks FILE``.
+
+:func:`read_marks` reads one or more filled-in marks files (the templates of :mod:`.marking`, or any CSV
+with the columns ``student, exercise, question`` and ``points`` and/or rubric columns, ``comment``
+optional) and checks every row before anything is graded: an unknown student (a name or an anonymous
+code of a student in SUBMISSIONS), an exercise not graded in this run, a question that is not one of its
+written questions, a rubric column the question does not have, a number that is not one, negative, or
+above the points of its criterion or question, ``points`` that differ from the sum of the filled rubric
+columns, or the same (student, question) marked twice: each is a ``ValueError`` naming the file, the row
+(as a spreadsheet numbers it, the header being row 1) and the column. A row with neither points nor rubric
+columns is "not marked yet": it counts nothing and its student's feedback says so.
+
+Once grading is done the marks go into
+
+* the grades CSV: one column ``written:<qid>`` per written question id, then ``written`` (the row's written
+  points) and ``written_max``; ``score`` and ``max_score`` stay the auto-graded ones;
+* each gradebook (``--gradebook``): one column ``<exercise> written`` per exercise with written questions,
+  with its points possible, counted in the total (:func:`puma_course.grading.output.gradebook.gradebook_rows`);
+* each student's feedback file: a section "Written questions" with, per question, the points, the rubric
+  lines and the points awarded on each, and the marker's comment.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+from collections.abc import Collection, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..model import NotebookResult
+from ..written import WrittenQuestion, written_questions
+from .marking import student_code
+from .report import feedback_paths, replace_atomically
+from .text import csv_safe, one_line
+
+__all__ = ["Mark", "Marks", "read_marks", "merge_csv", "merge_feedback", "written_by_student", "written_points"]
+
+
+@dataclass(frozen=True)
+class Mark:
+    """One marked answer: the points (None: not marked yet), the comment, the points per rubric line."""
+
+    points: float | None
+    comment: str = ""
+    criteria: tuple[tuple[str, float], ...] = ()
+
+
+@dataclass
+class Marks:
+    """Every mark read, by (student as graded, exercise, question id)."""
+
+    marks: dict[tuple[str, str, str], Mark] = field(default_factory=dict)
+
+    def get(self, student: str, exercise: str, qid: str) -> Mark | None:
+        """The mark of the student's answer, or None when no file has a row for it."""
+        return self.marks.get((student, exercise, qid))
+
+
+def _number(text: str, where: str, most: float) -> float:
+    try:
+        value = float(text.strip().replace(",", "."))
+    except ValueError:
+        raise ValueError(f"{where}: expected a number of points, got {text!r}") from None
+    if not math.isfinite(value) or value < 0:
+        raise ValueError(f"{where}: expected a number of points from 0 to {most:g}, got {text!r}")
+    if value > most + 1e-9:
+        raise ValueError(f"{where}: expected at most {most:g} points, got {text!r}")
+    return value
+
+
+def _student(raw: str, known: Mapping[str, str], where: str) -> str:
+    name = raw.strip()
+    for candidate in (name, name[1:] if name.startswith("'") else None):
+        if candidate is not None and candidate in known:
+            return known[candidate]
+    shown = ", ".join(sorted(set(known.values()))[:6])
+    raise ValueError(f"{where}: expected a student of this run (or their code), got {raw!r}; students: {shown}")
+
+
+def read_marks(paths: Sequence[str | os.PathLike[str]], students: Collection[str], exercises: Collection[str]) -> Marks:
+    """Read and check the marks files ``paths`` against the run's ``students`` and graded ``exercises``."""
+    known = {s: s for s in students} | {student_code(s): s for s in students}
+    questions = {(w.exercise, w.qid): w for name in exercises for w in written_questions(name)}
+    out = Marks()
+    for path in paths:
+        try:
+            with open(path, newline="", encoding="utf-8-sig") as fh:
+                rows = list(csv.reader(fh))
+        except (OSError, UnicodeDecodeError, csv.Error) as exc:
+            raise ValueError(f"marks: expected a readable UTF-8 CSV file, got {str(path)!r} ({exc})") from None
+        head = [h.strip() for h in rows[0]] if rows else []
+        missing = [c for c in ("student", "exercise", "question") if c not in head]
+        if missing or not ({"points"} & set(head) or len(head) > 3):
+            raise ValueError(f"marks: expected the columns student, exercise, question, points in {str(path)!r}, "
+                             f"got {head}")  # fmt: skip
+        for number, row in enumerate(rows[1:], start=2):
+            if not any(cell.strip() for cell in row):
+                continue
+            cells = dict(zip(head, row + [""] * (len(head) - len(row)), strict=False))
+            where = f"marks {str(path)!r} row {number}"
+            student = _student(cells["student"], known, f"{where}, column 'student'")
+            exercise, qid = cells["exercise"].strip(), cells["question"].strip()
+            if exercise not in exercises:
+                raise ValueError(f"{where}, column 'exercise': expected an exercise graded in this run "
+                                 f"({', '.join(sorted(exercises))}), got {exercise!r}")  # fmt: skip
+            w = questions.get((exercise, qid))
+            if w is None:
+                ids = [k[1] for k in questions if k[0] == exercise]
+                raise ValueError(f"{where}, column 'question': expected a written question of {exercise} {ids}, "
+                                 f"got {qid!r}")  # fmt: skip
+            out.marks[student, exercise, qid] = _row(w, cells, where, out.get(student, exercise, qid))
+    return out
+
+
+def _row(w: WrittenQuestion, cells: dict[str, str], where: str, before: Mark | None) -> Mark:
+    if before is not None:
+        raise ValueError(f"{where}: expected one row per student and question, got a second one for {w.qid}")
+    criteria = []
+    for column, text in cells.items():
+        if column in ("student", "exercise", "question", "points", "comment") or not text.strip():
+            continue
+        names = [c.name for c in w.spec.criteria]
+        if column not in names:
+            raise ValueError(f"{where}, column {column!r}: expected a rubric line of {w.exercise} {w.qid} "
+                             f"({', '.join(names)}), got a value {text!r}")  # fmt: skip
+        criteria.append((column, _number(text, f"{where}, column {column!r}", w.criterion(column).points)))
+    points_text = cells.get("points", "").strip()
+    points = _number(points_text, f"{where}, column 'points'", w.points) if points_text else None
+    if criteria:
+        total = round(sum(v for _, v in criteria), 6)
+        if points is not None and abs(points - total) > 1e-6:
+            raise ValueError(f"{where}, column 'points': expected the sum of the rubric columns ({total:g}) or "
+                             f"nothing, got {points_text!r}")  # fmt: skip
+        points = total
+    return Mark(points, cells.get("comment", "").strip(), tuple(criteria))
+
+
+def written_points(marks: Marks, student: str, exercise: str) -> float | None:
+    """The student's marked written points in ``exercise`` (None when nothing of it is marked)."""
+    found = [marks.get(student, exercise, w.qid) for w in written_questions(exercise)]
+    got = [m.points for m in found if m is not None and m.points is not None]
+    return round(sum(got), 2) if got else None
+
+
+def written_by_student(marks: Marks, results: Sequence[NotebookResult]) -> dict[str, dict[str, float]]:
+    """student -> exercise -> marked written points, for the gradebooks (exercises with written questions)."""
+    out: dict[str, dict[str, float]] = {}
+    for r in results:
+        if written_questions(r.exercise):
+            out.setdefault(r.student, {})[r.exercise] = written_points(marks, r.student, r.exercise) or 0.0
+    return out
+
+
+def merge_csv(output: str | os.PathLike[str], marks: Marks, results: Sequence[NotebookResult]) -> None:
+    """Add the written columns to the grades CSV ``output`` that ``grade`` wrote (see the module docstring)."""
+    with open(output, newline="", encoding="utf-8") as fh:
+        rows = list(csv.reader(fh))
+    head, body = rows[0], rows[1:]
+    col = {name: i for i, name in enumerate(head)}
+    graded = {csv_safe(r.student): r.student for r in results}
+    qids: list[str] = []
+    for row in body:
+        qids += [w.qid for w in written_questions(row[col["exercise"]]) if w.qid not in qids]
+    qids.sort(key=lambda q: int(q[1:]) if q[1:].isdigit() else 0)
+    head += [f"written:{q}" for q in qids] + ["written", "written_max"]
+    for row in body:
+        student, exercise = row[col["student"]], row[col["exercise"]]
+        student = graded.get(student, student)
+        mine = {w.qid: w for w in written_questions(exercise)}
+        cells = []
+        for q in qids:
+            m = marks.get(student, exercise, q) if q in mine else None
+            cells.append(f"{m.points:g}" if m is not None and m.points is not None else "")
+        total = written_points(marks, student, exercise)
+        top = sum(w.points for w in mine.values())
+        row += cells + ["" if total is None else f"{total:g}", f"{top:g}" if mine else ""]
+    buffer = io.StringIO()
+    csv.writer(buffer).writerows([head, *body])
+    replace_atomically(Path(output), buffer.getvalue())
+
+
+def feedback_section(marks: Marks, student: str, exercises: Sequence[str]) -> str:
+    """The "Written questions" section of a student's feedback ("" when no exercise has written questions)."""
+    lines: list[str] = []
+    for name in exercises:
+        for w in written_questions(name):
+            m = marks.get(student, name, w.qid)
+            head = f"### {name} {w.qid}: {w.spec.title}"
+            if m is None or m.points is None:
+                lines += [head, "", f"Not marked yet ({w.points:g} points).", ""]
+                continue
+            lines += [head, "", f"**{m.points:g} / {w.points:g}** points.", ""]
+            given = dict(m.criteria)
+            for c in w.spec.criteria:
+                if given:
+                    lines.append(f"- {given.get(c.name, 0):g} / {c.points:g} · {c.name}: {c.text}")
+                else:
+                    lines.append(f"- ({c.points:g}) {c.name}: {c.text}")
+            if m.comment:
+                lines += ["", "Comment:", ""] + [f"> {one_line(line, 2000)}" for line in m.comment.splitlines()]
+            lines.append("")
+    if not lines:
+        return ""
+    earned = [p for name in exercises if (p := written_points(marks, student, name)) is not None]
+    top = sum(w.points for name in exercises for w in written_questions(name))
+    intro = [
+        "## Written questions (marked by your instructor)",
+        "",
+        f"Written: **{sum(earned):g} / {top:g}** points, beside the auto-graded total above.",
+        "",
+    ]
+    return "\n".join(intro + lines)
+
+
+def merge_feedback(
+    folder: str | os.PathLike[str], results: Sequence[NotebookResult], marks: Marks, reserved: Sequence[str] = ()
+) -> dict[str, Path]:
+    """Append the written section to each student's feedback file that ``grade`` wrote into ``folder``."""
+    students = list(dict.fromkeys(r.student for r in results))
+    paths = feedback_paths(folder, students, reserved)
+    for student, path in paths.items():
+        names = [r.exercise for r in results if r.student == student]
+        section = feedback_section(marks, student, names)
+        if section and path.is_file():
+            text = path.read_text(encoding="utf-8").rstrip("\n")
+            replace_atomically(path, text + "\n\n" + section.rstrip("\n") + "\n")
+    return paths
