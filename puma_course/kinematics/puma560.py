@@ -47,10 +47,38 @@ from ._ops import ARRAY, SCALAR
 from .dh import DHChain, Link, split_q
 from .ik import IKBatch, IKSolutions
 
-__all__ = ["Puma560", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS"]
+__all__ = ["Puma560", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS", "PUBLISHED_QLIM_DEG", "FROM_CORKE_DEG",
+           "JOINT_LIMITS"]  # fmt: skip
 
 #: The lecture's lengths (metres).
 DEFAULTS = {"a2": 0.4318, "a3": 0.0203, "d3": 0.15005, "d4": 0.4318}
+
+#: The PUMA-560's joint ranges as published, in degrees (lower, upper) for joints 1 to 6, in the joint
+#: coordinates of the model they are published with: P. Corke's Robotics Toolbox, ``mdl_puma560`` (MATLAB,
+#: standard DH, ``qlim``), taken there from Wang & Chen, "A combined optimization method for solving the
+#: inverse kinematics problem of mechanical manipulators", IEEE Trans. Robotics and Automation 7(4), 1991,
+#: p. 489. Robotics Toolbox for Python's ``models.DH.Puma560`` keeps the same numbers as comments beside
+#: symmetric ones of its own for joints 2 to 4. The ranges are 320°, 270°, 270°, 280°, 200° and 532°.
+PUBLISHED_QLIM_DEG: tuple[tuple[float, float], ...] = (
+    (-160.0, 160.0), (-45.0, 225.0), (-225.0, 45.0), (-110.0, 170.0), (-100.0, 100.0), (-266.0, 266.0),
+)  # fmt: skip
+#: This model's joint angles minus Corke's for the same arm (degrees). Both models put θ1 = 0 where the
+#: controller does (this model's base frame is Corke's turned by 180° about the base axis, as each names
+#: its x0 after its own θ1 = 0); Corke's upper arm points along x1 at θ2 = 0 and this model's the other
+#: way, so θ2 differs by 180° (written -180°: the range then holds this model's zero); θ3 to θ6 agree.
+#: The tests check it against an independent standard-DH product of Corke's table.
+FROM_CORKE_DEG: tuple[float, ...] = (0.0, -180.0, 0.0, 0.0, 0.0, 0.0)
+
+
+def _joint_limits() -> np.ndarray:
+    lim = np.radians(np.array(PUBLISHED_QLIM_DEG) + np.array(FROM_CORKE_DEG)[:, None])
+    lim.setflags(write=False)
+    return lim
+
+
+#: The published ranges in this model's joint angles (radians, (6, 2)): θ1 ±160°, θ2 and θ3 from -225°
+#: to 45° (the arm straight up at -90° is the middle of both), θ4 -110° to 170°, θ5 ±100°, θ6 ±266°.
+JOINT_LIMITS: np.ndarray = _joint_limits()
 
 #: The eight branches, in the order of the second axis of ``ik_batch``'s ``q``.
 BRANCH_LABELS: tuple[str, ...] = tuple(
@@ -207,6 +235,11 @@ class Puma560(DHChain):
     hanging down); ``qr`` ready, arm straight up; ``qs`` stretched, arm horizontal along x;
     ``qn`` nominal, elbow bent with the wrist pointing down.
 
+    ``joint_limits`` are the published joint ranges (:data:`JOINT_LIMITS`, from Corke's Robotics
+    Toolbox and Wang & Chen 1991, in this model's angles); ``sol.within_limits(arm.joint_limits)``
+    keeps the IK solutions a real PUMA-560 can take. ``qlim`` stays a full turn per joint (the
+    sliders' range): the limits are a choice a lecture makes, not a property of the table.
+
     >>> arm = Puma560()
     >>> np.round(arm.fk(np.zeros(6))[:3, 3], 5)  # (a2 + a3, d3, -d4)
     array([ 0.4521 ,  0.15005, -0.4318 ])
@@ -217,6 +250,8 @@ class Puma560(DHChain):
 
     #: The foot of the drawn pedestal, this far below the base origin (metres; drawing only).
     pedestal = 0.35
+    #: The published joint ranges (radians, (6, 2), read-only): :data:`JOINT_LIMITS`.
+    joint_limits: np.ndarray | None = JOINT_LIMITS
 
     def __init__(
         self,
