@@ -268,12 +268,10 @@ class IKSolutions(Sequence[np.ndarray]):
     def within_limits(self, qlim: Any) -> IKSolutions:
         """Only the solutions with every joint inside ``qlim`` ((n, 2): lower, upper; bounds included).
 
-        A revolute joint is inside when its angle, or the angle plus a whole number of turns, lies in
-        its range: a range need not sit inside (-π, π] (the PUMA-560's θ2 runs from -225° to 45°, see
-        :data:`~puma_course.kinematics.puma560.JOINT_LIMITS`). A kept row carries the value inside the
-        range: the angle as returned (wrapped to (-π, π]) when that is inside, else the one turned into
-        the range (the same pose: fk is 2π-periodic in every revolute joint). Prismatic joints are
-        compared as they are. When no solution is left, ``success`` is False and ``reason`` names the
+        A revolute angle is inside when it, or it plus whole turns, lies in its range (the PUMA-560's θ2
+        runs from -225° to 45°: :mod:`~puma_course.kinematics.joint_limits`); a kept row carries the
+        value inside the range (as returned when that is inside; fk is 2π-periodic). Prismatic joints
+        are compared as they are. With no row left, ``success`` is False and ``reason`` names the
         joints that stopped each branch.
 
         >>> sol = IKSolutions(np.array([[0.5, 2.0], [0.5, -2.0]]), ("up", "down"))

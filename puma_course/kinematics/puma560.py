@@ -46,6 +46,7 @@ from ..transforms import wrap_angle
 from ._ops import ARRAY, SCALAR
 from .dh import DHChain, Link, split_q
 from .ik import IKBatch, IKSolutions
+from .joint_limits import FROM_CORKE_DEG, JOINT_LIMITS, PUBLISHED_QLIM_DEG
 
 __all__ = ["Puma560", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS", "PUBLISHED_QLIM_DEG", "FROM_CORKE_DEG",
            "JOINT_LIMITS"]  # fmt: skip
@@ -53,32 +54,6 @@ __all__ = ["Puma560", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS", "PUB
 #: The lecture's lengths (metres).
 DEFAULTS = {"a2": 0.4318, "a3": 0.0203, "d3": 0.15005, "d4": 0.4318}
 
-#: The PUMA-560's joint ranges as published, in degrees (lower, upper) for joints 1 to 6, in the joint
-#: coordinates of the model they are published with: P. Corke's Robotics Toolbox, ``mdl_puma560`` (MATLAB,
-#: standard DH, ``qlim``), taken there from Wang & Chen, "A combined optimization method for solving the
-#: inverse kinematics problem of mechanical manipulators", IEEE Trans. Robotics and Automation 7(4), 1991,
-#: p. 489. Robotics Toolbox for Python's ``models.DH.Puma560`` keeps the same numbers as comments beside
-#: symmetric ones of its own for joints 2 to 4. The ranges are 320°, 270°, 270°, 280°, 200° and 532°.
-PUBLISHED_QLIM_DEG: tuple[tuple[float, float], ...] = (
-    (-160.0, 160.0), (-45.0, 225.0), (-225.0, 45.0), (-110.0, 170.0), (-100.0, 100.0), (-266.0, 266.0),
-)  # fmt: skip
-#: This model's joint angles minus Corke's for the same arm (degrees). Both models put θ1 = 0 where the
-#: controller does (this model's base frame is Corke's turned by 180° about the base axis, as each names
-#: its x0 after its own θ1 = 0); Corke's upper arm points along x1 at θ2 = 0 and this model's the other
-#: way, so θ2 differs by 180° (written -180°: the range then holds this model's zero); θ3 to θ6 agree.
-#: The tests check it against an independent standard-DH product of Corke's table.
-FROM_CORKE_DEG: tuple[float, ...] = (0.0, -180.0, 0.0, 0.0, 0.0, 0.0)
-
-
-def _joint_limits() -> np.ndarray:
-    lim = np.radians(np.array(PUBLISHED_QLIM_DEG) + np.array(FROM_CORKE_DEG)[:, None])
-    lim.setflags(write=False)
-    return lim
-
-
-#: The published ranges in this model's joint angles (radians, (6, 2)): θ1 ±160°, θ2 and θ3 from -225°
-#: to 45° (the arm straight up at -90° is the middle of both), θ4 -110° to 170°, θ5 ±100°, θ6 ±266°.
-JOINT_LIMITS: np.ndarray = _joint_limits()
 
 #: The eight branches, in the order of the second axis of ``ik_batch``'s ``q``.
 BRANCH_LABELS: tuple[str, ...] = tuple(

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from puma_course.kinematics import MK3, Puma560
-from puma_course.kinematics.puma560 import FROM_CORKE_DEG, JOINT_LIMITS, PUBLISHED_QLIM_DEG
+from puma_course.kinematics.joint_limits import FROM_CORKE_DEG, JOINT_LIMITS, PUBLISHED_QLIM_DEG
 
 # Corke's Robotics Toolbox for MATLAB, models/mdl_puma560.m, 'qlim' of L(1)..L(6) in degrees (the limits it
 # takes from Wang & Chen 1991), typed here from that file: the table the package cites.
