@@ -268,9 +268,11 @@ class IKSolutions(Sequence[np.ndarray]):
     def within_limits(self, qlim: Any) -> IKSolutions:
         """Only the solutions with every joint inside ``qlim`` ((n, 2): lower, upper; bounds included).
 
-        Revolute joints are compared as returned (wrapped to (-π, π]); a limit range wider than
-        that is met by the wrapped value. When no solution is left, ``success`` is False and
-        ``reason`` names the joints that stopped each branch.
+        A revolute angle is inside when it, or it plus whole turns, lies in its range (the PUMA-560's θ2
+        runs from -225° to 45°: :mod:`~puma_course.kinematics.joint_limits`); a kept row carries the
+        value inside the range (as returned when that is inside; fk is 2π-periodic). Prismatic joints
+        are compared as they are. With no row left, ``success`` is False and ``reason`` names the
+        joints that stopped each branch.
 
         >>> sol = IKSolutions(np.array([[0.5, 2.0], [0.5, -2.0]]), ("up", "down"))
         >>> kept = sol.within_limits([[-1.0, 1.0], [-2.5, 0.0]])
@@ -278,19 +280,28 @@ class IKSolutions(Sequence[np.ndarray]):
         (('down',), True)
         >>> sol.within_limits([[-1.0, 1.0], [-1.0, 1.0]]).reason
         'no solution within the joint limits (up: q2; down: q2)'
+        >>> turned = sol.within_limits([[-1.0, 1.0], [1.0, 5.0]])  # -2.0 + 2π = 4.28 lies in [1, 5]
+        >>> turned.labels, np.round(turned.q[:, 1], 4).tolist()
+        (('up', 'down'), [2.0, 4.2832])
         """
         n = self.q.shape[1]
         lim = as_array(qlim, "qlim", (n, 2), what=f"joint limits of shape ({n}, 2), lower then upper")
         if np.any(lim[:, 0] > lim[:, 1]):
             raise ValueError(f"qlim: expected each lower limit at most its upper limit, got {lim.tolist()}")
-        outside = (self.q < lim[:, 0]) | (self.q > lim[:, 1])
+        lo, hi = lim[:, 0], lim[:, 1]
+        assert self.revolute is not None
+        as_is = (self.q >= lo) & (self.q <= hi)
+        # a revolute angle outside its range: the first turn of it at or above the lower limit
+        turned = self.q + 2.0 * np.pi * np.ceil((lo - self.q) / (2.0 * np.pi))
+        use_turn = self.revolute & ~as_is & (turned <= hi)
+        outside = ~as_is & ~use_turn
         keep: np.ndarray = ~np.any(outside, axis=1)
-        if keep.all():
+        if keep.all() and not use_turn.any():
             return self
         new = object.__new__(IKSolutions)
         for name, value in vars(self).items():
             object.__setattr__(new, name, value)
-        q = self.q[keep]
+        q = np.where(use_turn, turned, self.q)[keep]
         q.setflags(write=False)
         object.__setattr__(new, "q", q)
         object.__setattr__(new, "labels", tuple(lb for lb, k in zip(self.labels, keep, strict=True) if k))

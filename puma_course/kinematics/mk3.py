@@ -143,6 +143,9 @@ class MK3(DHChain):
     Named configurations: ``qz`` all zeros (both arm links horizontal, the tool axis z5
     pointing straight down); ``qr`` ready (upper arm vertical, forearm horizontal, tool down).
 
+    ``joint_limits`` is None: neither Meghdari's lecture (the course's source for this arm) nor a
+    reference we could find publishes the MK3's joint ranges, so none are invented here.
+
     >>> arm = MK3()
     >>> np.round(arm.fk(np.zeros(5))[:3, 3], 6) + 0.0  # (a1 + a2 + a3, 0, d1 - d5)
     array([600.,   0., 260.])

@@ -46,11 +46,14 @@ from ..transforms import wrap_angle
 from ._ops import ARRAY, SCALAR
 from .dh import DHChain, Link, split_q
 from .ik import IKBatch, IKSolutions
+from .joint_limits import FROM_CORKE_DEG, JOINT_LIMITS, PUBLISHED_QLIM_DEG
 
-__all__ = ["Puma560", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS"]
+__all__ = ["Puma560", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS", "PUBLISHED_QLIM_DEG", "FROM_CORKE_DEG",
+           "JOINT_LIMITS"]  # fmt: skip
 
 #: The lecture's lengths (metres).
 DEFAULTS = {"a2": 0.4318, "a3": 0.0203, "d3": 0.15005, "d4": 0.4318}
+
 
 #: The eight branches, in the order of the second axis of ``ik_batch``'s ``q``.
 BRANCH_LABELS: tuple[str, ...] = tuple(
@@ -207,6 +210,11 @@ class Puma560(DHChain):
     hanging down); ``qr`` ready, arm straight up; ``qs`` stretched, arm horizontal along x;
     ``qn`` nominal, elbow bent with the wrist pointing down.
 
+    ``joint_limits`` are the published joint ranges (:data:`JOINT_LIMITS`, from Corke's Robotics
+    Toolbox and Wang & Chen 1991, in this model's angles); ``sol.within_limits(arm.joint_limits)``
+    keeps the IK solutions a real PUMA-560 can take. ``qlim`` stays a full turn per joint (the
+    sliders' range): the limits are a choice a lecture makes, not a property of the table.
+
     >>> arm = Puma560()
     >>> np.round(arm.fk(np.zeros(6))[:3, 3], 5)  # (a2 + a3, d3, -d4)
     array([ 0.4521 ,  0.15005, -0.4318 ])
@@ -217,6 +225,8 @@ class Puma560(DHChain):
 
     #: The foot of the drawn pedestal, this far below the base origin (metres; drawing only).
     pedestal = 0.35
+    #: The published joint ranges (radians, (6, 2), read-only): :data:`JOINT_LIMITS`.
+    joint_limits: np.ndarray | None = JOINT_LIMITS
 
     def __init__(
         self,

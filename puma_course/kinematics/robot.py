@@ -31,13 +31,16 @@ class Robot(ABC):
     Subclasses set ``name``, ``units``, ``revolute`` (boolean mask), ``qlim`` ((n, 2) limits
     used by sliders), ``configurations`` (named joint vectors), ``joint_symbols`` (how the
     lectures write the joint variables) and implement ``fk``, ``frames``, ``ik``, ``ik_batch``
-    and ``parameters`` (the constants shown by ``_repr_html_``).
+    and ``parameters`` (the constants shown by ``_repr_html_``). ``joint_limits`` holds an arm's
+    published joint ranges ((n, 2), radians, for ``IKSolutions.within_limits``) where a source gives
+    them, else None.
     """
 
     name: str = "robot"
     units: str = ""
     revolute: np.ndarray
     qlim: np.ndarray
+    joint_limits: np.ndarray | None = None
     configurations: dict[str, np.ndarray]
     joint_symbols: tuple[str, ...]
 

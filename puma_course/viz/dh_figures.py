@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -21,8 +21,11 @@ from ..transforms import homogeneous
 from .frames import AXIS_COLORS, frame_tightly
 from .labels import Label, place_labels
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
 __all__ = ["draw_common_normal", "DHPicture", "draw_dh_picture", "draw_frame_walk", "draw_piston_joint",
-           "NORMAL_COLOR", "JOINT_COLOR"]  # fmt: skip
+           "plot_step_dimensions", "NORMAL_COLOR", "JOINT_COLOR"]  # fmt: skip
 
 #: Colour of a common normal, a and α (link parameters); of d and θ (joint parameters).
 NORMAL_COLOR, JOINT_COLOR = "tab:purple", "tab:brown"
@@ -307,3 +310,30 @@ def draw_piston_joint(ax: Any, theta: float, b: float, c: float, gamma0: float =
                  avoid=np.vstack([np.linspace(p0, p1, 40) for p0, p1 in ((pa, pb), ([0, 0], L * e), ([0, 0], [L, 0]))]),
                  fontsize=12)  # fmt: skip
     return s
+
+
+# ------------------------------------------------------------------------------------------------ a step, dimensioned
+def plot_step_dimensions(walk: FrameWalk, k: int, *, units: str = "m", digits: int = 5) -> Figure:
+    """Frame {k} of a frame walk as a dimensioned drawing: the offset d_k, the length a_k and the twist α_k.
+
+    Left, the plane of X_k and Z_k (seen along Y_k): axis k (dashed, a joint axis), the foot of X_{k-1}
+    on it, the offset d_k from that foot to the origin of {k} along Z_k, the common normal a_k along X_k to
+    axis k+1 (drawn as the line it is, or as a circle with a dot or a cross where it stands normal to the
+    page), each with a dimension line and its value. Right, the view along X_k (X_k towards the reader):
+    axes k and k+1 seen crossing, and the twist α_k from Z_k to Z_{k+1} as an arc. Drawn to scale, with
+    the numbers the walk computed; for a step whose a_k is short beside d_k the a_k arrows point in from
+    outside. The walk's frames are in the coordinates its axes were given in.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from puma_course.kinematics.frame_assignment import frame_steps
+    >>> walk = frame_steps([[0, 0, 0], [1, 0, 0], [1.5, 0.3, 0]], [[0, 0, 1], [0, 1, 0], [0, 0, -1]])
+    >>> fig = plot_step_dimensions(walk, 2)
+    >>> sorted(t.get_text() for t in fig.axes[0].texts if t.get_text().startswith(("d2", "a2")))
+    ['a2 = 0.5 m', 'd2 = 0.3 m']
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close(fig)
+    """
+    from .dimensions import step_dimensions_figure  # drawn there; imported here on use (no import cycle)
+
+    return step_dimensions_figure(walk, k, units=units, digits=digits)

@@ -203,6 +203,8 @@ def note_below(fig: Any, ax: Any, note: str, gap_px: float = 4.0) -> None:
 
     The axes keep their size in pixels; the note never sits on the x label or its numbers.
     """
+    fig.canvas.draw()  # lay the figure out once (constrained layout, 3-D axis labels), then keep it as laid out
+    fig.set_layout_engine("none")
     text = fig.text(0.01, 0.0, note, fontsize=9, color="0.35", style="italic", ha="left", va="bottom")
     renderer = fig.canvas.get_renderer()
     text_h = text.get_window_extent(renderer).height

@@ -183,7 +183,8 @@ def plot_solutions(arm: Puma560, solutions: IKSolutions, *, grid: float = 0.25, 
 # ------------------------------------------------------------------------------------------------ θ1 from above
 def plot_shoulder_top_view(arm: Puma560, T: Any) -> Figure:
     """θ1 seen from above: the wrist centre, the circle ρ = |d3| it may not enter, and for each shoulder the
-    direction x1 (an arrow, θ1 measured from x0), the offset d3 along y1 (thick) and the arm's plane (dashed).
+    direction x1 (an arrow, θ1 measured from x0), the offset d3 along y1 (thick) and the arm's plane, a vertical
+    plane seen edge-on from above (a light band; dashed lines are kept for joint axes, as in every lecture).
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
@@ -217,7 +218,7 @@ def plot_shoulder_top_view(arm: Puma560, T: Any) -> Figure:
         x1 = arrow * np.array([math.cos(q[0]), math.sin(q[0])])
         ax.plot(*P[1:3].T, color=color, lw=5, solid_capstyle="round",
                 label=f"shoulder {shoulder}: θ1 = {math.degrees(q[0]):.1f}°")  # fmt: skip
-        ax.plot(*np.stack([P[2], P[5]]).T, color=color, lw=1.5, ls="--")
+        ax.plot(*np.stack([P[2], P[5]]).T, color=color, lw=9, alpha=0.22, solid_capstyle="butt")
         ax.annotate("", (float(x1[0]), float(x1[1])), (0, 0), arrowprops={"arrowstyle": "->", "color": color})
         ax.text(float(1.15 * x1[0]), float(1.15 * x1[1]), "x1", color=color, ha="center", va="center")
         t1 = math.degrees(q[0])
@@ -228,7 +229,7 @@ def plot_shoulder_top_view(arm: Puma560, T: Any) -> Figure:
     S = np.vstack([np.reshape(p, (-1, 2)) for p in shown])
     lo, hi = S.min(axis=0) - 0.06, S.max(axis=0) + 0.06
     ax.set(xlim=(lo[0], hi[0]), ylim=(lo[1], hi[1]), aspect="equal", xlabel="x [m]", ylabel="y [m]",
-           title="from above: offset d3 (thick), arm plane (dashed)")  # fmt: skip
+           title="from above: offset d3 (thick), arm plane (light band)")  # fmt: skip
     ax.locator_params(nbins=6)
     fig.legend(loc="outside lower center", ncols=2, fontsize=10)
     return fig
@@ -350,12 +351,15 @@ def plot_singularity_sweeps(arm: Puma560, q0: Any, *, half_width: float = math.r
 def plot_workspace(points: Any, *, units: str, title: str, color: str = "tab:blue",
                    top_circles: Sequence[tuple[Any, float, str, str]] = (),
                    side_circles: Sequence[tuple[Any, float, str, str]] = (),
-                   side_lines: Sequence[tuple[float, str, str]] = ()) -> Figure:  # fmt: skip
+                   side_lines: Sequence[tuple[float, str, str]] = (),
+                   side_floor: tuple[float, str] | None = None) -> Figure:  # fmt: skip
     """Top view (x, y) and side view (ρ = distance from the base axis, z) of sampled points (N, 3).
 
     ``top_circles``/``side_circles`` are bounds drawn over the samples, each ``(centre (2,), radius,
-    label, colour)``; ``side_lines`` vertical lines ``(ρ, label, colour)``. The legend sits below the
-    plots, never over them.
+    label, colour)``; ``side_lines`` vertical lines ``(ρ, label, colour)``, all drawn solid (dashed lines
+    mean joint axes in the course). ``side_floor`` ``(z, label)`` draws a floor in the side view, shaded
+    below, with room under it. The legend sits below the plots, never over them (and labels nothing at an
+    edge of a view).
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
@@ -377,9 +381,16 @@ def plot_workspace(points: Any, *, units: str, title: str, color: str = "tab:blu
             x, y = cx + r * np.cos(t), cy + r * np.sin(t)
             if ax is side:
                 x, y = np.where(x >= 0, x, np.nan), y
-            ax.plot(x, y, color=col, lw=1.6, ls="--", label=label)
+            ax.plot(x, y, color=col, lw=1.6, label=label)
     for rho0, label, col in side_lines:
-        side.axvline(rho0, color=col, lw=1.6, ls="--", label=label)
+        side.axvline(rho0, color=col, lw=1.6, label=label)
+    if side_floor is not None:
+        z0, label = float(side_floor[0]), str(side_floor[1])
+        zs = np.append(P[:, 2], z0)
+        room = 0.06 * float(zs.max() - zs.min() or 1.0)
+        side.axhspan(z0 - 2 * room, z0, color="0.85", lw=0)
+        side.axhline(z0, color="0.25", lw=2.2, label=label)
+        side.set_ylim(bottom=z0 - room)
     top.set(aspect="equal", xlabel=f"x [{units}]", ylabel=f"y [{units}]", title="top view")
     side.set(aspect="equal", xlabel=f"ρ [{units}]", ylabel=f"z [{units}]", title="side view (every θ1)")
     top.locator_params(nbins=5), side.locator_params(nbins=5)

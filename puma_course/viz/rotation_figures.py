@@ -320,7 +320,8 @@ def draw_lock_gain(
     for g, lab, marker in zip(G.T, labels, "os^v", strict=False):
         lines += ax.plot(deg, g, marker, ls="none", ms=7, mfc="none", mew=1.6, label=lab)
     if reference:
-        lines += ax.plot(deg, 1.0 / np.tan(th), "--", color="0.3", lw=1.5, label=r"$\cot\vartheta$")
+        # solid and dotted: a dashed line means an axis of turning in every lecture
+        lines += ax.plot(deg, 1.0 / np.tan(th), "-", color="0.45", lw=1.5, label=r"$\cot\vartheta$")
         lines += ax.plot(deg, 1.0 / np.sin(th), ":", color="0.1", lw=1.5, label=r"$1/\sin\vartheta$")
     ax.set(xscale="log", yscale="log", xlabel=r"$\vartheta$ [deg]", ylabel="change of angle / size of turn")
     ax.grid(True, which="major", alpha=0.3)

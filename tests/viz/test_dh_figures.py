@@ -148,3 +148,41 @@ def test_bad_input():
         D.draw_common_normal(ax, [0, 0, 0], [0, 0, 0], [1, 0, 5], [0, 1, 0])
     with pytest.raises(ValueError, match="^b: expected"):
         D.draw_piston_joint(ax, 0.3, -1.0, 2.0)
+
+
+# ---- issue 25: lecture 03's step 3 as a dimensioned view ---------------------------------------------------------
+
+
+def test_step_dimensions_print_the_arms_lengths_and_twist_and_keep_their_texts_apart_and_inside():
+    fig = D.plot_step_dimensions(_puma_walk(), 3)
+    plan, along = fig.axes
+    texts = [t.get_text() for t in plan.texts]
+    assert "d3 = 0.15005 m" in texts and "a3 = 0.0203 m" in texts  # the lecture's table (Craig's PUMA-560)
+    assert "α3 = -90°" in [t.get_text() for t in along.texts]
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    box = fig.bbox
+    for ax in (plan, along):
+        shown = [t for t in ax.texts if t.get_text().strip()]
+        assert L.overlapping_labels(shown) == []
+        for t in shown:  # every text inside the figure, none cut by its edge
+            b = t.get_window_extent(renderer)
+            assert b.x0 >= box.x0 and b.x1 <= box.x1 and b.y0 >= box.y0 and b.y1 <= box.y1, t.get_text()
+
+
+def test_step_dimensions_draw_the_dimension_lines_where_the_lengths_are():
+    # in the plane of X3 and Z3 (origin of {3} at 0): the foot of X2 lies d3 below it on axis 3, axis 4 a3 across
+    walk = _puma_walk()
+    a2, a3, d3, d4 = PUMA.lengths.values()
+    fig = D.plot_step_dimensions(walk, 3)
+    plan = fig.axes[0]
+    normal = [ln for ln in plan.lines if ln.get_color() == D.NORMAL_COLOR and ln.get_linewidth() == 4]
+    assert len(normal) == 1 and np.allclose(normal[0].get_xydata(), [[0, 0], [a3, 0]])
+    foot = [ln for ln in plan.lines if ln.get_marker() == "o" and np.allclose(ln.get_xydata(), [[0, -d3]])]
+    assert foot  # where X2 meets axis 3
+
+
+@pytest.mark.parametrize("k", [0, 1, 6, 2.0, True])
+def test_step_dimensions_refuse_a_frame_without_neighbours(k):
+    with pytest.raises(ValueError, match="k: expected a frame 2 .. 5"):
+        D.plot_step_dimensions(_puma_walk(), k)

@@ -205,3 +205,28 @@ def test_the_ik_panels_picture_is_drawn_at_110_dpi_with_its_ghosts():
     panel = robot_panel(ARM, ik=True, q=Q_TRUE)
     assert round(_png_dpi(panel.viewer.static_png())) == 110
     assert len(panel.viewer.ghosts["arms"]) == 8  # the picture shows the solutions as ghosts
+
+
+def test_top_view_and_workspace_dash_nothing_since_dashed_lines_mean_joint_axes():
+    # issue 25: one meaning for a dashed line in every lecture; the arm plane and the bounds are not joint axes
+    from puma_course.viz import ik_figures as ikf
+
+    arm = Puma560()
+    top = ikf.plot_shoulder_top_view(arm, arm.fk(np.radians([30, -50, 20, 40, 60, -30])))
+    P = arm.fk(np.random.default_rng(0).uniform(-np.pi, np.pi, (300, 6)))[:, :3, 3]
+    ws = ikf.plot_workspace(P, units="m", title="t", top_circles=[((0, 0), 0.15, "c", "k")],
+                            side_circles=[((0, 0), 0.8, "r", "k")], side_lines=[(0.15, "l", "tab:red")])
+    for fig in (top, ws):
+        styles = {ln.get_linestyle() for ax in fig.axes for ln in ax.lines}
+        assert "--" not in styles, styles
+
+
+def test_workspace_floor_is_a_legend_entry_with_room_below_it():
+    from puma_course.viz import ik_figures as ikf
+
+    P = np.random.default_rng(1).uniform(-1.0, 1.0, (200, 3))
+    fig = ikf.plot_workspace(P, units="m", title="t", side_floor=(-1.0, "floor, z = -1.00 m"))
+    side = fig.axes[1]
+    assert side.get_ylim()[0] < -1.0  # the floor line is not on the view's edge
+    assert "floor, z = -1.00 m" in [t.get_text() for t in fig.legends[0].get_texts()]
+    assert [t.get_text() for t in side.texts] == []  # no label at an edge of the view

@@ -143,6 +143,16 @@ def test_the_text_repr_names_the_viewer_and_holds_no_memory_address():
 
 
 def test_the_stills_note_sits_under_the_axes_numbers_and_labels():
+    _check_the_stills_note()
+
+
+def test_the_stills_note_sits_under_the_axes_labels_in_the_course_style(course_style):
+    # the lectures' style lays figures out with constrained layout, which undid the note's room (issue 25: the
+    # stills of lectures 02, 03, 05, 09 and 10 printed their note over the x label)
+    _check_the_stills_note()
+
+
+def _check_the_stills_note():
     import matplotlib.pyplot as plt
 
     from puma_course.viz.frames import new_axes, note_below, set_equal
