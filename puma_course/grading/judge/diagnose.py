@@ -85,6 +85,8 @@ TITLES: dict[str, str] = {
     "back_plane": "the arm plane entered from the back",
     "time_scaling": "another time scaling than the one asked for (linear, cubic, t not divided by the duration)",
     "frame_coordinates": "a vector or point written in another frame's coordinates than the one asked for",
+    "joint_zero": "joint values counted from another zero than the one the question fixes",
+    "gimbal_lock": "the regular Euler-angle formula used at the gimbal lock (atan2(0, 0))",
 }
 
 #: ``check(got, expected, args, reference)``: a message for the student if ``got`` is this mistake, else None.
