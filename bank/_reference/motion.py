@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from typing import Any
@@ -9,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from puma_course import euler, transforms
-from puma_course.kinematics import MountedFk, Puma560, ThreeStepArm
+from puma_course.kinematics import DHChain, MountedFk, Puma560, ThreeStepArm
 from puma_course.kinematics import joint_distance as _joint_distance
 from puma_course.kinematics import trajectories as tr
 
@@ -125,6 +126,14 @@ def upright_fk(q: Any, a2: float = 0.4318, a3: float = 0.0203, d3: float = 0.150
     return Puma560(a2, a3, d3, d4).fk(np.asarray(q, dtype=float) + PUMA_ZERO)
 
 
+def upright_chain(a2: float = 0.4318, a3: float = 0.0203, d3: float = 0.15005, d4: float = 0.4318) -> DHChain:
+    """The PUMA-560's chain with the controller's zero (θ offsets -π/2 on joints 2, 3): a package object, so the
+    judge's forward kinematics travels into a student edition whole (no bank code)."""
+    arm = Puma560(a2, a3, d3, d4)
+    links = [dataclasses.replace(lk, theta=lk.theta + z) for lk, z in zip(arm.links, PUMA_ZERO, strict=True)]
+    return DHChain(links, name="PUMA-560, upright zero")
+
+
 def to_upright(rows: Any) -> np.ndarray:
     """The lecture's joint values (rows, 3 or 6 columns) in the controller's, wrapped to (-π, π]."""
     R = np.asarray(rows, dtype=float)
@@ -137,14 +146,13 @@ def _upright(expected: dict[str, Any], fk: Callable[..., Any]) -> dict[str, Any]
 
 def puma_ik_upright_expected(T: Any, a2: float, a3: float, d3: float, d4: float) -> dict[str, Any]:
     """Every configuration (the controller's joint values) reaching T, for the set judge."""
-    L = (a2, a3, d3, d4)
-    return _upright(puma_ik_expected(T, *L), lambda Q: upright_fk(Q, *L))
+    return _upright(puma_ik_expected(T, a2, a3, d3, d4), upright_chain(a2, a3, d3, d4).fk)
 
 
 def puma_arm_upright_expected(p: Any, a2: float, a3: float, d3: float, d4: float) -> dict[str, Any]:
     """The four (θ1, θ2, θ3), the controller's, putting the wrist centre at p, for the set judge."""
-    L = (a2, a3, d3, d4)
-    return _upright(puma_arm_expected(p, *L), MountedFk(lambda Q: upright_fk(Q, *L), pad=3, position_only=True))
+    fk = MountedFk(upright_chain(a2, a3, d3, d4).fk, pad=3, position_only=True)
+    return _upright(puma_arm_expected(p, a2, a3, d3, d4), fk)
 
 
 def puma_det_j(q: Any, a2: float, a3: float, d3: float, d4: float) -> float:
@@ -247,7 +255,7 @@ def puma_world_expected(T_world: Any, B: Any, d6: float) -> dict[str, Any]:
         ),
     ]
     out = _set_expected(arm, Bi @ T_world @ tz(-d6), alternatives=alts)
-    out = _upright(out, MountedFk(upright_fk, base=B, tool=tz(d6)))  # the controller's joint values
+    out = _upright(out, MountedFk(upright_chain().fk, base=B, tool=tz(d6)))  # the controller's joint values
     out["T"] = T_world
     # what the same mistakes give when their ⁰T₆ is out of reach: no solution (the judge names an empty answer)
     out["wrong_sets"] = [

@@ -487,3 +487,52 @@ def test_the_quintic_time_scaling_and_the_short_way_round():
     assert_named(judge(name, "q4", q0 + (3 * tau**2 - 2 * tau**3)[:, None] * dq, q0, q1, T, t), "time_scaling", "cubic")
     unwrapped = q0 + (10 * tau**3 - 15 * tau**4 + 6 * tau**5)[:, None] * (q1 - q0)
     assert_named(judge(name, "q4", unwrapped, q0, q1, T, t), "unwrapped_distance", "wrap")
+
+
+# ------------------------------------------------------------------------------ issue 22: the new questions
+def test_xyz_angles_at_the_gimbal_lock_and_in_the_lecture_s_roll_pitch_yaw():
+    name = "ex01_rotations"
+    (Rs,) = EXERCISES[name].question("q6").public[0]  # a general rotation, Rx(0.7) Ry(π/2), another general one
+    good = np.asarray(right(name, "q6", Rs))
+    assert np.allclose(good[1], [0.7, np.pi / 2, 0.0])  # by hand: at the lock c = 0, a = 0.7
+    assert judge(name, "q6", good, Rs).passed
+    naive = good.copy()
+    naive[1] = [np.arctan2(-Rs[1][1, 2], Rs[1][2, 2]), np.pi / 2, np.arctan2(-Rs[1][0, 1], Rs[1][0, 0])]
+    assert_named(judge(name, "q6", naive, Rs), "gimbal_lock", "atan2(0, 0)")
+    split = good.copy()
+    split[1] = [0.2, np.pi / 2, 0.5]  # the same rotation (a + c = 0.7), not the representative asked for
+    verdict = judge(name, "q6", split, Rs)
+    assert not verdict.passed and verdict.mistake is None
+    rpy = np.array([[np.arctan2(R[2, 1], R[2, 2]), np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0])),
+                     np.arctan2(R[1, 0], R[0, 0])] for R in Rs])  # fmt: skip
+    assert_named(judge(name, "q6", rpy, Rs), "order", "roll, pitch, yaw")
+
+
+def test_det_j_and_the_lost_direction_in_the_controller_s_joint_values():
+    name, L = "ex09_puma_ik", (0.4318, 0.0203, 0.15005, 0.4318)
+    zero = np.array([0.0, -np.pi / 2, -np.pi / 2, 0.0, 0.0, 0.0])
+    q = np.array([0.3, 0.2, -0.4, 0.1, 0.9, 0.5])
+    t = q + zero  # the lecture's values: det J = -a2 (a3 s3 + d4 c3) X s5 (lecture 09 §9)
+    X = L[0] * np.cos(t[1]) + L[1] * np.cos(t[1] + t[2]) - L[3] * np.sin(t[1] + t[2])
+    det = -L[0] * (L[1] * np.sin(t[2]) + L[3] * np.cos(t[2])) * X * np.sin(t[4])
+    assert judge(name, "q3", det, q, *L).passed
+    assert_named(judge(name, "q3", -det, q, *L), "sign_flip", "wrong sign")
+    X0 = L[0] * np.cos(q[1]) + L[1] * np.cos(q[1] + q[2]) - L[3] * np.sin(q[1] + q[2])
+    lecture = -L[0] * (L[1] * np.sin(q[2]) + L[3] * np.cos(q[2])) * X0 * np.sin(q[4])
+    assert_named(judge(name, "q3", lecture, q, *L), "joint_zero", "straight up")
+    # stretched: the wrist centre cannot move away from the base origin, u = p / |p|
+    q_elbow = np.array([0.5, -0.3, np.arctan2(-L[3], L[1]), 0.2, 1.0, 0.1]) - zero
+    from puma_course.kinematics.puma560 import Puma560
+
+    p = Puma560(*L).fk(q_elbow + zero)[:3, 3]
+    assert judge(name, "q4", p / np.linalg.norm(p), q_elbow, *L).passed
+    assert_named(judge(name, "q4", -p / np.linalg.norm(p), q_elbow, *L), "sign_flip", "u · p > 0")
+
+
+def test_a_standard_table_rewritten_and_left_as_it_was():
+    name = "ex02_dh_frames"
+    (std,) = EXERCISES[name].question("q4").public[0]
+    good = np.array(std, dtype=float)
+    good[1:, :2], good[0, :2] = std[:-1, :2], 0.0  # α and a move down one row
+    assert judge(name, "q4", good, std).passed
+    assert_named(judge(name, "q4", np.array(std, dtype=float), std), "standard_dh", "standard-DH")
