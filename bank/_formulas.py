@@ -147,4 +147,80 @@ def kept_axis(T: Any, near: Any, axis: int) -> np.ndarray:
     a = a / math.hypot(*a)
     out = T.copy()
     out[:3, axis], out[:3, 1 - axis], out[:3, 2] = a, (np.cross(z, a) if axis == 0 else np.cross(a, z)), z
+# ---------------------------------------------------------------- ex01 q6: a controller's X-Y-Z angles
+#: cos b below this is the gimbal lock of the X-Y-Z set (then only a + c or a - c is defined).
+XYZ_LOCK_TOL = 1e-9
+
+
+def xyz_angles_all(Rs: Any) -> np.ndarray:
+    """:func:`xyz_angles` of every rotation of a stack (N, 3, 3): (N, 3)."""
+    return np.array([xyz_angles(R) for R in np.asarray(Rs, dtype=float)]).reshape(-1, 3)
+
+
+def xyz_no_lock_all(Rs: Any) -> np.ndarray:
+    """The mistake: the regular formula at the lock too, for a stack."""
+    return np.array([xyz_no_lock(R) for R in np.asarray(Rs, dtype=float)]).reshape(-1, 3)
+
+
+def rpy_formula_all(Rs: Any) -> np.ndarray:
+    """The mistake: lecture 01 §7's roll, pitch, yaw, for a stack."""
+    return np.array([rpy_formula(R) for R in np.asarray(Rs, dtype=float)]).reshape(-1, 3)
+
+
+def xyz_other_branch_all(Rs: Any) -> np.ndarray:
+    """The mistake: the other set (b outside [-π/2, π/2]), for a stack."""
+    return np.array([xyz_other_branch(R) for R in np.asarray(Rs, dtype=float)]).reshape(-1, 3)
+
+
+def xyz_angles(R: Any) -> np.ndarray:
+    """(a, b, c) with Rx(a) Ry(b) Rz(c) = R, b in [-π/2, π/2]; at the gimbal lock (cos b < 1e-9) c = 0.
+
+    From the product: r13 = sin b, (r23, r33) = cos b (-sin a, cos a), (r12, r11) = cos b (-sin c, cos c);
+    at b = ±π/2 the product is Rx(a ± c) Ry(±π/2), whose (r21, r22) = (±sin(a ± c), cos(a ± c)).
+    """
+    R = np.asarray(R, dtype=float)
+    cb = float(np.hypot(R[0, 0], R[0, 1]))
+    if cb < XYZ_LOCK_TOL:
+        up = R[0, 2] > 0
+        a = np.arctan2(R[1, 0], R[1, 1]) if up else np.arctan2(-R[1, 0], R[1, 1])
+        return np.array([a, np.pi / 2 if up else -np.pi / 2, 0.0])
+    return np.array([np.arctan2(-R[1, 2], R[2, 2]), np.arctan2(R[0, 2], cb), np.arctan2(-R[0, 1], R[0, 0])])
+
+
+def xyz_no_lock(R: Any) -> np.ndarray:
+    """The mistake: the regular formula used at the lock too (atan2(0, 0) for a and c)."""
+    R = np.asarray(R, dtype=float)
+    cb = float(np.hypot(R[0, 0], R[0, 1]))
+    return np.array([np.arctan2(-R[1, 2], R[2, 2]), np.arctan2(R[0, 2], cb), np.arctan2(-R[0, 1], R[0, 0])])
+
+
+def rpy_formula(R: Any) -> np.ndarray:
+    """The mistake: lecture 01 §7's roll, pitch, yaw (R = Rz(yaw) Ry(pitch) Rx(roll)) returned as (a, b, c)."""
+    R = np.asarray(R, dtype=float)
+    return np.array(
+        [np.arctan2(R[2, 1], R[2, 2]), np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0])), np.arctan2(R[1, 0], R[0, 0])]
+    )
+
+
+def xyz_other_branch(R: Any) -> np.ndarray:
+    """The mistake: the other set (a + π, π - b, c + π), b outside [-π/2, π/2]."""
+    a, b, c = xyz_angles(R)
+    return np.array([a + np.pi, np.pi - b, c + np.pi])
+
+
+# ---------------------------------------------------------------- ex02 q4: a standard-DH table rewritten
+def modified_from_standard(table: Any) -> np.ndarray:
+    """Craig's (modified) table of the chain a standard-DH table (rows α_i, a_i, θ_i, d_i, σ_i, α_n = a_n = 0)
+    describes: the α and a columns move DOWN one row, α_0 = a_0 = 0."""
+    t = np.asarray(table, dtype=float)
+    out = t.copy()
+    out[1:, :2], out[0, :2] = t[:-1, :2], 0.0
+    return out
+
+
+def moved_up(table: Any) -> np.ndarray:
+    """The mistake: α and a moved UP one row (lecture 02 §8's rule for the other direction)."""
+    t = np.asarray(table, dtype=float)
+    out = t.copy()
+    out[:-1, :2], out[-1, :2] = t[1:, :2], 0.0
     return out

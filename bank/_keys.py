@@ -13,6 +13,7 @@ _BANK = "puma_course_bank._reference.chains"
 KEY_ROT = tuple(f"{_T}:{name}" for name in ("rotx", "roty", "rotz", "trotx", "troty", "trotz"))
 KEY_RODRIGUES = (f"{_T}:rodrigues", f"{_T}:trot")
 KEY_AXIS_ANGLE = (f"{_T}:axis_angle",)
+KEY_EULER = tuple(f"puma_course.euler:{name}" for name in ("zyz_from_rotation", "rpy_from_rotation"))
 KEY_INVERSE = (f"{_T}:inverse_transform",)
 KEY_MDH = (f"{_DH}:mdh", f"{_DH}:DHChain.link_matrices", f"{_BANK}:mdh")
 KEY_LINK_PARAMETERS = ("puma_course_bank._formulas:link_parameters",)
@@ -68,6 +69,12 @@ KEY_PUMA_IK = (
     f"{_P560}:_arm",
     f"{_P560}:_wrist",
     f"{_P560}:_reach",
+)
+KEY_JACOBIAN = (
+    "puma_course.kinematics.dh:DHChain.jacobian",
+    "puma_course.kinematics.jacobian:geometric_jacobian",
+    "puma_course.kinematics.jacobian:jacobian_from_axes",
+    "puma_course.symbolic.jacobian:puma560_jacobian_determinant",
 )
 KEY_NEAREST = (
     f"{_IK}:IKSolutions.nearest",

@@ -3,12 +3,15 @@
 Its first four questions (names, points, cases) are pinned by the hostile-submission fixtures of the
 grader's tests; what changed with the mistake diagnosis is how a wrong answer is worded. Question 5
 is the modelling question: the pose of a camera on a pan-tilt head, from a description in words.
+Question 6 reads three angles back from a rotation, in a controller's X-Y-Z set that lecture 01 does not
+print (it prints ZYZ and roll-pitch-yaw), gimbal lock included.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from puma_course.grading.judge.compare import compare_angles
 from puma_course.grading.judge.diagnose import (
     SIGN_FLIP,
     TRANSLATION,
@@ -23,8 +26,40 @@ from puma_course.grading.judge.diagnose import (
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys
-from ._formulas import camera_fixed_axes, camera_head_frame, rodrigues_unnormalised
+from ._formulas import (
+    camera_fixed_axes,
+    camera_head_frame,
+    rodrigues_unnormalised,
+    rpy_formula_all,
+    xyz_angles_all,
+    xyz_no_lock_all,
+    xyz_other_branch_all,
+)
 from ._reference import chains as ref
+
+
+def _xyz(a: float, b: float, c: float) -> np.ndarray:
+    return ref.elementary_rotation("x", a) @ ref.elementary_rotation("y", b) @ ref.elementary_rotation("z", c)
+
+
+def _lock(a: float, sign: float) -> np.ndarray:
+    """Rx(a) Ry(±π/2) with exact zeros (the gimbal lock: only a ± c is defined)."""
+    Ry = np.array([[0.0, 0.0, sign], [0.0, 1.0, 0.0], [-sign, 0.0, 0.0]])
+    return ref.elementary_rotation("x", a) @ Ry
+
+
+def _xyz_cases(rng: np.random.Generator) -> list[tuple[np.ndarray]]:
+    """Four stacks, each of three general rotations, one exactly at the lock and one 1e-4 from it (not locked:
+    c is not 0 there), shuffled: a formula wrong in general or at the lock fails every case."""
+    out = []
+    for _ in range(4):
+        a, c, b = rng.uniform(-np.pi, np.pi, 4), rng.uniform(-np.pi, np.pi, 4), rng.uniform(-1.4, 1.4, 4)
+        b[3] = float(rng.choice([-1.0, 1.0])) * (np.pi / 2 - 1e-4)
+        lock = _lock(float(rng.uniform(-np.pi, np.pi)), float(rng.choice([-1.0, 1.0])))
+        Rs = [_xyz(a[i], b[i], c[i]) for i in range(4)] + [lock]
+        out.append((np.stack([Rs[i] for i in rng.permutation(5)]),))
+    return out
+
 
 EXERCISE = Exercise(
     "ex01_rotations",
@@ -136,6 +171,42 @@ EXERCISE = Exercise(
             ),
             hint="Build it as motions along the chain, each about or along the axes reached so far (lecture 01 §5), "
             "then name the camera's axes in the head's frame; check pan = tilt = 0 by hand.",
+        ),
+        Question(
+            "q6",
+            "xyz_angles",
+            2,
+            "a controller's X-Y-Z angles of rotations, gimbal lock included",
+            public=(
+                (np.stack([_xyz(0.4, 0.3, -1.2), _lock(0.7, 1.0), _xyz(-2.5, -1.2, 3.0)]),),
+                (np.stack([_lock(-2.0, -1.0), _xyz(3.0, 1.5, 0.1), _xyz(1.0, 0.2, 0.5)]),),
+            ),
+            hidden=_xyz_cases,
+            reference=xyz_angles_all,
+            compare=compare_angles,
+            forbidden=(*keys.KEY_ROT, *keys.KEY_EULER),
+            mistakes=(
+                matches(
+                    "order",
+                    "these are lecture 01 §7's roll, pitch, yaw, the angles of Rz(c) Ry(b) Rx(a) (fixed axes): the "
+                    "controller's set is Rx(a) Ry(b) Rz(c), turns about the moving axes x, new y, newest z",
+                    rpy_formula_all,
+                ),
+                matches(
+                    "gimbal_lock",
+                    "at b = ±π/2 (the gimbal lock) your a and c come from atan2(0, 0): only a + c or a - c is "
+                    "defined there, and the question fixes c = 0 (lecture 01 §6, the lock)",
+                    xyz_no_lock_all,
+                ),
+                matches(
+                    "range",
+                    "(a + π, π - b, c + π) is the same rotation, but the question asks for b in [-π/2, π/2]",
+                    xyz_other_branch_all,
+                ),
+                degrees_out([0, 1, 2]),
+            ),
+            hint="Multiply Rx(a) Ry(b) Rz(c) out as lecture 01 §6 does for ZYZ, find the entry that is sin b alone "
+            "and the pairs that give a and c; then set b = π/2 and see what is left. Check by multiplying back.",
         ),
     ),
     allowed=(),  # the self-check only: rotx ... rodrigues, axis_angle, inverse_transform are the answers

@@ -2,7 +2,8 @@
 
 From reading the four parameters off a link matrix, to building it, to the modelling question:
 the DH table of an arm the lectures did not treat (an RRP arm with a shoulder offset, the first
-three joints of the Stanford arm), graded by the poses its chain reaches.
+three joints of the Stanford arm), graded by the poses its chain reaches; then a standard-DH table (a
+book's, a library's) rewritten in Craig's convention, the direction lecture 02 §8 does not print.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys
-from ._formulas import link_parameters, standard_reading
+from ._formulas import link_parameters, modified_from_standard, standard_reading
 from ._reference import chains as ref
 
 STANDARD = (
@@ -121,6 +122,24 @@ EXERCISE = Exercise(
             hint="Draw z_i along each joint axis in its positive sense first, then each x_i along the common normal "
             "(lecture 02 §3, intersecting axes §4); evaluate your table at q = 0 and with one joint moved, and compare "
             "with the picture.",
+        ),
+        Question(
+            "q4",
+            "modified_from_standard",
+            2,
+            "a standard-DH table rewritten as Craig's modified table",
+            public=(
+                (np.array([[H, 0.0, 0.0, 0.5, 0], [0.0, 0.4, 0.3, 0.0, 0], [0.0, 0.0, 0.0, 0.1, 0]]),),
+                (np.array([[-H, 0.2, 0.0, 0.3, 0], [H, 0.0, -0.4, 0.0, 1], [0.0, 0.0, 0.2, 0.0, 0]]),),
+            ),
+            hidden=lambda rng: ref.standard_tables(rng, 5),
+            reference=ref.standard_expected,
+            judge_with=table_judge(),
+            answer=modified_from_standard,
+            forbidden=keys.KEY_TABLES,
+            hint="Write both products for a two-joint chain and group the factors (lecture 02 §8): which joint's "
+            "factors does Rot(X, α_1) Trans(X, a_1) follow in each? Check with your q2: both chains must give the "
+            "same ⁰T_n at q = 0 and at one other q.",
         ),
     ),
     allowed=(),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from typing import Any
@@ -9,12 +10,12 @@ from typing import Any
 import numpy as np
 
 from puma_course import euler, transforms
-from puma_course.kinematics import MountedFk, Puma560, ThreeStepArm
+from puma_course.kinematics import DHChain, MountedFk, Puma560, ThreeStepArm
 from puma_course.kinematics import joint_distance as _joint_distance
 from puma_course.kinematics import trajectories as tr
 
 from ._common import _quiet, _set_expected, pose, tz
-from .chains import random_rotations
+from .chains import PUMA_ZERO, random_rotations
 
 
 # ---------------------------------------------------------------- exercise 8: the three-step procedure
@@ -117,6 +118,94 @@ def puma_arm_expected(p: Any, a2: float, a3: float, d3: float, d4: float) -> dic
     }
 
 
+# The controller's joint values (ex03 q2): θ2 and θ3 counted from the arm straight up, so the lecture's joint
+# vector is q + PUMA_ZERO. Exercise 9 asks every question in them: the lecture's printed formulas give the
+# lecture's joint values, which put the arm elsewhere.
+def upright_fk(q: Any, a2: float = 0.4318, a3: float = 0.0203, d3: float = 0.15005, d4: float = 0.4318) -> np.ndarray:
+    """^0T_6 of the PUMA-560 at the controller's joint values q (arm straight up at q = 0)."""
+    return Puma560(a2, a3, d3, d4).fk(np.asarray(q, dtype=float) + PUMA_ZERO)
+
+
+def upright_chain(a2: float = 0.4318, a3: float = 0.0203, d3: float = 0.15005, d4: float = 0.4318) -> DHChain:
+    """The PUMA-560's chain with the controller's zero (θ offsets -π/2 on joints 2, 3): a package object, so the
+    judge's forward kinematics travels into a student edition whole (no bank code)."""
+    arm = Puma560(a2, a3, d3, d4)
+    links = [dataclasses.replace(lk, theta=lk.theta + z) for lk, z in zip(arm.links, PUMA_ZERO, strict=True)]
+    return DHChain(links, name="PUMA-560, upright zero")
+
+
+def to_upright(rows: Any) -> np.ndarray:
+    """The lecture's joint values (rows, 3 or 6 columns) in the controller's, wrapped to (-π, π]."""
+    R = np.asarray(rows, dtype=float)
+    return np.asarray(transforms.wrap_angle(R - PUMA_ZERO[: R.shape[-1]])) if R.size else R.reshape(-1, R.shape[-1])
+
+
+def _upright(expected: dict[str, Any], fk: Callable[..., Any]) -> dict[str, Any]:
+    return {**expected, "solutions": to_upright(expected["solutions"]), "fk": fk}
+
+
+def puma_ik_upright_expected(T: Any, a2: float, a3: float, d3: float, d4: float) -> dict[str, Any]:
+    """Every configuration (the controller's joint values) reaching T, for the set judge."""
+    return _upright(puma_ik_expected(T, a2, a3, d3, d4), upright_chain(a2, a3, d3, d4).fk)
+
+
+def puma_arm_upright_expected(p: Any, a2: float, a3: float, d3: float, d4: float) -> dict[str, Any]:
+    """The four (θ1, θ2, θ3), the controller's, putting the wrist centre at p, for the set judge."""
+    fk = MountedFk(upright_chain(a2, a3, d3, d4).fk, pad=3, position_only=True)
+    return _upright(puma_arm_expected(p, a2, a3, d3, d4), fk)
+
+
+def puma_det_j(q: Any, a2: float, a3: float, d3: float, d4: float) -> float:
+    """det J of the PUMA-560 at the controller's joint values q (the geometric Jacobian, 6 x 6)."""
+    q_lecture = np.asarray(q, dtype=float) + PUMA_ZERO
+    return float(np.linalg.det(Puma560(a2, a3, d3, d4).jacobian(q_lecture)))
+
+
+def puma_lost_direction(q: Any, a2: float, a3: float, d3: float, d4: float) -> np.ndarray:
+    """At an elbow or shoulder singularity (controller's q): the unit direction in which the wrist centre cannot
+    move, the left singular vector of J_w = ∂p/∂(θ1, θ2, θ3) with the smallest singular value, signed u · p > 0."""
+    arm, q_lecture = Puma560(a2, a3, d3, d4), np.asarray(q, dtype=float) + PUMA_ZERO
+    U, _, _ = np.linalg.svd(arm.jacobian(q_lecture)[:3, :3])
+    u = U[:, -1]
+    return u if float(u @ arm.fk(q_lecture)[:3, 3]) > 0 else -u
+
+
+def puma_singular_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (q, a2, a3, d3, d4), q the controller's: at the stretched elbow or the shoulder singularity,
+    alternately, lengths around the lecture's."""
+    out = []
+    for k in range(n):
+        L = np.array(list(Puma560().lengths.values())) * rng.uniform(0.7, 1.3, 4)
+        q = rng.uniform(-np.pi, np.pi, 6)
+        stretched = math.atan2(-L[3], L[1])
+        if k % 2 == 0:  # the elbow stretched: a3 s3 + d4 c3 = 0; the reach X kept away from 0
+            q[2] = stretched  # (folded, the PUMA's wrist centre is 0.5 mm from the shoulder: no direction to speak of)
+            while abs(_reach(q[1], q[2], *L)) < 0.1 * L[0]:
+                q[1] = rng.uniform(-np.pi, np.pi)
+        else:  # the shoulder: the reach X = 0, the elbow kept away from its singularity
+            q[2] = stretched + rng.choice([-1.0, 1.0]) * rng.uniform(0.4, 2.7)
+            q[1] = _shoulder_theta2(q[2], *L)
+        out.append((to_upright(q[None])[0], *(float(v) for v in L)))
+    return out
+
+
+def _reach(t2: float, t3: float, a2: float, a3: float, d3: float, d4: float) -> float:
+    """The reach X = a2 c2 + a3 c23 - d4 s23 (lecture 09 §1), the lecture's joint values."""
+    return a2 * math.cos(t2) + a3 * math.cos(t2 + t3) - d4 * math.sin(t2 + t3)
+
+
+def puma_det_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (q, a2, a3, d3, d4) for det J: random controller's q, |sin θ5| > 0.2 (a singular arm, det J = 0, is
+    one public case: more would let a wrong sign or a missing factor pass them)."""
+    out = []
+    for _ in range(n):
+        L = np.array(list(Puma560().lengths.values())) * rng.uniform(0.7, 1.3, 4)
+        q = rng.uniform(-np.pi, np.pi, 6)
+        q[4] = rng.choice([-1.0, 1.0]) * rng.uniform(0.2, np.pi - 0.2)
+        out.append((q, *(float(v) for v in L)))
+    return out
+
+
 def puma_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     """Cases (T, q_ref, a2, a3, d3, d4) on poses near singularities (:func:`puma_cases`): q_ref near one solution
     with one joint across ±π from it, drawn until the solution nearest by the unwrapped distance is another one
@@ -165,11 +254,13 @@ def puma_world_expected(T_world: Any, B: Any, d6: float) -> dict[str, Any]:
             T_world @ tz(2 * d6),
         ),
     ]
-    out = _set_expected(arm, Bi @ T_world @ tz(-d6), fk=MountedFk(arm.fk, base=B, tool=tz(d6)), alternatives=alts)
+    out = _set_expected(arm, Bi @ T_world @ tz(-d6), alternatives=alts)
+    out = _upright(out, MountedFk(upright_chain().fk, base=B, tool=tz(d6)))  # the controller's joint values
     out["T"] = T_world
     # what the same mistakes give when their ⁰T₆ is out of reach: no solution (the judge names an empty answer)
     out["wrong_sets"] = [
-        (key, message, np.asarray(_quiet(arm.ik, Bi @ P @ tz(-d6)).q).reshape(-1, 6)) for key, message, P in alts
+        (key, message, to_upright(np.asarray(_quiet(arm.ik, Bi @ P @ tz(-d6)).q).reshape(-1, 6)))
+        for key, message, P in alts
     ]
     return out
 

@@ -355,17 +355,25 @@ def test_wrist_angles_about_the_fixed_axes():
 
 # ---------------------------------------------------------------------------------- PUMA-560 IK, paths (ex09, ex10)
 def test_the_nearest_solution_and_unwrapped_distances():
-    name = "ex09_puma_ik"
-    T, q_ref, *L = EXERCISES[name].question("q3").public[1]
-    S = right(name, "q2", T, *L)
+    # ex09 q3 (the PUMA's nearest solution) was dropped (issue 22): its case and reference judged directly
+    import puma_course_bank._reference.motion as motion
+    from puma_course.grading.judge.judges import nearest_judge
+
+    L = (0.4318, 0.0203, 0.15005, 0.4318)
+    T = motion.puma_fk(np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0]), *L)
+    q_ref = np.array([3.1, 1.0, 2.9, -3.1, 2.4, 0.9])
+    expected, nearest_of = motion.puma_nearest_expected(T, q_ref, *L), nearest_judge()
+    S = np.asarray(expected["solutions"])
     d = np.angle(np.exp(1j * (S - q_ref)))
     plain = S - q_ref
     nearest, unwrapped = S[np.argmin(np.sum(d * d, 1))], S[np.argmin(np.sum(plain * plain, 1))]
-    assert not np.allclose(nearest, unwrapped)  # the public case is built so that wrapping decides
-    assert judge(name, "q3", nearest, T, q_ref, *L).passed
-    assert_named(judge(name, "q3", unwrapped, T, q_ref, *L), "unwrapped_distance", "wrapped")
+    assert not np.allclose(nearest, unwrapped)  # the case is built so that wrapping decides
+    assert nearest_of(nearest, expected, (T, q_ref, *L)).passed
+    assert_named(nearest_of(unwrapped, expected, (T, q_ref, *L)), "unwrapped_distance", "wrapped")
     farther = next(S[i] for i in np.argsort(np.sum(d * d, 1))[1:] if not np.allclose(S[i], unwrapped))
-    assert_named(judge(name, "q3", farther, T, q_ref, *L), "not_nearest", "not the nearest")
+    told = nearest_of(farther, expected, (T, q_ref, *L))
+    assert_named(told, "not_nearest", "not the nearest")
+    assert "not wrapped" not in (told.reason or "")  # never the heuristic "nearest if not wrapped" (issue 22)
     q, r = EXERCISES["ex10_trajectories"].question("q1").public[0]
     assert_named(judge("ex10_trajectories", "q1", np.linalg.norm(q - r), q, r), "unwrapped_distance")
 
@@ -381,20 +389,20 @@ def test_solutions_sorted_in_another_order():
 
 def test_a_robot_in_a_cell_solved_as_if_at_the_origin_or_without_its_tool():
     name = "ex09_puma_ik"
-    T_world, B, d6 = EXERCISES[name].question("q4").public[0]
+    T_world, B, d6 = EXERCISES[name].question("q5").public[0]
     L = (0.4318, 0.0203, 0.15005, 0.4318)
     tool = homogeneous(np.eye(3), [0, 0, d6])
     assert judge(
-        name, "q4", right(name, "q2", np.linalg.inv(B) @ T_world @ np.linalg.inv(tool), *L), T_world, B, d6
+        name, "q5", right(name, "q2", np.linalg.inv(B) @ T_world @ np.linalg.inv(tool), *L), T_world, B, d6
     ).passed
     assert_named(
-        judge(name, "q4", right(name, "q2", T_world @ np.linalg.inv(tool), *L), T_world, B, d6),
+        judge(name, "q5", right(name, "q2", T_world @ np.linalg.inv(tool), *L), T_world, B, d6),
         "base_frame",
         "world origin",
     )
-    assert_named(judge(name, "q4", right(name, "q2", np.linalg.inv(B) @ T_world, *L), T_world, B, d6), "tool_frame")
+    assert_named(judge(name, "q5", right(name, "q2", np.linalg.inv(B) @ T_world, *L), T_world, B, d6), "tool_frame")
     assert_named(
-        judge(name, "q4", right(name, "q2", np.linalg.inv(B) @ T_world @ tool, *L), T_world, B, d6), "offset_sign"
+        judge(name, "q5", right(name, "q2", np.linalg.inv(B) @ T_world @ tool, *L), T_world, B, d6), "offset_sign"
     )
 
 
@@ -519,3 +527,50 @@ def test_the_nearest_attainable_pose_on_the_rail_and_its_mistakes():
     # an attainable goal (its approach in the plane y = 200) comes back unchanged
     Ta = homogeneous(rot("y", np.radians(120.0)), [300.0, 200.0, 250.0])
     assert judge(name, "q4", Ta, Ta, s).passed
+# ------------------------------------------------------------------------------ issue 22: the new questions
+def test_xyz_angles_at_the_gimbal_lock_and_in_the_lecture_s_roll_pitch_yaw():
+    name = "ex01_rotations"
+    (Rs,) = EXERCISES[name].question("q6").public[0]  # a general rotation, Rx(0.7) Ry(π/2), another general one
+    good = np.asarray(right(name, "q6", Rs))
+    assert np.allclose(good[1], [0.7, np.pi / 2, 0.0])  # by hand: at the lock c = 0, a = 0.7
+    assert judge(name, "q6", good, Rs).passed
+    naive = good.copy()
+    naive[1] = [np.arctan2(-Rs[1][1, 2], Rs[1][2, 2]), np.pi / 2, np.arctan2(-Rs[1][0, 1], Rs[1][0, 0])]
+    assert_named(judge(name, "q6", naive, Rs), "gimbal_lock", "atan2(0, 0)")
+    split = good.copy()
+    split[1] = [0.2, np.pi / 2, 0.5]  # the same rotation (a + c = 0.7), not the representative asked for
+    verdict = judge(name, "q6", split, Rs)
+    assert not verdict.passed and verdict.mistake is None
+    rpy = np.array([[np.arctan2(R[2, 1], R[2, 2]), np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0])),
+                     np.arctan2(R[1, 0], R[0, 0])] for R in Rs])  # fmt: skip
+    assert_named(judge(name, "q6", rpy, Rs), "order", "roll, pitch, yaw")
+
+
+def test_det_j_and_the_lost_direction_in_the_controller_s_joint_values():
+    name, L = "ex09_puma_ik", (0.4318, 0.0203, 0.15005, 0.4318)
+    zero = np.array([0.0, -np.pi / 2, -np.pi / 2, 0.0, 0.0, 0.0])
+    q = np.array([0.3, 0.2, -0.4, 0.1, 0.9, 0.5])
+    t = q + zero  # the lecture's values: det J = -a2 (a3 s3 + d4 c3) X s5 (lecture 09 §9)
+    X = L[0] * np.cos(t[1]) + L[1] * np.cos(t[1] + t[2]) - L[3] * np.sin(t[1] + t[2])
+    det = -L[0] * (L[1] * np.sin(t[2]) + L[3] * np.cos(t[2])) * X * np.sin(t[4])
+    assert judge(name, "q3", det, q, *L).passed
+    assert_named(judge(name, "q3", -det, q, *L), "sign_flip", "wrong sign")
+    X0 = L[0] * np.cos(q[1]) + L[1] * np.cos(q[1] + q[2]) - L[3] * np.sin(q[1] + q[2])
+    lecture = -L[0] * (L[1] * np.sin(q[2]) + L[3] * np.cos(q[2])) * X0 * np.sin(q[4])
+    assert_named(judge(name, "q3", lecture, q, *L), "joint_zero", "straight up")
+    # stretched: the wrist centre cannot move away from the base origin, u = p / |p|
+    q_elbow = np.array([0.5, -0.3, np.arctan2(-L[3], L[1]), 0.2, 1.0, 0.1]) - zero
+    from puma_course.kinematics.puma560 import Puma560
+
+    p = Puma560(*L).fk(q_elbow + zero)[:3, 3]
+    assert judge(name, "q4", p / np.linalg.norm(p), q_elbow, *L).passed
+    assert_named(judge(name, "q4", -p / np.linalg.norm(p), q_elbow, *L), "sign_flip", "u · p > 0")
+
+
+def test_a_standard_table_rewritten_and_left_as_it_was():
+    name = "ex02_dh_frames"
+    (std,) = EXERCISES[name].question("q4").public[0]
+    good = np.array(std, dtype=float)
+    good[1:, :2], good[0, :2] = std[:-1, :2], 0.0  # α and a move down one row
+    assert judge(name, "q4", good, std).passed
+    assert_named(judge(name, "q4", np.array(std, dtype=float), std), "standard_dh", "standard-DH")

@@ -88,6 +88,8 @@ TITLES: dict[str, str] = {
     "rotation_sense": "a rotation turned the wrong way (by -θ for θ)",
     "projected_only": "only the approach vector moved into the plane: the frame's other axes not turned with it",
     "not_smallest_turn": "a rotation that brings the approach into the plane, but not the smallest one",
+    "joint_zero": "joint values counted from another zero than the one the question fixes",
+    "gimbal_lock": "the regular Euler-angle formula used at the gimbal lock (atan2(0, 0))",
 }
 
 #: ``check(got, expected, args, reference)``: a message for the student if ``got`` is this mistake, else None.
