@@ -147,6 +147,9 @@ def kept_axis(T: Any, near: Any, axis: int) -> np.ndarray:
     a = a / math.hypot(*a)
     out = T.copy()
     out[:3, axis], out[:3, 1 - axis], out[:3, 2] = a, (np.cross(z, a) if axis == 0 else np.cross(a, z)), z
+    return out
+
+
 # ---------------------------------------------------------------- ex01 q6: a controller's X-Y-Z angles
 #: cos b below this is the gimbal lock of the X-Y-Z set (then only a + c or a - c is defined).
 XYZ_LOCK_TOL = 1e-9

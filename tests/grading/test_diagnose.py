@@ -527,6 +527,8 @@ def test_the_nearest_attainable_pose_on_the_rail_and_its_mistakes():
     # an attainable goal (its approach in the plane y = 200) comes back unchanged
     Ta = homogeneous(rot("y", np.radians(120.0)), [300.0, 200.0, 250.0])
     assert judge(name, "q4", Ta, Ta, s).passed
+
+
 # ------------------------------------------------------------------------------ issue 22: the new questions
 def test_xyz_angles_at_the_gimbal_lock_and_in_the_lecture_s_roll_pitch_yaw():
     name = "ex01_rotations"

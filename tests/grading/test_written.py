@@ -43,6 +43,7 @@ from puma_course.kinematics.puma560 import Puma560
 from tests.support import ROOT
 
 EX = "ex02_dh_frames"
+AUTO = int(EXERCISES[EX].max_score)  # the auto-graded points of EX (12 since ex02 q4 was added)
 QID = written_questions(EX)[0].qid  # q4 while the exercise has three auto-graded questions
 PNG = b"\x89PNG\r\n\x1a\n" + bytes(range(40))
 
@@ -212,24 +213,24 @@ def test_the_round_trip_collect_mark_merge(handed_in, tmp_path, capsys):
     assert "written marks: 2 answer(s) marked" in capsys.readouterr().out
 
     grades = {r["student"]: r for r in _dicts(out)}
-    assert [float(grades[s]["score"]) for s in ("ann", "bob", "cy")] == [10, 0, 10]  # the auto-graded part as is
-    assert {grades[s]["max_score"] for s in grades} == {"10"}
+    assert [float(grades[s]["score"]) for s in ("ann", "bob", "cy")] == [AUTO, 0, AUTO]  # the auto-graded part as is
+    assert {grades[s]["max_score"] for s in grades} == {str(AUTO)}
     assert [grades[s][f"written:{QID}"] for s in ("ann", "bob", "cy")] == ["2.5", "1", ""]
     assert [grades[s]["written"] for s in ("ann", "bob", "cy")] == ["2.5", "1", ""]
     assert {grades[s]["written_max"] for s in grades} == {"4"}
 
     canvas = _rows(out.parent / "grades-canvas.csv")
     assert canvas[0][5:] == [EX, f"{EX} written", "Final Points"]
-    assert [float(x) for x in canvas[1][5:7]] == [10, 4]
+    assert [float(x) for x in canvas[1][5:7]] == [AUTO, 4]
     body = {r[0]: [float(x) for x in r[5:]] for r in canvas[2:]}
-    assert body == {"ann": [10, 2.5, 12.5], "bob": [0, 1, 1], "cy": [10, 0, 10]}
+    assert body == {"ann": [AUTO, 2.5, AUTO + 2.5], "bob": [0, 1, 1], "cy": [AUTO, 0, AUTO]}
     moodle = {r["Full name"]: r for r in _dicts(out.parent / "grades-moodle.csv")}
-    assert [float(moodle["ann"][k]) for k in (EX, f"{EX} written", "Total")] == [10, 2.5, 12.5]
+    assert [float(moodle["ann"][k]) for k in (EX, f"{EX} written", "Total")] == [AUTO, 2.5, AUTO + 2.5]
     wide = {r["student"]: r for r in _dicts(out.parent / "grades-wide.csv")}
     assert float(wide["bob"][f"{EX} written"]) == 1 and float(wide["bob"]["total"]) == 1
 
     ann = (feedback / "ann.md").read_text(encoding="utf-8")
-    assert "Total: **10 / 10** points." in ann  # the auto-graded total, as before
+    assert f"Total: **{AUTO} / {AUTO}** points." in ann  # the auto-graded total, as before
     assert "## Written questions (marked by your instructor)" in ann and "Written: **2.5 / 4** points" in ann
     assert "**2.5 / 4** points." in ann and "> Good sketch; x2 is missing." in ann
     assert f"- 0.5 / 1 · origin 2: {w.criterion('origin 2').text}" in ann
