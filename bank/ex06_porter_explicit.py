@@ -1,8 +1,11 @@
 """Exercise 6 (``solutions/ex06_porter_explicit.ipynb``): Porter's chain, the inverse problem by Ver.1.
 
-All configurations as a set (any order), graded on hidden poses including near-singular ones
-(c4 within 1e-4 of 0, c1 = 0 where the printed formulas divide by zero, a stroke of 1e-3); the
-modelling question puts a tool on the hand: find every configuration for a tool pose.
+All configurations as a set (any order). Question 2 is a variant of lecture 06's chain, so that copying the
+lecture's steps does not answer it: a telescopic rod, a fixed part l2 plus the stroke q2 >= 0, so only the
+configurations whose rod is at least l2 long remain; graded on hidden poses including near-singular ones (c4
+within 1e-4 of 0, c1 = 0 where the printed formulas divide by zero, a stroke of 1e-3). The modelling question
+puts a tool on Porter's hand: find every configuration for a tool pose. The bonus decides reachability with a
+stroke limit (lecture 06 §5), where the answer may be no configuration at all.
 """
 
 from __future__ import annotations
@@ -12,12 +15,11 @@ from typing import Any
 import numpy as np
 
 from puma_course.grading.judge.diagnose import matches
-from puma_course.grading.judge.judges import nearest_judge, solution_set_judge
+from puma_course.grading.judge.judges import solution_set_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys
 from ._formulas import porter_wrist_point
-from ._formulas import wrapped_nearest as nearest_row
 from ._reference import chains
 from ._reference import porter_chain as ref
 from .ex05_porter_fk import PUBLIC_L, PUBLIC_L2, PUBLIC_Q, PUBLIC_Q2
@@ -61,20 +63,21 @@ EXERCISE = Exercise(
         ),
         Question(
             "q2",
-            "porter_ik",
+            "porter_rod_ik",
             5,
-            "every configuration reaching F05 (Ver.1)",
+            "every configuration of the chain with a telescopic rod (Ver.1)",
             public=(
-                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L),
-                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2), *PUBLIC_L2),
+                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), PUBLIC_L[0], 1.6, *PUBLIC_L[1:]),
+                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2), PUBLIC_L2[0], 0.2, *PUBLIC_L2[1:]),
             ),
-            hidden=lambda rng: ref.porter_poses(rng, 5, near_singular=True),
-            reference=ref.porter_ik_expected,
+            hidden=lambda rng: ref.porter_rod_poses(rng, 5),
+            reference=ref.porter_rod_ik_expected,
             judge_with=solution_set_judge(),
-            answer=lambda T, *L: ref.porter_ik_expected(T, *L)["solutions"],
+            answer=lambda T, *L: ref.porter_rod_ik_expected(T, *L)["solutions"],
             forbidden=keys.KEY_PORTER_IK,
-            hint="Count the solutions before computing them (lecture 06, 'four, not eight'); where a printed formula "
-            "divides, ask whether the pose or only the formula is special, and prefer atan2 of two terms.",
+            hint="Where does l2 enter eqs. (13)-(15) (lecture 06 (d)-(e))? Count the configurations before computing "
+            "them (lecture 06, 'four, not eight'): which of them can this rod take? Where a printed formula divides, "
+            "ask whether the pose or only the formula is special, and prefer atan2 of two terms.",
         ),
         Question(
             "q3",
@@ -91,23 +94,24 @@ EXERCISE = Exercise(
             answer=lambda T, l1, l3, l4, E: ref.porter_tool_ik_expected(T, l1, l3, l4, E)["solutions"],
             forbidden=keys.KEY_PORTER_IK,
             hint="Write the tool's pose as a product of F05 and E (lecture 01 §5: which frame is described in which) "
-            "and solve it for F05 before you call your q2.",
+            "and solve it for F05 before you call your q2 (with l2 = 0 it is Porter's own chain).",
         ),
         Question(
             "q4",
-            "porter_ik_nearest",
+            "porter_ik_limited",
             3,
-            "bonus: the configuration nearest the previous one",
+            "bonus: every configuration within a stroke limit, or none",
             public=(
-                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L, PUBLIC_Q + 0.05),
-                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2), *PUBLIC_L2, PUBLIC_Q2 - 0.05),
+                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L, 1.5),
+                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), *PUBLIC_L, 1.0),
             ),
-            hidden=lambda rng: ref.porter_nearest_cases(rng, 4),
-            reference=ref.porter_nearest_expected,
-            judge_with=nearest_judge(),
-            answer=lambda T, l1, l3, l4, q: nearest_row(ref.porter_nearest_expected(T, l1, l3, l4, q)["solutions"], q),
-            forbidden=(*keys.KEY_PORTER_IK, *keys.KEY_NEAREST),
-            hint="The distance of lecture 10 §2 wraps angle differences; the stroke q2 is a length, not an angle.",
+            hidden=lambda rng: ref.porter_limited_poses(rng, 4),
+            reference=ref.porter_limited_expected,
+            judge_with=solution_set_judge(),
+            answer=lambda T, l1, l3, l4, m: ref.porter_limited_expected(T, l1, l3, l4, m)["solutions"],
+            forbidden=keys.KEY_PORTER_IK,
+            hint="A real slide has a stroke 0 <= q2 <= q2_max (lecture 06 §5): which of the four configurations "
+            "does this one allow? An unreachable pose is an answer: no configuration, an array of shape (0, 6).",
             bonus=True,
         ),
     ),
