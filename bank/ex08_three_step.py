@@ -81,9 +81,9 @@ EXERCISE = Exercise(
             reference=ref.step_field("frame_step1"),
             forbidden=keys.KEY_THREE_STEP,
             mistakes=(*_lecture("frame_step1")[2:], *_straight("frame_step1"), ORDER, TRANSPOSED),
-            hint="The base turns from its start to the direction of w and carries the wrist frame F̄ with it (lecture 08 "
-            "§2, step 1); this arm reads θ0 from e_y, so by how much does it turn? A target behind the robot needs "
-            "the right quadrant.",
+            hint="The base turns from its start to the direction of w and carries the wrist frame F̄ with it "
+            "(lecture 08 §2, step 1); this arm reads θ0 from e_y, so by how much does it turn? A target behind "
+            "the robot needs the right quadrant.",
         ),
         Question(
             "q2",

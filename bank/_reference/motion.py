@@ -37,7 +37,15 @@ def lecture_angles(theta_bar: Any, base_zero: bool = True, parallel: bool = True
 
 
 def pallet_three_step(
-    w: Any, F: Any, l1: float, l2: float, elbow: str, theta_bar: Any, F_bar: Any, *, base_zero: bool = True,
+    w: Any,
+    F: Any,
+    l1: float,
+    l2: float,
+    elbow: str,
+    theta_bar: Any,
+    F_bar: Any,
+    *,
+    base_zero: bool = True,
     parallel: bool = True,
 ) -> Any:
     """The procedure for exercise 8's arm, its start given in its own readings (``base_zero``/``parallel``
@@ -292,8 +300,13 @@ def _start_nearest_jumps(arm: Puma560, path06: np.ndarray, q0: np.ndarray, slack
 
 
 def three_step_variant(
-    field: str, *, zero_theta: bool = False, identity_frame: bool = False, other_elbow: bool = False,
-    base_zero: bool = True, parallel: bool = True,
+    field: str,
+    *,
+    zero_theta: bool = False,
+    identity_frame: bool = False,
+    other_elbow: bool = False,
+    base_zero: bool = True,
+    parallel: bool = True,
 ) -> Callable[..., np.ndarray]:
     """``field`` of the procedure under a mistake: the start's angles taken as 0, its frame as I, the other elbow.
 

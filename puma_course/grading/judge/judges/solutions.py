@@ -75,7 +75,7 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
             # a mistaken pose out of reach: its (empty) set of solutions is the mistaken answer
             named = [(key, why) for key, why, rows in expected.get("wrong_sets", ()) if len(rows) == 0]
             return Verdict(message, "missing_solutions", (*named, ("missing_solutions", message)), message)
-        if len(arr) > 4 * k:  # far more rows than solutions: said before any other work (a bounded cost)
+        if len(arr) > 4 * max(k, 1):  # far more rows than solutions: said before any other work (a bounded cost)
             return Verdict(
                 f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
                 "duplicates",
