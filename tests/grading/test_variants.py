@@ -77,15 +77,32 @@ def test_the_palletising_arm_reads_its_base_from_ey_and_its_forearm_from_the_hor
         start = transforms.rotz(tb[0] + np.pi / 2) @ transforms.roty(-tb[2])
         F2 = ex.question("q3").reference(w, l1, l2, elbow, tb, Fb)
         assert np.allclose(F2, forearm @ start.T @ Fb)
+        assert np.allclose(ex.question("q4").reference(w, F, l1, l2, elbow, tb, Fb) @ F2, F)  # 𝒦 F2 = F
         F1 = ex.question("q1").reference(w, tb, Fb)
         assert np.allclose(F1, transforms.rotz(g0 - np.pi / 2 - tb[0]) @ Fb)
 
 
 def _reach(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, float, float]]:
-    out = []
+    out: list[tuple[np.ndarray, float, float]] = []
     while len(out) < n:
         l1, l2 = rng.uniform(0.5, 1.5, 2)
         d = rng.uniform(abs(l1 - l2) + 0.1, l1 + l2 - 0.1)
         u = rng.normal(size=3)
         out.append((d * u / np.linalg.norm(u), float(l1), float(l2)))
     return out
+
+
+def test_a_joint_offset_shifts_the_joint_values_and_refuses_bad_input():
+    from puma_course.kinematics import MountedFk
+
+    rod = MountedFk(Porter(1.0, 0.5, 0.3).fk, offset=[0.0, 0.0, 0.4, 0.0, 0.0, 0.0])
+    P = Porter(1.0, 0.5, 0.3).points([0.3, -0.2, 0.1 + 0.4, 0.5, 0.6, 0.7])
+    assert np.isclose(np.linalg.norm(P[3] - P[2]), 0.5)  # the rod: 0.4 fixed plus a stroke of 0.1
+    assert np.allclose(rod([0.3, -0.2, 0.1, 0.5, 0.6, 0.7])[:3, 3], P[5])
+    for bad in ([0.0, np.nan], [[0.0]], "x"):
+        try:
+            MountedFk(Porter().fk, offset=bad)
+        except ValueError as exc:
+            assert "offset" in str(exc)
+        else:
+            raise AssertionError(f"offset={bad!r} was accepted")
