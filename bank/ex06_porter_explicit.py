@@ -1,11 +1,12 @@
 """Exercise 6 (``solutions/ex06_porter_explicit.ipynb``): Porter's chain, the inverse problem by Ver.1.
 
-All configurations as a set (any order). Question 2 is a variant of lecture 06's chain, so that copying the
-lecture's steps does not answer it: a telescopic rod, a fixed part l2 plus the stroke q2 >= 0, so only the
-configurations whose rod is at least l2 long remain; graded on hidden poses including near-singular ones (c4
-within 1e-4 of 0, c1 = 0 where the printed formulas divide by zero, a stroke of 1e-3). The modelling question
-puts a tool on Porter's hand: find every configuration for a tool pose. The bonus decides reachability with a
-stroke limit (lecture 06 §5), where the answer may be no configuration at all.
+Question 1, the wrist point, is asked for a hand holding a tool (lecture 06 prints p4 = p5 - l4 x5 of the
+hand frame itself). All configurations as a set (any order). Question 2 is a variant of lecture 06's chain,
+so that copying the lecture's steps does not answer it: a telescopic rod, a fixed part l2 plus the stroke
+q2 >= 0, so only the configurations whose rod is at least l2 long remain; graded on hidden poses including
+near-singular ones (c4 within 1e-4 of 0, c1 = 0 where the printed formulas divide by zero, a stroke of 1e-3).
+The modelling question puts a tool on Porter's hand: find every configuration for a tool pose. The bonus
+decides reachability with a stroke limit (lecture 06 §5), where the answer may be no configuration at all.
 """
 
 from __future__ import annotations
@@ -28,7 +29,25 @@ TOOL = chains.pose(chains.elementary_rotation("y", 0.4), [0.1, 0.0, 0.05])
 
 
 def _point(axis: int, sign: float) -> Any:
-    return lambda T, l4: np.asarray(T, dtype=float)[:3, 3] + sign * l4 * np.asarray(T, dtype=float)[:3, axis]
+    def wrong(T_tool: Any, l4: float, E: Any) -> np.ndarray:
+        F = np.asarray(T_tool, dtype=float) @ np.linalg.inv(np.asarray(E, dtype=float))
+        return F[:3, 3] + sign * l4 * F[:3, axis]
+
+    return wrong
+
+
+def _hand_at(which: str) -> Any:
+    """The wrist point of a hand frame put at the wrong place: T_tool itself, T_tool E, or E⁻¹ T_tool."""
+
+    def wrong(T_tool: Any, l4: float, E: Any) -> np.ndarray:
+        T, E = np.asarray(T_tool, dtype=float), np.asarray(E, dtype=float)
+        F = {"tool": T, "right": T @ E, "left": np.linalg.inv(E) @ T}[which]
+        return porter_wrist_point(F, l4)
+
+    return wrong
+
+
+WRONG_SIDE = "you composed the tool on the wrong side: the tool frame is F05 E, so the hand frame is F05 = T_tool E⁻¹"
 
 
 def _tool_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
@@ -45,21 +64,30 @@ EXERCISE = Exercise(
     (
         Question(
             "q1",
-            "porter_wrist_point",
+            "porter_tool_wrist_point",
             2,
-            "the wrist point p4 from the hand frame",
+            "the wrist point p4 of a hand holding a tool",
             public=(
-                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L), PUBLIC_L[2]),
-                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2), PUBLIC_L2[2]),
+                (ref.porter_fk(PUBLIC_Q, *PUBLIC_L) @ TOOL, PUBLIC_L[2], TOOL),
+                (ref.porter_fk(PUBLIC_Q2, *PUBLIC_L2) @ TOOL, PUBLIC_L2[2], TOOL),
             ),
-            hidden=lambda rng: [(T, l4) for T, _, _, l4 in ref.porter_poses(rng, 4)],
-            reference=porter_wrist_point,
+            hidden=lambda rng: [(T, l4, E) for T, _, _, l4, E in _tool_cases(rng, 4)],
+            reference=ref.porter_tool_wrist_point,
             mistakes=(
+                matches(
+                    "tool_frame",
+                    "this is the wrist point of a hand frame at T_tool; the hand holds the tool, whose frame is "
+                    "F05 E: the hand frame is F05 = T_tool E⁻¹",
+                    _hand_at("tool"),
+                ),
+                matches("order", WRONG_SIDE, _hand_at("right")),
+                matches("order", WRONG_SIDE, _hand_at("left")),
                 matches("wrong_axis", "you moved along y5: the l4 rod lies along the hand's x axis", _point(1, -1.0)),
                 matches("wrong_axis", "you moved along z5: the l4 rod lies along the hand's x axis", _point(2, -1.0)),
                 matches("offset_sign", "p5 is l4 *beyond* p4 along x5: going back means subtracting", _point(0, 1.0)),
             ),
-            hint="Which rod ends at p5, and along which axis of F5 does it lie (lecture 05 §1)?",
+            hint="Find the hand frame F05 first (the tool's frame is F05 E, lecture 01 §5); then: which rod ends at "
+            "p5, and along which axis of F5 does it lie (lecture 05 §1)?",
         ),
         Question(
             "q2",

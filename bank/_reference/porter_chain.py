@@ -209,6 +209,12 @@ def porter_pitch_printed(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
     return transforms.compose_moving(*factors[:3], *factors[4:])
 
 
+def porter_tool_wrist_point(T_tool: Any, l4: float, E: Any) -> np.ndarray:
+    """The wrist point p4 of the hand holding a tool (ex06 q1): F05 = T_tool E⁻¹, then p5 - l4 x5."""
+    T_tool, E = np.asarray(T_tool, dtype=float), np.asarray(E, dtype=float)
+    return porter_wrist_point(T_tool @ transforms.inverse_transform(E), l4)
+
+
 def _rod_fk(l1: float, l2: float, l3: float, l4: float) -> MountedFk:
     """F05 of Porter's chain with a telescopic rod: Porter's with the stroke shifted by the fixed part l2
     (package code, so it travels to the student edition's self-check)."""

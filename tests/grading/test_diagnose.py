@@ -177,7 +177,13 @@ def test_an_offset_along_the_wrong_axis_or_with_the_wrong_sign():
     assert judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 2], T, 100.0).passed
     assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 0], T, 100.0), "wrong_axis", "x5")
     assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] + 100 * T[:3, 2], T, 100.0), "offset_sign", "beyond")
-    assert_named(judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 2], T, 0.3), "wrong_axis", "z5")
+    E = homogeneous(rot("x", 0.3), [0.1, 0.0, 0.05])  # ex06 q1: the hand holds a tool E, the task gives T E
+    TE = T @ E
+    assert judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 0], TE, 0.3, E).passed
+    assert_named(judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 2], TE, 0.3, E), "wrong_axis", "z5")
+    assert_named(judge("ex06_porter_explicit", "q1", TE[:3, 3] - 0.3 * TE[:3, 0], TE, 0.3, E), "tool_frame", "T_tool")
+    TEE = TE @ E
+    assert_named(judge("ex06_porter_explicit", "q1", TEE[:3, 3] - 0.3 * TEE[:3, 0], TE, 0.3, E), "order", "side")
 
 
 # ------------------------------------------------------------------------------------------ Porter (ex05-ex07)
