@@ -1,6 +1,8 @@
 """Exercise 5 (``solutions/ex05_porter_fk.ipynb``): Porter's chain, the direct problem.
 
-The modelling question: Porter writes his chain without Denavit-Hartenberg tables; the student
+Question 1 is a variant of lecture 05's chain (the hand pitches about y4 through p5), so that copying the
+lecture's product does not answer it. The modelling question: Porter writes his chain without Denavit-Hartenberg
+tables; the student
 gives it one (joint axes along y and x included, the slide third), ending in a tool frame whose z
 axis is the hand's turning axis. Graded by the poses the table's chain reaches.
 """
@@ -56,35 +58,48 @@ EXERCISE = Exercise(
     (
         Question(
             "q1",
-            "porter_fk",
+            "porter_pitch_fk",
             3,
-            "F05 of Porter's chain",
-            public=((PUBLIC_Q, *PUBLIC_L), (np.array([0.0, 0.0, 2.0, 0.0, 0.0, 0.0]), 1.0, 0.5, 0.25)),
+            "F05 of Porter's chain with a pitching hand",
+            public=((PUBLIC_Q, *PUBLIC_L), (np.array([0.0, 0.0, 2.0, 0.0, 0.0, 0.5]), 1.0, 0.5, 0.25)),
             hidden=lambda rng: ref.porter_configs(rng, 5),
-            reference=ref.porter_fk,
+            reference=ref.porter_pitch_fk,
             forbidden=keys.KEY_PORTER_FK,
             mistakes=(
+                matches(
+                    "lecture_mechanism",
+                    "this is lecture 05's chain, whose hand turns about x4; this hand pitches: its sixth joint "
+                    "turns about y4 through p5",
+                    ref.porter_fk,
+                ),
+                matches(
+                    "joint_line",
+                    "your hand pitches about the line through p4: the sixth joint's axis passes through p5, at the "
+                    "end of the l4 rod, so its turn comes after the slide along x4 (lecture 05, erratum 3)",
+                    ref.porter_pitch_through_p4,
+                ),
                 matches(
                     "printed_formula",
                     "your product has no slide along x2: it is the product as printed, which "
                     "does not depend on q2 at all (lecture 05 §2)",
-                    ref.porter_printed_fk,
+                    ref.porter_pitch_printed,
                 ),
                 matches(
                     "order",
                     "your nine motions are multiplied in the reverse order: motions about the moving "
                     "(local) axes multiply on the right (lecture 01 §5, lecture 05 §3)",
-                    ref.porter_reversed_fk,
+                    ref.porter_pitch_reversed,
                 ),
                 matches(
                     "degrees",
                     "your result is what the chain gives for angles in degrees: q holds radians",
-                    _degrees(ref.porter_fk),
+                    _degrees(ref.porter_pitch_fk),
                 ),
                 INVERSE,
                 TRANSPOSED,
             ),
-            hint="Check q = 0 by hand (lecture 05 §4) and check that the stroke q2 moves the hand.",
+            hint="List the nine motions in chain order and ask, for the last one, about which axis and through which "
+            "point it turns; at α5 = 0 your hand frame is lecture 05's (check q = 0 by hand, lecture 05 §4).",
         ),
         Question(
             "q2",
@@ -117,8 +132,8 @@ EXERCISE = Exercise(
             answer=porter_table,
             forbidden=keys.KEY_TABLES,
             hint="List the six joint axes with their positive senses at q = 0 (lecture 05 §1): z_i goes along axis i "
-            "whatever letter Porter uses for it; which pairs of axes intersect (lecture 02 §4)? Your q1 is the truth "
-            "to compare your table's poses with.",
+            "whatever letter Porter uses for it; which pairs of axes intersect (lecture 02 §4)? Your q1 at α5 = 0, "
+            "then Rx(α5), is lecture 05's chain: the truth to compare your table's poses with.",
         ),
     ),
     allowed=(

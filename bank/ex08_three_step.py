@@ -1,7 +1,9 @@
 """Exercise 8 (``solutions/ex08_three_step.ipynb``): the three-step procedure, from a bent start.
 
-Lecture 08 works its Exercise 1 from the straight arm in full; here the arm starts bent, with a
-turned wrist frame, and every question is graded on hidden targets and starts. The modelling
+Lecture 08 works its Exercise 1 from the straight arm in full and prints every formula, from any start; so this
+arm is a variant (issue 22: nothing answered by copying a lecture): a palletising arm whose controller counts the
+base angle θ0 from e_y and whose parallelogram makes θ2 the forearm's elevation above the horizontal. It starts
+bent, with a turned wrist frame, and every question is graded on hidden targets and starts. The modelling
 question: the wrist's own joint angles, turns about its moving axes (not the composite rotation
 seen from the base).
 """
@@ -35,7 +37,16 @@ STRAIGHT = (
     "you started from the straight arm {0, 0, 0, I}; this arm starts at {θ̄0, θ̄1, θ̄2, F̄}: each step turns "
     "the frame it is given by the change of the joint angles"
 )
-BRANCH = "these are the angles of the other elbow branch (lecture 08 §3: up means θ2 ≤ 0)"
+BRANCH = "these are the angles of the other elbow branch (elbow up: the elbow above the line from shoulder to wrist)"
+LECTURE = ref.LECTURE_ARM
+
+
+def _lecture(field: str) -> tuple[Any, ...]:
+    """The lecture's reading of the base angle, of the elbow angle, or of both: each one the mistake."""
+    return tuple(
+        matches("lecture_mechanism", LECTURE, ref.three_step_variant(field, base_zero=b, parallel=p))
+        for b, p in ((False, False), (True, False), (False, True))
+    )
 
 
 def _cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
@@ -69,9 +80,10 @@ EXERCISE = Exercise(
             hidden=lambda rng: [(c[0], c[5], c[6]) for c in _cases(rng, 4)],
             reference=ref.step_field("frame_step1"),
             forbidden=keys.KEY_THREE_STEP,
-            mistakes=(*_straight("frame_step1"), ORDER, TRANSPOSED),
-            hint="The base turns from θ̄0 to θ0 and carries the wrist frame F̄ with it (lecture 08 §2, step 1); a "
-            "target behind the robot needs the right quadrant.",
+            mistakes=(*_lecture("frame_step1")[2:], *_straight("frame_step1"), ORDER, TRANSPOSED),
+            hint="The base turns from its start to the direction of w and carries the wrist frame F̄ with it "
+            "(lecture 08 §2, step 1); this arm reads θ0 from e_y, so by how much does it turn? A target behind "
+            "the robot needs the right quadrant.",
         ),
         Question(
             "q2",
@@ -89,10 +101,16 @@ EXERCISE = Exercise(
                     BRANCH,
                     lambda w, l1, l2, elbow: ref.step_field("arm")(w, l1, l2, {"up": "down", "down": "up"}[elbow]),
                 ),
+                matches(
+                    "lecture_mechanism",
+                    "your θ2 is measured from the upper arm, as in lecture 08; this arm's θ2 is the forearm's "
+                    "elevation above the horizontal (its parallelogram)",
+                    ref.three_step_variant("arm", parallel=False),
+                ),
                 degrees_out(),
             ),
-            hint="Two of the four sign combinations of the law of cosines reach w (lecture 08 §3): check yours by "
-            "putting the angles back into eq. (1).",
+            hint="Two of the four sign combinations of the law of cosines reach w (lecture 08 §3); this arm's θ2 is "
+            "the forearm's elevation: check yours by putting the angles back into this arm's eq. (1).",
         ),
         Question(
             "q3",
@@ -104,6 +122,7 @@ EXERCISE = Exercise(
             reference=ref.step_field("frame_step2"),
             forbidden=keys.KEY_THREE_STEP,
             mistakes=(
+                *_lecture("frame_step2"),
                 *_straight("frame_step2"),
                 matches(
                     "branch", BRANCH.replace("angles", "frame"), ref.three_step_variant("frame_step2", other_elbow=True)
@@ -116,8 +135,8 @@ EXERCISE = Exercise(
                 ),
                 TRANSPOSED,
             ),
-            hint="Shoulder and elbow turn about the same horizontal axis a (lecture 08 §3): by how much does the "
-            "forearm turn from this start? Check with the straight start, where lecture 08 §5 gives the numbers.",
+            hint="Shoulder and elbow turn about the same horizontal axis a (lecture 08 §3): by how much does this "
+            "arm's forearm turn from this start, and where does a point, with θ0 read from e_y?",
         ),
         Question(
             "q4",
@@ -136,6 +155,7 @@ EXERCISE = Exercise(
                     ref.moved_wrong_way("K_wrist"),
                 ),
                 TRANSPOSED,
+                *_lecture("K_wrist"),
                 *_straight("K_wrist"),
                 matches(
                     "branch", BRANCH.replace("angles", "rotation"), ref.three_step_variant("K_wrist", other_elbow=True)

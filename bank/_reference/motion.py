@@ -25,6 +25,35 @@ def three_step(w: Any, F: Any, l1: float, l2: float, elbow: str, theta_bar: Any,
     return _quiet(ThreeStepArm(l1, l2).three_step, np.asarray(w, dtype=float), np.asarray(F, dtype=float), elbow, start)
 
 
+#: Exercise 8's arm (issue 22, so that lecture 08's printed formulas do not answer it): its controller counts the
+#: base angle θ0 from e_y (the lecture's θ0 is this one plus π/2), and a parallelogram drives the forearm, so θ2
+#: is the forearm's elevation above the horizontal (the lecture's θ2 is this one minus θ1).
+BASE_ZERO = np.pi / 2
+
+
+def lecture_angles(theta_bar: Any, base_zero: bool = True, parallel: bool = True) -> np.ndarray:
+    """Exercise 8's joint readings (θ0, θ1, θ2) as lecture 08's angles (base from e_x, elbow from the upper arm)."""
+    t0, t1, t2 = (float(t) for t in np.asarray(theta_bar, dtype=float))
+    return np.array([t0 + (BASE_ZERO if base_zero else 0.0), t1, t2 - t1 if parallel else t2])
+
+
+def pallet_three_step(
+    w: Any,
+    F: Any,
+    l1: float,
+    l2: float,
+    elbow: str,
+    theta_bar: Any,
+    F_bar: Any,
+    *,
+    base_zero: bool = True,
+    parallel: bool = True,
+) -> Any:
+    """The procedure for exercise 8's arm, its start given in its own readings (``base_zero``/``parallel``
+    False: the lecture's reading of that joint, the mistake)."""
+    return three_step(w, F, l1, l2, elbow, lecture_angles(theta_bar, base_zero, parallel), F_bar)
+
+
 def three_step_cases(rng: np.random.Generator, n: int, reach: Callable[..., Any]) -> list[tuple[Any, ...]]:
     """Cases (w, F, l1, l2, elbow, θ̄, F̄): reachable w, random target and bent start, either elbow."""
     out = []
@@ -35,8 +64,12 @@ def three_step_cases(rng: np.random.Generator, n: int, reach: Callable[..., Any]
 
 def zyz_expected(w: Any, F: Any, l1: float, l2: float, elbow: str, theta_bar: Any, F_bar: Any) -> dict[str, Any]:
     """The wrist's rotation F2^T F (about its own moving axes) for the rotation judge, with the usual mix-ups."""
-    sol = three_step(w, F, l1, l2, elbow, theta_bar, F_bar)
+    sol = pallet_three_step(w, F, l1, l2, elbow, theta_bar, F_bar)
     F2, F = sol.frame_step2, np.asarray(F, dtype=float)
+    lecture = [
+        pallet_three_step(w, F, l1, l2, elbow, theta_bar, F_bar, base_zero=b, parallel=p).frame_step2
+        for b, p in ((False, False), (True, False), (False, True))
+    ]
     msg = (
         "your angles give F F2ᵀ, the rotation seen from the base (fixed axes); the wrist turns about its own "
         "moving axes: F = F2 Rz(φ) Ry(ϑ) Rz(ψ)"
@@ -50,9 +83,15 @@ def zyz_expected(w: Any, F: Any, l1: float, l2: float, elbow: str, theta_bar: An
                 "your angles give the transpose of the rotation asked for (Fᵀ F2 instead of F2ᵀ F)",
                 F.T @ F2,
             ),
+            *(("lecture_mechanism", LECTURE_ARM, G.T @ F) for G in lecture),
         ],
     }
 
+
+LECTURE_ARM = (
+    "this is what lecture 08's arm gives from this start; this arm counts θ0 from e_y and its θ2 is the forearm's "
+    "elevation above the horizontal (a parallelogram), so read the start's angles as this arm's before you turn"
+)
 
 #: Rz(φ) Ry(ϑ) Rz(ψ): the package's own (the judge of a student's angles needs it, so the edition has it)
 rotation_from_zyz = euler.rotation_from_zyz
@@ -352,7 +391,13 @@ def _start_nearest_jumps(arm: Puma560, path06: np.ndarray, q0: np.ndarray, slack
 
 
 def three_step_variant(
-    field: str, *, zero_theta: bool = False, identity_frame: bool = False, other_elbow: bool = False
+    field: str,
+    *,
+    zero_theta: bool = False,
+    identity_frame: bool = False,
+    other_elbow: bool = False,
+    base_zero: bool = True,
+    parallel: bool = True,
 ) -> Callable[..., np.ndarray]:
     """``field`` of the procedure under a mistake: the start's angles taken as 0, its frame as I, the other elbow.
 
@@ -365,7 +410,8 @@ def three_step_variant(
         tb = np.zeros(3) if zero_theta else tb
         Fb = np.eye(3) if identity_frame else Fb
         elbow = {"up": "down", "down": "up"}[elbow] if other_elbow else elbow
-        return np.asarray(getattr(three_step(w, F, l1, l2, elbow, tb, Fb), field), dtype=float)
+        sol = pallet_three_step(w, F, l1, l2, elbow, tb, Fb, base_zero=base_zero, parallel=parallel)
+        return _field(sol, field, parallel)
 
     return wrong
 
@@ -382,12 +428,17 @@ def _three_step_args(args: tuple[Any, ...]) -> tuple[Any, ...]:
     return tuple(args)
 
 
+def _field(sol: Any, field: str, parallel: bool = True) -> np.ndarray:
+    if field == "arm":  # exercise 8's θ2 is the forearm's elevation (parallel), the lecture's from the upper arm
+        return np.asarray([sol.theta1, sol.theta1 + sol.theta2 if parallel else sol.theta2], dtype=float)
+    return np.asarray(getattr(sol, field), dtype=float)
+
+
 def step_field(field: str) -> Callable[..., np.ndarray]:
-    """The reference of a three-step question asking for ``field`` (arm: [θ1, θ2])."""
+    """The reference of a three-step question asking for ``field`` (arm: [θ1, θ2]), exercise 8's arm."""
 
     def ref(*args: Any) -> np.ndarray:
-        sol = three_step(*_three_step_args(args))
-        return np.asarray([sol.theta1, sol.theta2] if field == "arm" else getattr(sol, field), dtype=float)
+        return _field(pallet_three_step(*_three_step_args(args)), field)
 
     return ref
 
@@ -396,7 +447,7 @@ def moved_wrong_way(field: str) -> Callable[..., np.ndarray]:
     """The step's rotation applied on the wrong side (about the moving axes): F̄ K(e_z, δ0), F1 K(a, δ) or F2ᵀ F."""
 
     def wrong(*args: Any) -> np.ndarray:
-        sol = three_step(*_three_step_args(args))
+        sol = pallet_three_step(*_three_step_args(args))
         if field == "frame_step1":
             return np.asarray(sol.start.frame) @ sol.K_base
         if field == "frame_step2":

@@ -174,3 +174,126 @@ def porter_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ..
 def porter_nearest_expected(T: Any, l1: float, l3: float, l4: float, q_prev: Any) -> dict[str, Any]:
     """What the nearest judge needs (the stroke, column 2, is a length: never wrapped)."""
     return {**_set_expected(Porter(l1, l3, l4), T), "q_ref": np.asarray(q_prev, dtype=float)}
+
+
+# ---------------------------------------------------------------- variants (issue 22: nothing answered by a lecture)
+def _pitch_factors(q: Any, l1: float, l3: float, l4: float, line: str = "p5") -> list[np.ndarray]:
+    """The motions of Porter's chain whose hand *pitches*: the sixth joint turns about y4 through p5.
+
+    ``line="p4"`` turns it about the parallel line through p4 instead (Ry before Tx(l4): the mistake).
+    """
+    a1, a2, q2, a3, a4, a5 = (float(v) for v in np.asarray(q, dtype=float))
+    T = transforms
+    wrist = [T.transx(l4), T.troty(a5)] if line == "p5" else [T.troty(a5), T.transx(l4)]
+    return [T.trotz(a1), tz(l1), T.troty(a2), T.transx(q2), T.troty(a3), tz(-l3), T.trotz(a4), *wrist]
+
+
+def porter_pitch_fk(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """F05 of the pitching-hand variant (ex05 q1): Rz Tz Ry Tx(q2) Ry Tz(-l3) Rz Tx(l4) Ry(α5)."""
+    return transforms.compose_moving(*_pitch_factors(q, l1, l3, l4))
+
+
+def porter_pitch_through_p4(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """The mistake: the pitch about the line through p4 (Ry(α5) before Tx(l4))."""
+    return transforms.compose_moving(*_pitch_factors(q, l1, l3, l4, line="p4"))
+
+
+def porter_pitch_reversed(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """The mistake: the variant's nine motions multiplied in reverse order."""
+    return transforms.compose_fixed(*_pitch_factors(q, l1, l3, l4))
+
+
+def porter_pitch_printed(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
+    """The mistake: the variant without the slide Tx(q2) (the product as printed, lecture 05 erratum 1)."""
+    factors = _pitch_factors(q, l1, l3, l4)
+    return transforms.compose_moving(*factors[:3], *factors[4:])
+
+
+def porter_tool_wrist_point(T_tool: Any, l4: float, E: Any) -> np.ndarray:
+    """The wrist point p4 of the hand holding a tool (ex06 q1): F05 = T_tool E⁻¹, then p5 - l4 x5."""
+    T_tool, E = np.asarray(T_tool, dtype=float), np.asarray(E, dtype=float)
+    return porter_wrist_point(T_tool @ transforms.inverse_transform(E), l4)
+
+
+def _rod_fk(l1: float, l2: float, l3: float, l4: float) -> MountedFk:
+    """F05 of Porter's chain with a telescopic rod: Porter's with the stroke shifted by the fixed part l2
+    (package code, so it travels to the student edition's self-check)."""
+    return MountedFk(Porter(l1, l3, l4).fk, offset=[0.0, 0.0, float(l2), 0.0, 0.0, 0.0])
+
+
+def porter_rod_fk(q: Any, l1: float, l2: float, l3: float, l4: float) -> np.ndarray:
+    """F05 of Porter's chain with a telescopic rod (ex06 q2): p3 = p2 + (l2 + q2) x2, the stroke q2 >= 0."""
+    return np.asarray(_rod_fk(l1, l2, l3, l4)(q))
+
+
+def porter_rod_poses(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (T, l1, l2, l3, l4) of the telescopic-rod chain: four of Porter's configurations reach T, and l2
+    lies between the two rod lengths |p3 - p2| they need, so exactly two configurations have a stroke q2 >= 0
+    (the other two would need the rod shorter than its fixed part); the first case sits near c4 = 0 and the
+    second at c1 = 0 (where the printed formulas divide by zero), the third 1e-3 above the stroke's end."""
+    out: list[tuple[Any, ...]] = []
+    k = 0
+    while len(out) < n:
+        q, l1, l3, l4 = porter_configs(rng, 1)[0]
+        if k == 0:
+            q[4] = np.pi / 2 - 1e-4
+        elif k == 1:
+            q[0] = np.pi / 2
+        T = Porter(l1, l3, l4).fk(q)
+        rho = np.sort(np.asarray(_quiet(Porter(l1, l3, l4).ik, T).q, dtype=float)[:, 2])
+        if len(rho) != 4 or rho[2] - rho[1] < 0.3:
+            continue
+        l2 = float(rho[2] - 1e-3) if k == 2 else float(rng.uniform(rho[1] + 0.1, rho[2] - 0.1))
+        out.append((T, l1, l2, l3, l4))
+        k += 1
+    return out
+
+
+def porter_rod_ik_expected(T: Any, l1: float, l2: float, l3: float, l4: float) -> dict[str, Any]:
+    """Every configuration (q2 >= 0) of the telescopic-rod chain reaching T, for the set judge; rows that need
+    the rod shorter than l2 have q2 < 0 and are told so (not the other arctan value of (14))."""
+    robot = Porter(l1, l3, l4)
+    sol = _quiet(robot.ik, T)
+    rows = np.asarray(sol.q, dtype=float).copy()
+    rows[:, 2] -= l2
+    keep = rows[:, 2] >= -1e-12
+    rows[:, 2] = np.maximum(rows[:, 2], 0.0)
+    why = (
+        "row {i} has q2 = {v:.4g} < 0: that configuration needs the rod shorter than its fixed part l2, so the "
+        "chain cannot take it; the stroke q2 = |p3 - p2| - l2 must be >= 0 (drop the row)"
+    )
+    return {
+        "T": np.asarray(T, dtype=float),
+        "solutions": rows[keep],
+        "labels": tuple(label for label, k in zip(sol.labels, keep, strict=True) if k),
+        "fk": _rod_fk(l1, l2, l3, l4),
+        "revolute": robot.revolute,
+        "scale": 1.0 + float(np.max(np.abs(np.asarray(T, dtype=float)[:3, 3]))),
+        "stroke": 2,
+        "stroke_reason": why,
+    }
+
+
+def porter_limited_poses(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (T, l1, l3, l4, q2_max) of Porter's chain with a stroke limit: the limit between the two strokes
+    (two configurations left), except every third case, whose limit is below both (the pose is out of reach)."""
+    out: list[tuple[Any, ...]] = []
+    while len(out) < n:
+        T, l1, l3, l4 = porter_poses(rng, 1)[0]
+        q2 = np.sort(np.asarray(_quiet(Porter(l1, l3, l4).ik, T).q, dtype=float)[:, 2])
+        if len(q2) != 4 or q2[2] - q2[1] < 0.3 or q2[0] < 0.3:
+            continue
+        if len(out) % 3 == 2:
+            limit = float(rng.uniform(0.3 * q2[0], 0.9 * q2[0]))
+        else:
+            limit = float(rng.uniform(q2[1] + 0.1, q2[2] - 0.1))
+        out.append((T, l1, l3, l4, limit))
+    return out
+
+
+def porter_limited_expected(T: Any, l1: float, l3: float, l4: float, q2_max: float) -> dict[str, Any]:
+    """Every configuration of Porter's chain reaching T with 0 <= q2 <= q2_max (none: out of reach)."""
+    out = _set_expected(Porter(l1, l3, l4, q2_max=q2_max), T, fk=Porter(l1, l3, l4).fk, stroke=2)
+    out["solutions"] = np.asarray(out["solutions"], dtype=float).reshape(-1, 6)
+    out["q2_max"] = float(q2_max)
+    return out

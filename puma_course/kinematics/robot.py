@@ -176,7 +176,8 @@ class MountedFk:
 
     ``fk`` is any batch-first forward kinematics (``robot.fk``). ``pad`` zero joints are appended to
     each q before calling it (the arm's first joints only); ``position_only`` keeps the position of
-    the result with an identity rotation (where a point, not a frame, is meant). It pickles, so a
+    the result with an identity rotation (where a point, not a frame, is meant); ``offset`` shifts the joint
+    values first. It pickles, so a
     pose a student's configuration must reach can travel as data.
 
     >>> from puma_course.kinematics import Puma560
@@ -186,6 +187,13 @@ class MountedFk:
     True
     >>> MountedFk(arm.fk, pad=3, position_only=True)(np.zeros((2, 3))).shape
     (2, 4, 4)
+
+    ``offset`` is added to every q first (a joint whose zero lies elsewhere):
+
+    >>> from puma_course.kinematics import Porter
+    >>> rod = MountedFk(Porter().fk, offset=[0, 0, 0.4, 0, 0, 0])  # a rod 0.4 long at stroke 0
+    >>> bool(np.allclose(rod([0, 0, 0.1, 0, 0, 0]), Porter().fk([0, 0, 0.5, 0, 0, 0])))
+    True
     """
 
     def __init__(
@@ -195,8 +203,16 @@ class MountedFk:
         tool: Any = None,
         pad: int = 0,
         position_only: bool = False,
+        offset: Any = None,
     ) -> None:
         self.fk = fk
+        #: added to every q before ``fk``: joints whose zero lies elsewhere (a telescopic rod's fixed part)
+        try:
+            self.offset = None if offset is None else np.asarray(offset, dtype=float)
+        except (TypeError, ValueError):
+            self.offset = np.array([np.nan])
+        if self.offset is not None and (self.offset.ndim != 1 or not np.all(np.isfinite(self.offset))):
+            raise ValueError(f"offset: expected a finite vector of joint values, got {offset!r}")
         self.base = np.eye(4) if base is None else as_transform(base, "base")
         self.tool = np.eye(4) if tool is None else as_transform(tool, "tool")
         if not isinstance(pad, int) or pad < 0:
@@ -205,6 +221,8 @@ class MountedFk:
 
     def __call__(self, q: Any) -> np.ndarray:
         Q = np.asarray(q, dtype=float)
+        if self.offset is not None:
+            Q = Q + self.offset
         if self.pad:
             Q2 = np.atleast_2d(Q)
             Q2 = np.concatenate([Q2, np.zeros((len(Q2), self.pad))], axis=1)

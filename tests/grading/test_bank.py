@@ -40,8 +40,10 @@ def test_every_case_is_judged_right_for_a_right_answer_and_wrong_for_a_wrong_one
             right = np.asarray(q.right_answer(*args), dtype=float)
             assert np.all(np.isfinite(right))
             assert q.judge(right, expected, tuple(args)).passed, (name, qid, args)
-            # ... and the judge can fail: a clearly wrong answer (every entry off by 0.1) is refused
-            assert not q.judge(right + 0.1, expected, tuple(args)).passed, (name, qid)
+            # ... and the judge can fail: a clearly wrong answer (every entry off by 0.1) is refused; where the
+            # right answer is no configuration at all (an unreachable pose), one row of zeros is clearly wrong
+            wrong = right + 0.1 if right.size else np.zeros((1, *right.shape[1:]))
+            assert not q.judge(wrong, expected, tuple(args)).passed, (name, qid)
             json.dumps([_jsonable(a) for a in args])  # every input can travel to the student's process
 
 
@@ -75,19 +77,22 @@ def test_reference_answers_agree_with_hand_worked_values():
     R = ex1.question("q1").reference("z", np.pi / 2)
     assert np.allclose(R @ [1, 0, 0], [0, 1, 0])
     assert np.allclose(ex1.question("q3").reference(R), [0, 0, 1, np.pi / 2])
-    # the three-step exercise: w = (1/2, 1/2, 2) lies at 45 degrees; l3^2 = 4.5 (lecture 08 §4)
+    # the three-step exercise: w = (1/2, 1/2, 2) lies at 45 degrees; l3^2 = 4.5 (lecture 08 §4). Exercise 8's arm
+    # reads its base angle from e_y: from the reading 0 (the arm along e_y) it turns by 45° - 90° = -45°
     w = np.array([0.5, 0.5, 2.0])
     F1 = ex8.question("q1").reference(w, np.zeros(3), np.eye(3))
-    assert np.allclose(F1[:, 0], [np.sqrt(0.5), np.sqrt(0.5), 0.0])
+    assert np.allclose(F1[:, 0], [np.sqrt(0.5), -np.sqrt(0.5), 0.0])
     theta1, theta2 = ex8.question("q2").reference(w, 1.5, 1.0, "up")
     l3 = np.sqrt(4.5)
     theta = np.arccos((l3**2 + 1.5**2 - 1.0) / (2 * 1.5 * l3))
     assert np.isclose(theta1, np.arctan2(2.0, np.hypot(0.5, 0.5)) + theta)
-    assert np.isclose(np.cos(np.pi + theta2), (1.5**2 + 1.0 - l3**2) / (2 * 1.5)) and theta2 < 0
-    # from a bent start the base turns by theta0 - theta0_bar and carries the start frame along
+    # its θ2 is the forearm's elevation (a parallelogram): the bend at the elbow is θ2 - θ1
+    assert np.isclose(np.cos(np.pi + (theta2 - theta1)), (1.5**2 + 1.0 - l3**2) / (2 * 1.5)) and theta2 < theta1
+    assert np.isclose(np.degrees(theta2), 30.5277, atol=1e-3)  # lecture 08 §5: the forearm 30.53° above horizontal
+    # from a bent start the base turns by (45° - 90°) - theta0_bar and carries the start frame along
     F_bar = transforms.rotx(0.4)
     F1 = ex8.question("q1").reference(w, np.array([0.3, 0.0, 0.0]), F_bar)
-    assert np.allclose(F1, transforms.rotz(np.pi / 4 - 0.3) @ F_bar)
+    assert np.allclose(F1, transforms.rotz(np.pi / 4 - np.pi / 2 - 0.3) @ F_bar)
 
 
 def test_link_parameters_invert_the_package_mdh():

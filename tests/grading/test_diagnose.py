@@ -44,6 +44,12 @@ def rot(axis, t):
     }[axis]
 
 
+def rot_about(a, t):
+    """Rodrigues' formula written out: the turn by t about the unit axis a."""
+    k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    return np.eye(3) + np.sin(t) * k + (1 - np.cos(t)) * k @ k
+
+
 def homogeneous(R, p):
     T = np.eye(4)
     T[:3, :3], T[:3, 3] = R, p
@@ -171,11 +177,18 @@ def test_an_offset_along_the_wrong_axis_or_with_the_wrong_sign():
     assert judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 2], T, 100.0).passed
     assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 0], T, 100.0), "wrong_axis", "x5")
     assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] + 100 * T[:3, 2], T, 100.0), "offset_sign", "beyond")
-    assert_named(judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 2], T, 0.3), "wrong_axis", "z5")
+    E = homogeneous(rot("x", 0.3), [0.1, 0.0, 0.05])  # ex06 q1: the hand holds a tool E, the task gives T E
+    TE = T @ E
+    assert judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 0], TE, 0.3, E).passed
+    assert_named(judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 2], TE, 0.3, E), "wrong_axis", "z5")
+    assert_named(judge("ex06_porter_explicit", "q1", TE[:3, 3] - 0.3 * TE[:3, 0], TE, 0.3, E), "tool_frame", "T_tool")
+    TEE = TE @ E
+    assert_named(judge("ex06_porter_explicit", "q1", TEE[:3, 3] - 0.3 * TEE[:3, 0], TE, 0.3, E), "order", "side")
 
 
 # ------------------------------------------------------------------------------------------ Porter (ex05-ex07)
-def porter_factors(q, l1, l3, l4, printed=False):
+def porter_factors(q, l1, l3, l4, printed=False, hand="y", through="p5"):
+    """The nine motions of Porter's chain whose sixth joint turns about ``hand`` (ex05 q1: y4 through p5)."""
     a1, a2, q2, a3, a4, a5 = q
 
     def R(axis, t):
@@ -185,7 +198,8 @@ def porter_factors(q, l1, l3, l4, printed=False):
         return homogeneous(np.eye(3), {"x": [d, 0, 0], "z": [0, 0, d]}[axis])
 
     slide = [] if printed else [tr("x", q2)]
-    return [R("z", a1), tr("z", l1), R("y", a2), *slide, R("y", a3), tr("z", -l3), R("z", a4), tr("x", l4), R("x", a5)]
+    wrist = [tr("x", l4), R(hand, a5)] if through == "p5" else [R(hand, a5), tr("x", l4)]
+    return [R("z", a1), tr("z", l1), R("y", a2), *slide, R("y", a3), tr("z", -l3), R("z", a4), *wrist]
 
 
 def test_porters_product_printed_without_the_slide_and_in_the_reverse_order():
@@ -196,6 +210,14 @@ def test_porters_product_printed_without_the_slide_and_in_the_reverse_order():
     printed = np.linalg.multi_dot(porter_factors(q, *L, printed=True))
     assert_named(judge("ex05_porter_fk", "q1", printed, q, *L), "printed_formula", "as printed")
     assert_named(judge("ex05_porter_fk", "q1", np.linalg.inv(np.linalg.multi_dot(F)), q, *L), "inverse")
+
+
+def test_the_pitching_hand_is_not_lecture_05s_hand_and_turns_about_p5():
+    q, L = np.array([0.3, 0.7, 1.3, -0.4, 0.9, 0.6]), (1.0, 0.5, 0.3)
+    lecture = np.linalg.multi_dot(porter_factors(q, *L, hand="x"))  # lecture 05's product, copied
+    assert_named(judge("ex05_porter_fk", "q1", lecture, q, *L), "lecture_mechanism", "y4 through p5")
+    about_p4 = np.linalg.multi_dot(porter_factors(q, *L, through="p4"))
+    assert_named(judge("ex05_porter_fk", "q1", about_p4, q, *L), "joint_line", "through p4")
 
 
 def test_the_printed_normal_and_the_printed_rod_length():
@@ -224,8 +246,8 @@ def test_the_unsigned_angle():
 
 
 def test_ik_sets_any_order_but_no_duplicate_no_missing_branch_no_negative_stroke():
-    name, L = "ex06_porter_explicit", (1.0, 0.5, 0.3)
-    T = EXERCISES[name].question("q2").public[0][0]
+    name = "ex06_porter_explicit"
+    T, *L = EXERCISES[name].question("q2").public[1]  # (T, l1, l2, l3, l4): a short fixed part, four rows
     S = right(name, "q2", T, *L)
     assert len(S) == 4
     assert (
@@ -237,7 +259,7 @@ def test_ik_sets_any_order_but_no_duplicate_no_missing_branch_no_negative_stroke
     assert_named(missing, "missing_solutions", "misses 2 of the 4")
     assert "back/" in missing.reason or "front/" in missing.reason  # the branches are named
     a1, a2, q2, a3, a4, a5 = S[0]
-    other = np.array([a1, a2 + np.pi, -q2, a3 - np.pi, a4, a5])  # reaches T with a negative stroke
+    other = np.array([a1, a2 + np.pi, -q2 - 2 * L[1], a3 - np.pi, a4, a5])  # the rod's length negated: q2 < 0
     assert_named(judge(name, "q2", np.vstack([S[1:], other]), T, *L), "negative_stroke", "q2 =")
     in_degrees = S.copy()
     in_degrees[:, [0, 1, 3, 4, 5]] = np.degrees(S[:, [0, 1, 3, 4, 5]])
@@ -247,13 +269,36 @@ def test_ik_sets_any_order_but_no_duplicate_no_missing_branch_no_negative_stroke
     assert_named(judge(name, "q2", bad, T, *L), "not_a_solution", "row 2")
 
 
+def test_the_telescopic_rod_keeps_only_the_rows_it_can_take():
+    name = "ex06_porter_explicit"
+    T, l1, l2, l3, l4 = EXERCISES[name].question("q2").public[0]  # l2 between the two rod lengths: two rows
+    S = right(name, "q2", T, l1, l2, l3, l4)
+    assert len(S) == 2 and judge(name, "q2", S, T, l1, l2, l3, l4).passed
+    rows = right(name, "q2", T, l1, 0.0, l3, l4)  # Porter's four, the rod's whole length as the stroke
+    kept = rows - [0, 0, l2, 0, 0, 0]  # the fixed part subtracted, but every row kept
+    assert_named(judge(name, "q2", kept, T, l1, l2, l3, l4), "negative_stroke", "shorter than its fixed part")
+    assert_named(judge(name, "q2", rows, T, l1, l2, l3, l4), "not_a_solution")  # lecture 06 copied: no l2
+
+
+def test_a_stroke_limit_drops_rows_and_may_leave_none():
+    name = "ex06_porter_explicit"
+    q = EXERCISES[name].question("q4")
+    (T, *L, within), (_, *_, short) = q.public
+    S = right(name, "q4", T, *L, within)
+    assert len(S) == 2 and judge(name, "q4", S, T, *L, within).passed
+    assert judge(name, "q4", np.empty((0, 6)), T, *L, short).passed and judge(name, "q4", [], T, *L, short).passed
+    every = right(name, "q2", T, L[0], 0.0, *L[1:])
+    assert_named(judge(name, "q4", every, T, *L, within), "stroke_limit", "beyond the stroke limit")
+    assert_named(judge(name, "q4", every, T, *L, short), "stroke_limit", "out of reach")
+
+
 def test_a_tool_composed_on_the_wrong_side():
     name, L = "ex06_porter_explicit", (1.0, 0.5, 0.3)
     T_tool, *_, E = EXERCISES[name].question("q3").public[0]
     assert judge(name, "q3", right(name, "q3", T_tool, *L, E), T_tool, *L, E).passed
-    wrong = right(name, "q2", T_tool @ E, *L)  # F05 = T_tool E instead of T_tool E^-1
+    wrong = right(name, "q2", T_tool @ E, L[0], 0.0, *L[1:])  # F05 = T_tool E instead of T_tool E^-1
     assert_named(judge(name, "q3", wrong, T_tool, *L, E), "order", "wrong side")
-    assert_named(judge(name, "q3", right(name, "q2", T_tool, *L), T_tool, *L, E), "tool_frame", "F5")
+    assert_named(judge(name, "q3", right(name, "q2", T_tool, L[0], 0.0, *L[1:]), T_tool, *L, E), "tool_frame", "F5")
 
 
 def test_the_parallel_planes_representative():
@@ -261,7 +306,7 @@ def test_the_parallel_planes_representative():
     T = EXERCISES[name].question("q4").public[0][0]
     good = right(name, "q4", T, *L)
     assert judge(name, "q4", good, T, *L).passed
-    back = [q for q in right("ex06_porter_explicit", "q2", T, *L) if np.cos(q[0] - good[0]) < 0]
+    back = [q for q in right("ex06_porter_explicit", "q2", T, L[0], 0.0, *L[1:]) if np.cos(q[0] - good[0]) < 0]
     assert_named(judge(name, "q4", back[0], T, *L), "back_plane", "from the back")
     # the same construction with the elbow on the far side of the circle: a longer stroke
     x5, z5 = T[:3, 0], T[:3, 2]
@@ -319,14 +364,23 @@ def test_a_table_right_only_at_q_zero_and_a_joint_turning_the_wrong_way():
 def test_the_straight_start_the_other_elbow_and_the_wrong_side():
     name = "ex08_three_step"
     w, F, l1, l2, elbow, tb, Fb = EXERCISES[name].question("q4").public[0]
-    t0 = np.arctan2(w[1], w[0])
+    t0 = np.arctan2(w[1], w[0]) - np.pi / 2  # exercise 8's arm reads its base angle from e_y
     K = rot("z", t0 - tb[0])
     assert judge(name, "q1", K @ Fb, w, tb, Fb).passed
     assert_named(judge(name, "q1", rot("z", t0) @ Fb, w, tb, Fb), "straight_start", "straight arm")
+    assert_named(judge(name, "q1", rot("z", t0 + np.pi / 2 - tb[0]) @ Fb, w, tb, Fb), "lecture_mechanism", "e_y")
     assert_named(judge(name, "q1", K, w, tb, Fb), "straight_start")
     assert_named(judge(name, "q1", Fb @ K, w, tb, Fb), "order", "right")
     other = right(name, "q2", w, l1, l2, "down")
     assert_named(judge(name, "q2", other, w, l1, l2, "up"), "branch", "other elbow")
+    t1, t2 = right(name, "q2", w, l1, l2, "up")
+    assert_named(judge(name, "q2", [t1, t2 - t1], w, l1, l2, "up"), "lecture_mechanism", "upper arm")
+    g0, (t1, t2) = np.arctan2(w[1], w[0]), right(name, "q2", w, l1, l2, elbow)
+    a = np.array([np.sin(g0), -np.cos(g0), 0.0])  # the arm plane's axis (its direction g0 from e_x)
+    # lecture 08 copied: the base from e_x, the forearm turned by (θ1 + θ2) - (θ̄1 + θ̄2) with θ2 from the upper arm
+    lecture = rot_about(a, t2 - (tb[1] + tb[2])) @ rot("z", g0 - tb[0]) @ Fb
+    assert_named(judge(name, "q3", lecture, w, l1, l2, elbow, tb, Fb), "lecture_mechanism", "parallelogram")
+    assert judge(name, "q3", rot_about(a, t2 - tb[2]) @ K @ Fb, w, l1, l2, elbow, tb, Fb).passed
     F2 = right(name, "q3", w, l1, l2, elbow, tb, Fb)
     assert judge(name, "q4", F @ F2.T, w, F, l1, l2, elbow, tb, Fb).passed
     assert_named(judge(name, "q4", F2.T @ F, w, F, l1, l2, elbow, tb, Fb), "order", "moving")

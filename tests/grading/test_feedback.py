@@ -104,6 +104,8 @@ def recognised(q: Question) -> set[str]:
             keys |= {entry[0] for entry in expected.get(field, ())}
         if expected.get("stroke") is not None:
             keys.add("negative_stroke")
+        if expected.get("q2_max") is not None:
+            keys.add("stroke_limit")
         if expected.get("ordered"):
             keys.add("solution_order")
     return keys

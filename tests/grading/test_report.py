@@ -54,7 +54,7 @@ def test_the_text_line_names_question_function_points_verdict_reasons_and_hint()
         "q1 elementary_rotation: 2 / 2 points - passed (5/5 cases pass)"
     )
     bonus = EXERCISES["ex06_porter_explicit"].question("q4")
-    assert format_question(bonus, 3, ["1/1 cases pass"]).startswith("q4 porter_ik_nearest (bonus): 3 / 3 points")
+    assert format_question(bonus, 3, ["1/1 cases pass"]).startswith("q4 porter_ik_limited (bonus): 3 / 3 points")
 
 
 def test_the_feedback_table_rows_are_the_same_formatter_in_markdown():

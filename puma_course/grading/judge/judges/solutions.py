@@ -19,6 +19,8 @@ def _rows(got: Any, n: int) -> np.ndarray | str:
     arr = _floats(got)
     if arr is None:
         return "did not return numbers"
+    if arr.size == 0:  # an empty list: no configuration (an unreachable pose has none)
+        return arr.reshape(0, n)
     if arr.ndim == 1 and arr.size == n:
         arr = arr[None]
     if arr.ndim != 2 or arr.shape[1] != n:
@@ -65,12 +67,15 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
         arr = _rows(got, n)
         if isinstance(arr, str):
             return Verdict(arr)
+        q2_max = expected.get("q2_max")  # a stroke limit (column "stroke"): rows beyond it are out of reach
+        if k == 0 and len(arr) == 0:
+            return Verdict(None)
         if len(arr) == 0:
             message = f"returned no configuration; the pose has {k}"
             # a mistaken pose out of reach: its (empty) set of solutions is the mistaken answer
             named = [(key, why) for key, why, rows in expected.get("wrong_sets", ()) if len(rows) == 0]
             return Verdict(message, "missing_solutions", (*named, ("missing_solutions", message)), message)
-        if len(arr) > 4 * k:  # far more rows than solutions: said before any other work (a bounded cost)
+        if len(arr) > 4 * max(k, 1):  # far more rows than solutions: said before any other work (a bounded cost)
             return Verdict(
                 f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
                 "duplicates",
@@ -81,10 +86,21 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
         stroke = expected.get("stroke")
         if stroke is not None and np.any(arr[:, stroke] < -1e-9):
             i = int(np.flatnonzero(arr[:, stroke] < -1e-9)[0])
+            why = expected.get("stroke_reason")  # the question's own reason (a rod with a fixed part)
             return Verdict(
-                f"row {i + 1} has q2 = {arr[i, stroke]:.4g} < 0: a stroke cannot be negative; that value "
+                why.format(i=i + 1, v=arr[i, stroke])
+                if why
+                else f"row {i + 1} has q2 = {arr[i, stroke]:.4g} < 0: a stroke cannot be negative; that value "
                 "belongs to the other arctan solution of eq. (14) (lecture 06 (d))",
                 "negative_stroke",
+            )
+        if stroke is not None and q2_max is not None and np.any(arr[:, stroke] > q2_max + 1e-9):
+            i = int(np.flatnonzero(arr[:, stroke] > q2_max + 1e-9)[0])
+            left = f"{k} configurations are left" if k else "no configuration is left: the pose is out of reach"
+            return Verdict(
+                f"row {i + 1} reaches the pose with q2 = {arr[i, stroke]:.4g}, beyond the stroke limit "
+                f"q2_max = {q2_max:.4g} (lecture 06 §5): drop it; {left}",
+                "stroke_limit",
             )
         D = _dist(arr[:, None, :], arr[None, :, :], rev)
         twice = np.argwhere(np.triu(D < match_tol, k=1))  # the same tolerance as a match: one solution, once
