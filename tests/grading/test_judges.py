@@ -140,11 +140,17 @@ def test_ik_answers_are_sets_any_order_any_whole_turn():
 
 
 def test_the_nearest_accepts_any_whole_turn_and_a_single_row():
-    name = "ex06_porter_explicit"  # (ex09 q3, the PUMA's nearest solution, was dropped: issue 22)
-    q = EXERCISES[name].question("q4")
-    args = q.public[0]
-    best = np.asarray(q.right_answer(*args))
-    expected = q.reference(*args)
-    turn = 2 * np.pi * np.asarray(expected["revolute"], dtype=float)  # whole turns on the angles, not the stroke
-    assert q.judge(best + turn, expected, args).passed and q.judge(best[None], expected, args).passed
-    assert "one configuration" in q.judge(np.vstack([best, best]), expected, args).reason
+    # ex09 q3 and ex06 q4 (the nearest solution) were replaced (issue 22): the judge on ex09 q3's public case
+    import puma_course_bank._reference.motion as motion
+    from puma_course.grading.judge.judges import nearest_judge
+
+    L = (0.4318, 0.0203, 0.15005, 0.4318)
+    T = motion.puma_fk(np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0]), *L)
+    q_ref = np.array([3.1, 1.0, 2.9, -3.1, 2.4, 0.9])
+    args, judge = (T, q_ref, *L), nearest_judge()
+    expected = motion.puma_nearest_expected(*args)
+    S = np.asarray(expected["solutions"])
+    d = np.angle(np.exp(1j * (S - q_ref)))
+    best = S[np.argmin(np.sum(d * d, 1))]
+    assert judge(best + 2 * np.pi, expected, args).passed and judge(best[None], expected, args).passed
+    assert "one configuration" in judge(np.vstack([best, best]), expected, args).reason

@@ -19,13 +19,14 @@ def _result(status="ok"):
         EX.name,
         status,
         EX.max_score,
-        scores={"q1": 2.0, "q2": 1.0, "q3": 0.0, "q4": 0.0, "q5": 0.0},
+        scores={"q1": 2.0, "q2": 1.0, "q3": 0.0, "q4": 0.0, "q5": 0.0, "q6": 0.0},
         question_notes={
             "q1": ["5/5 cases pass"],
             "q2": ["2/6 cases pass", "hidden case 4: values differ from the reference by up to 0.5"],
             "q3": ["0/7 cases pass", "public case 1: not attempted yet (NotImplementedError)"],
             "q4": ["0/5 cases pass", "public case 1: returned a | pipe"],
             "q5": ["0/9 cases pass", "public case 1: not attempted yet (NotImplementedError)"],
+            "q6": ["0/6 cases pass", "public case 1: not attempted yet (NotImplementedError)"],
         },
     )
 
@@ -64,15 +65,15 @@ def test_the_feedback_table_rows_are_the_same_formatter_in_markdown():
         assert row in text
     assert "| q3 `axis_angle_from_matrix` | 0 / 3 | not attempted yet |" in text
     assert r"returned a \| pipe" in text  # a '|' in a reason does not break the table
-    assert "Total: **3 / 13** points." in text
+    assert "Total: **3 / 15** points." in text
     assert "seed" not in text and "7" not in text.split("Total")[1].split("##")[0]  # the seed is never shown
-    assert text.count("\n- q") == 4  # hints for q2, q3, q4, q5, not for q1
+    assert text.count("\n- q") == 5  # hints for q2, q3, q4, q5, q6, not for q1
 
 
 def test_the_cli_report_is_the_same_formatter_indented():
     report = format_check_report(_result(), EX)
     lines = report.splitlines()
-    assert lines[0] == "ex01_rotations: 3 / 13 on the public cases (status ok)"
+    assert lines[0] == "ex01_rotations: 3 / 15 on the public cases (status ok)"
     for q in EX.questions:
         for line in format_question(q, _result().scores[q.qid], _result().question_notes[q.qid]).splitlines():
             assert f"  {line}" in lines
@@ -103,6 +104,7 @@ def test_csv_columns(tmp_path):
         "q3",
         "q4",
         "q5",
+        "q6",
         "status",
         "sandbox",
         "limits",
@@ -115,10 +117,11 @@ def test_csv_columns(tmp_path):
         "ann",
         "ex01_rotations",
         "3",
-        "13",
+        "15",
         "0",
         "2",
         "1",
+        "0",
         "0",
         "0",
         "0",
