@@ -164,6 +164,7 @@ def d_theta(z: Any, foot_prev: Any, x_prev: Any, origin: Any, x: Any, *, tol: fl
     >>> d, round(math.degrees(th), 9)
     (2.0, 90.0)
     """
+    tol = as_tol(tol, "tol", upper=0.1)
     z = _unit(z, "z")
     p0 = as_array(foot_prev, "foot_prev", (3,), max_magnitude=MAX_MAGNITUDE)
     p1 = as_array(origin, "origin", (3,), max_magnitude=MAX_MAGNITUDE)
@@ -293,7 +294,7 @@ def frame_steps(points: Any, directions: Any, kinds: Sequence[str] | None = None
     U = np.array([_unit(u, f"directions[{i}]") for i, u in enumerate(U0)])
     if kinds is None:
         kinds = ["R"] * n
-    elif isinstance(kinds, str) or len(kinds) != n or any(not isinstance(k, str) or k not in ("R", "P") for k in kinds):
+    elif isinstance(kinds, str) or not isinstance(kinds, Sequence | np.ndarray) or len(kinds) != n or any(not isinstance(k, str) or k not in ("R", "P") for k in kinds):
         raise ValueError(f"kinds: expected {n} entries each 'R' or 'P', got {kinds!r}"[:200])
     kinds = list(kinds)
     x_prev = _normal_part(_unit(x0, "x0"), U[0], "x0")
