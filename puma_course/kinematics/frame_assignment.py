@@ -294,7 +294,12 @@ def frame_steps(points: Any, directions: Any, kinds: Sequence[str] | None = None
     U = np.array([_unit(u, f"directions[{i}]") for i, u in enumerate(U0)])
     if kinds is None:
         kinds = ["R"] * n
-    elif isinstance(kinds, str) or not isinstance(kinds, Sequence | np.ndarray) or len(kinds) != n or any(not isinstance(k, str) or k not in ("R", "P") for k in kinds):
+    elif (
+        isinstance(kinds, str)
+        or not isinstance(kinds, Sequence | np.ndarray)  # a number or an object has no len() (issue 21)
+        or len(kinds) != n
+        or any(not isinstance(k, str) or k not in ("R", "P") for k in kinds)
+    ):
         raise ValueError(f"kinds: expected {n} entries each 'R' or 'P', got {kinds!r}"[:200])
     kinds = list(kinds)
     x_prev = _normal_part(_unit(x0, "x0"), U[0], "x0")

@@ -150,7 +150,7 @@ def keys_from_bits(bits: int, flag_keys: Sequence[str]) -> tuple[str, ...]:
         isinstance(k, str) for k in flag_keys
     ):
         raise ValueError(f"flag_keys: expected a list of flag names (strings), got {flag_keys!r}"[:200])
-    n = as_count(bits, "bits", maximum=2 ** len(flag_keys) - 1)
+    n = as_count(bits, "bits", maximum=2 ** len(flag_keys) - 1)  # a bit with no name is a mistake
     return tuple(k for i, k in enumerate(flag_keys) if n >> i & 1)
 
 
@@ -183,7 +183,8 @@ class IKSolutions(Sequence[np.ndarray]):
     joints: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
-        q = np.array(as_array(self.q, "q", what="solutions of shape (k, n)", max_magnitude=MAX_MAGNITUDE), dtype=float)  # finite and real
+        # finite, real, and no larger than joint values are (issue 21: rows of 1e300 were accepted)
+        q = np.array(as_array(self.q, "q", what="solutions of shape (k, n)", max_magnitude=MAX_MAGNITUDE), dtype=float)
         if q.ndim != 2:
             raise ValueError(f"q: expected solutions of shape (k, n), got an array of shape {q.shape}")
         k = len(q)
