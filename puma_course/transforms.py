@@ -345,7 +345,9 @@ def is_rotation(R: Any, tol: float = 1e-9) -> bool:
     >>> is_rotation(rotz(0.3)), is_rotation(np.diag([1.0, 1.0, -1.0]))
     (True, False)
     """
-    tol = as_tol(tol, "tol", upper=1.0)  # a NaN tolerance made every comparison pass (issue 21)
+    # a NaN tolerance made every comparison pass (issue 21); below 1e-12 a product of twenty rotations
+    # (R^T R off I by up to 4e-15) would be called "not a rotation": float64 cannot honour that
+    tol = as_tol(tol, "tol", upper=1.0, lower=1e-12)
     try:
         as_rotation(R, "R", batch=True, tol=tol)
     except ValueError:

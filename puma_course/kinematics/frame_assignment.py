@@ -79,7 +79,9 @@ def common_normal(p1: Any, u1: Any, p2: Any, u2: Any, *, hint: Any = None, at: A
     ``hint`` (a direction) picks the sign of X when the lines intersect (the sign closer to
     ``hint``; default +u1 × u2); ``at`` (a point) picks where the normal lies when the lines are
     parallel (through the point of line 1 nearest ``at``; default p1). ``tol`` (relative to the
-    size of the points) decides "intersecting" and "parallel"; a is then snapped to 0.
+    size of the points) decides "intersecting" and "parallel"; a is then snapped to 0. It is at least
+    1e-9: for lines δ from parallel the feet carry float64 rounding / δ (2e-7 at δ = 1e-9), so a smaller
+    tolerance would answer lines nearer parallel wrongly instead of as parallel (issue 21).
 
     Two skew lines, hand-worked: the z axis and the line through (1, 0, 5) along y are 1 apart, at
     -90° about x, and the normal joins them at the height z = 5:
@@ -88,7 +90,7 @@ def common_normal(p1: Any, u1: Any, p2: Any, u2: Any, *, hint: Any = None, at: A
     >>> cn.kind, cn.a, float(np.degrees(cn.alpha)), cn.foot1.tolist(), cn.foot2.tolist()
     ('skew', 1.0, -90.0, [0.0, 0.0, 5.0], [1.0, 0.0, 5.0])
     """
-    tol = as_tol(tol, "tol")
+    tol = as_tol(tol, "tol", lower=1e-9)
     p1 = as_array(p1, "p1", (3,), max_magnitude=MAX_MAGNITUDE)
     p2 = as_array(p2, "p2", (3,), max_magnitude=MAX_MAGNITUDE)
     u1, u2 = _unit(u1, "u1"), _unit(u2, "u2")

@@ -560,3 +560,27 @@ def test_puma_ik_and_ik_batch_count_alike_at_theta5_minus_1e7():
             for r in rows:
                 assert _wrapped(brows - r).max(axis=1).min() <= 1e-12
             assert _pose_error(arm, rows, T[i]) <= 1e-9 * _size(arm)
+
+
+@pytest.mark.parametrize("tol", [1e-10, 1e-15, 1e-300])
+def test_common_normal_refuses_a_tolerance_below_what_rounding_allows(tol):
+    # issue 21 (found by the contract sweep): with tol = 1e-15, lines 1e-14..1e-12 rad from parallel got feet
+    # off by up to 1.0 (rounding / δ), 1.7% at 1e-14; below 1e-9 such lines must be called parallel or refused
+    from puma_course.kinematics.frame_assignment import common_normal
+
+    with pytest.raises(ValueError, match=r"^tol: expected a tolerance with 1e-09 <= tol"):
+        common_normal([0, 0, 0], [0, 0, 1.0], [1.0, 0, 5], [0, 1.0, 0], tol=tol)
+
+
+def test_is_rotation_honours_only_what_float64_can():
+    # a product of twenty rotations is off orthonormal by up to 4e-15: a tolerance below 1e-12 is refused rather
+    # than answering False for a rotation
+    from puma_course.transforms import is_rotation, rodrigues
+
+    rng = np.random.default_rng(0)
+    R = np.eye(3)
+    for _ in range(20):
+        R = R @ rodrigues(rng.normal(size=3), rng.uniform(-3, 3))
+    assert is_rotation(R, tol=1e-12)
+    with pytest.raises(ValueError, match="^tol"):
+        is_rotation(R, tol=1e-15)
