@@ -166,7 +166,7 @@ def d_theta(z: Any, foot_prev: Any, x_prev: Any, origin: Any, x: Any, *, tol: fl
     >>> d, round(math.degrees(th), 9)
     (2.0, 90.0)
     """
-    tol = as_tol(tol, "tol", upper=0.1)
+    tol = as_tol(tol, "tol", upper=0.1, lower=1e-12)  # unit vectors carry a few 1e-16 of rounding
     z = _unit(z, "z")
     p0 = as_array(foot_prev, "foot_prev", (3,), max_magnitude=MAX_MAGNITUDE)
     p1 = as_array(origin, "origin", (3,), max_magnitude=MAX_MAGNITUDE)
