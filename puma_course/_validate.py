@@ -33,6 +33,8 @@ __all__ = [
     "as_robot_length",
     "ROBOT_LENGTHS",
     "as_tol",
+    "TOL_FLOOR",
+    "MAX_COUNT",
     "as_count",
     "as_choice",
     "as_mask",
@@ -285,13 +287,18 @@ def as_robot_length(value: Any, name: str, *, positive: bool = False, what: str 
     return x
 
 
-def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2, lower: float = 0.0) -> float:
-    """Return ``value`` as a tolerance: a finite number with ``lower`` < tol <= ``upper`` (``lower`` = 0)
-    or ``lower`` <= tol <= ``upper``.
+#: Smallest tolerance accepted anywhere: a few units of float64 rounding (2.2e-16) of a quantity of size 1.
+#: Below it a tolerance cannot be honoured and would only switch a singularity or equality test off (issue 21).
+TOL_FLOOR = 1e-15
+
+
+def as_tol(value: Any, name: str = "tol", *, upper: float = 1e-2, lower: float = TOL_FLOOR) -> float:
+    """Return ``value`` as a tolerance: a finite number with ``lower`` <= tol <= ``upper`` (and tol > 0).
 
     A tolerance decides what counts as singular or equal; NaN, negative or huge values would
     silently switch those decisions off or on for every input, so they are refused; so is a
-    tolerance below ``lower``, what float64 rounding of the quantity it is compared with can honour.
+    tolerance below ``lower``, what float64 rounding of the quantity it is compared with can honour
+    (:data:`TOL_FLOOR` unless the caller knows better).
 
     >>> as_tol(1e-16, lower=1e-12)
     Traceback (most recent call last):

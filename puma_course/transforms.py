@@ -118,6 +118,7 @@ def rodrigues(axis: Any, angle: Any) -> np.ndarray:
     """
     a = as_array(axis, "axis", (3,), batch=True)
     t = _angle(angle)
+    check_broadcast(axis=a.shape[:-1], angle=np.shape(t))  # not numpy's "could not be broadcast" (issue 21)
     # scaled by its largest entry before squaring (issue 21: [1e200, 0, 0] squared to inf gave the identity)
     big = np.max(np.abs(a), axis=-1, keepdims=True)
     if np.any(big == 0.0):
@@ -344,7 +345,9 @@ def is_rotation(R: Any, tol: float = 1e-9) -> bool:
     >>> is_rotation(rotz(0.3)), is_rotation(np.diag([1.0, 1.0, -1.0]))
     (True, False)
     """
-    tol = as_tol(tol, "tol", upper=1.0)  # a NaN tolerance made every comparison pass (issue 21)
+    # a NaN tolerance made every comparison pass (issue 21); below 1e-12 a product of twenty rotations
+    # (R^T R off I by up to 4e-15) would be called "not a rotation": float64 cannot honour that
+    tol = as_tol(tol, "tol", upper=1.0, lower=1e-12)
     try:
         as_rotation(R, "R", batch=True, tol=tol)
     except ValueError:
@@ -360,7 +363,8 @@ def wrap_angle(angle: Any) -> Any:
     """Angles wrapped to (-π, π]: the package's one wrapping rule (joint angles, joint distances).
 
     A Python float gives a float (the hot scalar paths of the solvers), anything else an array.
-    No validation: it sits on hot paths; callers validate.
+    Input is validated like every angle (``ValueError`` naming ``angle``), except that a float64 array
+    (the solvers' own batches, where NaN marks "no solution") passes unchecked but for infinity.
 
     >>> wrap_angle([np.pi, -np.pi, 3 * np.pi / 2]) / np.pi
     array([ 1. ,  1. , -0.5])
@@ -368,10 +372,15 @@ def wrap_angle(angle: Any) -> Any:
     (3.141592653589793, 3.141592653589793)
     """
     if isinstance(angle, float):
+        if angle - angle != 0.0:  # NaN or infinity (issue 21: NaN came back)
+            raise ValueError(f"angle: expected finite angles in radians, got {angle!r}")
         w = _PI - (_PI - angle) % _TWO_PI
         return w + _TWO_PI if w <= -_PI else w  # rounding may land on -π itself
-    if angle is None or isinstance(angle, (str, bytes)):  # np.asarray(None, float) is NaN (issue 21)
-        raise ValueError(f"angle: expected angles in radians (numbers), got {angle!r}")
-    a = np.asarray(angle, dtype=float)
+    if type(angle) is np.ndarray and angle.dtype == np.float64:  # the solvers' batches: NaN marks no solution
+        if np.isinf(angle).any():
+            raise ValueError("angle: expected finite angles in radians, got infinity")
+        a = angle
+    else:  # None, text, booleans, complex, objects, ragged lists, NaN: refused (issue 21)
+        a = as_array(angle, "angle", what="angles in radians (numbers)")
     wa = _PI - np.mod(_PI - a, _TWO_PI)
     return np.where(wa <= -_PI, wa + _TWO_PI, wa)

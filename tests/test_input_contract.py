@@ -11,6 +11,24 @@ words, fractional counts, tolerances that would switch checks off) and asserts t
 
 ``test_every_public_function_is_swept`` fails when a public name is neither in the table nor
 exempted with a reason, so a new function cannot skip the contract.
+
+Issue 21 made it systematic. ``test_every_public_callable_is_swept_by_identity`` enumerates
+``puma_course.__all__``, ``transforms``, ``euler`` and every module of ``puma_course.kinematics``
+(walked) plus each arm's public methods: 121 public callables, each a TABLE row (109 rows) or an
+exemption with its reason. The counts (``test_the_sweep_counts_its_cases`` keeps them honest):
+
+* 5,467 junk inputs: each argument gets its kind's bad values and the universal catalogue (None,
+  text, bytes, booleans, NaN, ±inf, complex, objects, ragged lists, object arrays, empty arrays,
+  dicts, NaN arrays); the answer is a ValueError naming the argument (an empty batch may instead
+  give an empty result);
+* 1,058 dtype cases: the valid numbers as int8/uint8/int64/object arrays, lists or numpy scalars
+  give the float value's answer bit for bit, or a ValueError naming the argument;
+* 70 pairs of batch arguments given batches of 2 and 3: a ValueError naming one of them.
+
+Its first run failed 374 junk cases (a few dozen of them the table's own mistakes, the rest the
+package's: TypeErrors and AttributeErrors, numpy's messages, NaN from ``wrap_angle``, tolerances of
+1e-300 accepted, lengths, joint values and screws of 1e300 accepted, a max_iter of 10**12 accepted)
+and 3 batch pairs (rodrigues, trot, actuator_rate: numpy's "could not be broadcast").
 """
 
 from __future__ import annotations
@@ -130,12 +148,12 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
     ("transforms.inverse_transform", transforms.inverse_transform, [("T", "transform", np.eye(4))]),
     (
         "transforms.compose_moving",
-        lambda a, b: transforms.compose_moving(a, b),
+        transforms.compose_moving,
         [("transforms[0]", "transform", np.eye(4)), ("transforms[1]", "transform", np.eye(4))],
     ),  # fmt: skip
     (
         "transforms.compose_fixed",
-        lambda a, b: transforms.compose_fixed(a, b),
+        transforms.compose_fixed,
         [("transforms[0]", "transform", np.eye(4)), ("transforms[1]", "transform", np.eye(4))],
     ),  # fmt: skip
     (
@@ -413,6 +431,84 @@ TABLE.append(
     )
 )  # fmt: skip
 
+# ---------------------------------------------------------------- issue 21: the rest of the public API
+from puma_course.kinematics import numerical, poe, stations  # noqa: E402
+from puma_course.kinematics.robot import MountedFk  # noqa: E402
+
+BAD.update({
+    "tol": [*BAD["tol"], -np.inf, 1e-300, 5e-324, 1e-16],  # below what float64 can honour (issue 21)
+    "tol1": ["1e-9", None, True, float("nan"), float("inf"), -1e-9, 0.0, 2.0, 1j, 1e-300, 1e-16],  # up to 1
+    "count": [*BAD["count"], -1e300, 2**70, -(2**70), np.int8(-1)],
+    "count1": ["5", None, True, 2.5, 0, -1, float("nan"), 1j, 1e300, 10**12],  # at least 1
+    "flag": ["yes", None, 1.5, float("nan"), np.array([True, False])],  # a True/False switch
+    "fk": [None, "fk", 1.0, object()],  # a forward kinematics function
+    "ets": ["abc", None, [("Rq", 1.0)], [("Rz", "q9")], [("Tx", np.nan)], [("Tx", 1e300)], [("Tx", 1j)], [1.0]],
+    "qvec": [*_REAL, [[0.1]], [np.nan], [1j], [1e300]],  # joint values of any number (n,)
+    "screw": [*_REAL, [0.0] * 6, [0, 0, 2.0, 0, 0, 0], [1.0, 0, 0], [np.nan] * 6, [0, 0, 1.0, 1e300, 0, 0]],
+    "screws": [*_REAL, np.zeros((6, 6)), np.zeros((6, 5)), np.full((6, 6), np.nan)],
+    "transform_opt": [t for t in BAD["transform"] if t is not None],  # None is the identity (the default)
+    "rows6": [*_REAL, np.full((1, 6), np.nan), np.zeros((1, 6)) * 1j, [0.0] * 6, np.zeros((1, 1, 6)), [[1e300] * 6]],
+    "names": [None, "ab", [1, 2], 1.0],  # names of flags, one per bit
+    "planes": ["side", None, 1, np.array(["front"])],
+    "words": [None, 1, b"x", ["arm"]],  # any text is a valid name
+    "configurations": ["qz", None, {"qz": [0.0]}, {"qz": [np.nan, 0.0]}, {1: [0.0, 0.0]}],
+    "qlim2": [*_REAL, [[0.0, 1.0]], [[1.0, 0.0], [0.0, 1.0]], [[np.nan, 1.0], [0.0, 1.0]]],
+    "damping": [*_REAL, 0.0, -1.0, 1e300, [0.1, 0.2]],
+})
+
+# Porter's other arguments (q2_max is keyword-only, planes chooses which solutions)
+TABLE.append(("Porter.ik.planes", PORTER.ik, [("T", "transform", T_PORTER), ("method", "method", "geometric"),
+                                              ("planes", "planes", "both")]))
+CHAIN = DHChain([Link(0, 0), Link(0, 1.0)])
+TABLE.extend([
+    ("transforms.wrap_angle", transforms.wrap_angle, [("angle", "angle_any", 0.3)]),
+    ("transforms.is_rotation", transforms.is_rotation, [("R", "rotation", np.eye(3)), ("tol", "tol1", 1e-9)]),
+    ("ik.IKSolutions", ik.IKSolutions, [("q", "rows6", np.zeros((1, 6)))]),
+    ("ik.keys_from_bits", ik.keys_from_bits, [("bits", "count", 5), ("flag_keys", "names", ("a", "b", "c"))]),
+    ("poe.ets_fk", poe.ets_fk, [("ets", "ets", [("Rz", "q0"), ("Tx", 1.0)]), ("q", "qvec", [0.3])]),
+    ("poe.twist_exp", poe.twist_exp, [("S", "screw", [0, 0, 1.0, 0, -1.0, 0]), ("theta", "angle", 0.3)]),
+    ("poe.poe_fk", poe.poe_fk, [("screws", "screws", poe.porter_screws(1.0, 0.5, 0.3)[0]),
+                                ("M", "transform", poe.porter_screws(1.0, 0.5, 0.3)[1]), ("q", "q6", np.zeros(6))]),
+    ("poe.porter_ets", poe.porter_ets, [("l1", "positive", 1.0), ("l3", "positive", 0.5), ("l4", "positive", 0.3)]),
+    ("poe.porter_screws", poe.porter_screws, [("l1", "positive", 1.0), ("l3", "positive", 0.5),
+                                              ("l4", "positive", 0.3)]),
+    ("numerical.ik_dls", numerical.ik_dls, [
+        ("robot", "robot", PUMA), ("T", "transform", T_PUMA), ("q0", "q6", PUMA.q("qn") + 0.01),
+        ("damping", "damping", 0.05), ("length", "positive", 1.0), ("tol", "tol", 1e-9), ("max_iter", "count1", 50)]),
+    ("stations.world_pose", stations.world_pose, [("base", "transform_opt", np.eye(4)),
+                                                  ("arm_pose", "transform", T_PUMA), ("tool", "transform_opt", None)]),
+    ("stations.arm_target", stations.arm_target, [("world_T", "transform", T_PUMA), ("base", "transform_opt", None),
+                                                  ("tool", "transform_opt", None)]),
+    ("robot.MountedFk", MountedFk, [("fk", "fk", PUMA.fk), ("base", "transform_opt", None),
+                                    ("tool", "transform_opt", None), ("pad", "count", 0),
+                                    ("position_only", "flag", False)]),
+    ("robot.MountedFk.__call__", MountedFk(PUMA.fk, pad=3), [("q", "q3", np.zeros(3))]),
+    ("frame_assignment.d_theta.tol", fa.d_theta, [
+        ("z", "direction", [0, 0, 1.0]), ("foot_prev", "vec3", [0, 0, 1.0]), ("x_prev", "direction", [1.0, 0, 0]),
+        ("origin", "vec3", [0, 0, 3.0]), ("x", "direction", [0, 1.0, 0]), ("tol", "tol", 1e-9)]),
+    ("DHChain", DHChain, [("links", "links", [Link(0, 0), Link(0, 1.0)]), ("name", "words", "arm"),
+                          ("units", "words", "m"), ("configurations", "configurations", {"qz": [0.0, 0.0]}),
+                          ("tool", "transform_opt", None), ("qlim", "qlim2", [[-1.0, 1.0], [-2.0, 2.0]])]),
+    ("DHChain.fk", CHAIN.fk, [("q", "q2", [0.1, 0.2])]),
+    ("DHChain.frames", CHAIN.frames, [("q", "q2", [0.1, 0.2])]),
+    ("DHChain.link_matrices", CHAIN.link_matrices, [("q", "q2", [0.1, 0.2])]),
+    ("DHChain.jacobian", CHAIN.jacobian, [("q", "q2", [0.1, 0.2])]),
+    ("DHChain.check_q", CHAIN.check_q, [("q", "q2", [0.1, 0.2])]),  # `name` only labels the message
+    ("Puma560.jacobian", PUMA.jacobian, [("q", "q6", np.zeros(6))]),
+    ("Puma560.link_matrices", PUMA.link_matrices, [("q", "q6", np.zeros(6))]),
+    ("MK3.frames", MK3_.frames, [("q", "q5", np.zeros(5))]),
+    ("MK3.points", MK3_.points, [("q", "q5", np.zeros(5))]),
+    ("MK3.jacobian", MK3_.jacobian, [("q", "q5", np.zeros(5))]),
+    ("Porter.points", PORTER.points, [("q", "q6", np.zeros(6))]),
+    ("Porter.jacobian", PORTER.jacobian, [("q", "q6", np.zeros(6))]),
+    ("Porter.q", PORTER.q, [("name", "name", "qn")]),
+    ("ThreeStepArm.frames", TS.frames, [("q", "q6", np.zeros(6))]),
+    ("ThreeStepArm.points", TS.points, [("q", "q6", np.zeros(6))]),
+    ("ThreeStepArm.wrist_position", TS.wrist_position,
+     [("theta0", "angle", 0.1), ("theta1", "angle", 0.2), ("theta2", "angle", 0.3)]),
+])  # fmt: skip
+BAD["q3"] = [*_REAL, [0.0] * 2, [0.0, np.nan, 0.0], [0.0, 1j, 0.0], []]
+
 #: calls whose array arguments broadcast together: shapes that do not broadcast must give a ValueError
 #: naming one of the arguments, not numpy's "operands could not be broadcast" (issue 21)
 BROADCAST = [
@@ -455,15 +551,60 @@ EXEMPT = {
     "frame_assignment.FrameWalk": "a result type built by frame_steps()",
     "three_step.ThreeStepSolution": "a result type built by three_step()",
     "three_step.Motion": "a result type built by motion()",
+    "numerical.DLSResult": "a result type built by ik_dls()",
+    "robot.Robot": "the abstract base class of the arms (not instantiable); its methods are swept on each arm",
+    "dh.DHChain.ik": "raises NotImplementedError: a general chain has no closed form (the arms' own ik are swept)",
+    "dh.DHChain.ik_batch": "raises NotImplementedError, as DHChain.ik",
+    **{f"robot.Robot.{m}": "abstract: each arm's own is swept" for m in ("fk", "frames", "ik", "ik_batch")},
 }
+
+
+#: junk every argument of every call is fed, whatever its kind (issue 21's catalogue)
+UNIVERSAL: list[tuple[str, Any]] = [
+    ("none", None), ("str", "abc"), ("bytes", b"\x00"), ("bool", True), ("npbool", np.bool_(False)),
+    ("nan", float("nan")), ("inf", float("inf")), ("-inf", float("-inf")), ("complex", 1 + 2j),
+    ("npcomplex", np.complex128(1j)), ("object", object()), ("ragged", [[1.0], [1.0, 2.0]]),
+    ("objarray", np.array([None, None, None], dtype=object)), ("empty", np.array([])),
+    ("empty2", np.zeros((0, 3))), ("dict", {"x": 1.0}), ("nanarray", np.full(3, np.nan)),
+]  # fmt: skip
+
+#: kinds for which a universal junk value is valid: text for free words, None for "identity"/"at rest"
+NOT_JUNK = {"words": {"str"}, "transform_opt": {"none"}, "start": {"none"}, "flag": {"bool", "npbool"}}
+
+#: empty arrays: a batch of no items may be answered by an empty result (every array in it holds 0 items), and
+#: a refusal may name the argument the empty one no longer matches (revolute for q of 0 joints)
+EMPTY = {"empty", "empty2"}
+
+#: documented behaviour instead of a refusal: (call, argument, junk) -> (why, what the result must be)
+DOCUMENTED: dict[tuple[str, str, str], tuple[str, Callable[[Any], bool]]] = {
+    ("transforms.wrap_angle", "angle", "nanarray"): (
+        "a float64 array is the solvers' own batch, where NaN marks 'no solution': NaN stays NaN, in place",
+        lambda out: bool(np.isnan(out).all()),
+    ),
+}
+
+#: arguments that are predicates' inputs: junk may be answered False instead of refused
+PREDICATE = {("transforms.is_rotation", "R")}
+
+
+def _key(v: Any) -> str:
+    return f"{type(v).__name__}:{v!r}"
+
+
+def _junk(kind: str) -> list[tuple[str, Any]]:
+    """The bad values of a kind, then the universal catalogue (duplicates dropped)."""
+    out = [(f"{kind}{j}", v) for j, v in enumerate(BAD[kind])]
+    seen = {_key(v) for _, v in out}
+    out += [(tag, v) for tag, v in UNIVERSAL if _key(v) not in seen and tag not in NOT_JUNK.get(kind, ())]
+    return out
 
 
 def _cases() -> list[Any]:
     out = []
     for name, fn, args in TABLE:
         for k, (arg, kind, _) in enumerate(args):
-            for j, bad in enumerate(BAD[kind]):
-                out.append(pytest.param(name, fn, args, k, bad, id=f"{name}-{arg}-{kind}{j}"))
+            for tag, bad in _junk(kind):
+                out.append(pytest.param(name, fn, args, k, bad, tag, id=f"{name}-{arg}-{tag}"))
     return out
 
 
@@ -493,11 +634,47 @@ _NONE_NEEDS = {("trajectories.line_path", "n"): "s=...", ("trajectories.circle_p
                ("trajectories.joint_interpolation", "n"): "s=..."}
 
 
-@pytest.mark.parametrize("name, fn, args, k, bad", _cases())
-def test_bad_input_raises_a_value_error_naming_the_argument(name, fn, args, k, bad):
+def _arrays(out: Any, depth: int = 0) -> list[np.ndarray]:
+    """Every float array in a result (its fields, tuples and lists included)."""
+    if depth > 3:
+        return []
+    if isinstance(out, np.ndarray):
+        return [out] if out.dtype.kind in "fc" else []
+    if isinstance(out, float):
+        return [np.asarray(out)]
+    if isinstance(out, (tuple, list)):
+        return [a for v in out for a in _arrays(v, depth + 1)]
+    if hasattr(out, "__dict__") and not callable(out):
+        return [a for v in vars(out).values() for a in _arrays(v, depth + 1)]
+    return []
+
+
+@pytest.mark.parametrize("name, fn, args, k, bad, tag", _cases())
+def test_bad_input_raises_a_value_error_naming_the_argument(name, fn, args, k, bad, tag):
     values = [valid for _, _, valid in args]
     values[k] = bad
     arg = args[k][0]
+    if (name, arg, tag) in DOCUMENTED:
+        why, check = DOCUMENTED[name, arg, tag]
+        assert check(_call(fn, args, values)), f"{name}({arg}={bad!r}): not what is documented: {why}"
+        return
+    if (name, arg) in PREDICATE:  # a predicate may answer "no" to junk; never "yes", never another error
+        try:
+            out = _call(fn, args, values)
+        except ValueError:
+            return
+        assert out is False, f"{name}({arg}={bad!r}) returned {out!r}"
+        return
+    if tag in EMPTY:
+        try:
+            out = _call(fn, args, values)
+        except ValueError as err:
+            head = str(err).split(":", 1)[0]
+            assert any(a.split("[")[0] in head for a, _, _ in args), f"{name}: names no argument: {err}"
+            return
+        arrays = _arrays(out)
+        assert arrays and all(a.size == 0 for a in arrays), f"{name}({arg}=empty) returned {out!r}"
+        return
     if bad is None and _default(fn, arg) is None:
         if (name, arg) in _NONE_NEEDS:
             pytest.skip(
@@ -576,3 +753,204 @@ def test_every_public_function_is_swept():
     covered = {name.split(".")[-1] for name in swept | set(EXEMPT)}
     assert top - covered == set(), f"top-level functions not swept: {sorted(top - covered)}"
     del porter
+
+
+# ---------------------------------------------------------------- issue 21: numbers in another dtype, broadcasts
+def _same(a: Any, b: Any, depth: int = 0) -> bool:
+    """Bit-for-bit the same result (arrays, numbers, tuples, dataclass and object fields)."""
+    if depth > 4:
+        return True
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a, b = np.asarray(a), np.asarray(b)
+        return a.shape == b.shape and bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc"))
+    if isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)):
+        return len(a) == len(b) and all(_same(x, y, depth + 1) for x, y in zip(a, b, strict=True))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k], depth + 1) for k in a)
+    if hasattr(a, "__dict__") and type(a) is type(b) and not inspect.isroutine(a):
+        return _same(vars(a), vars(b), depth + 1)
+    return bool(a == b)
+
+
+def _numeric(v: Any) -> np.ndarray | None:
+    """The valid value as a float array, or None when it is not numbers (a robot, a word, links...)."""
+    if isinstance(v, (str, bool)) or v is None:
+        return None
+    try:
+        arr = np.asarray(v)
+    except ValueError:
+        return None
+    return arr.astype(float) if arr.dtype.kind in "iuf" and arr.size else None
+
+
+def _equivalents(v: np.ndarray) -> list[tuple[str, Any, Any]]:
+    """(tag, the same numbers in another form, the float value they stand for)."""
+    r = np.round(v) + 0.0  # -0.0 is 0 as an integer
+    out: list[tuple[str, Any, Any]] = [("int64", r.astype(np.int64), r), ("object", v.astype(object), v)]
+    if np.all(np.abs(r) <= 127):
+        out.append(("int8", r.astype(np.int8), r))
+    if np.all((r >= 0) & (r <= 255)):
+        out.append(("uint8", r.astype(np.uint8), r))
+    if v.ndim:
+        out.append(("list", v.tolist(), v))
+    else:
+        out.append(("npfloat", np.float64(v), v))
+    return out
+
+
+def _equivalent_cases() -> list[Any]:
+    out = []
+    for name, fn, args in TABLE:
+        for k, (arg, _kind, valid) in enumerate(args):
+            v = _numeric(valid)
+            if v is None:
+                continue
+            for tag, other, ref in _equivalents(v):
+                out.append(pytest.param(name, fn, args, k, other, ref, id=f"{name}-{arg}-{tag}"))
+    return out
+
+
+def _outcome(fn: Callable[..., Any], args: list[Arg], values: list[Any]) -> tuple[str, Any]:
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            return "ok", _call(fn, args, values)
+        except ValueError as err:
+            return "refused", err
+
+
+@pytest.mark.parametrize("name, fn, args, k, other, ref", _equivalent_cases())
+def test_the_same_numbers_in_another_dtype_give_the_same_answer_or_a_named_refusal(name, fn, args, k, other, ref):
+    """int8/uint8/int64 arrays, object arrays, lists and numpy scalars of the same numbers: the answer the float
+    value gets (bit for bit), or a ValueError naming the argument; never an overflow (issue 21: int8 lengths
+    gave "l1 + l2 = -56") and never a result the float value does not give."""
+    arg = args[k][0]
+    base = [v for _, _, v in args]
+    values = list(base)
+    values[k] = other
+    base[k] = ref if np.ndim(ref) else float(ref)
+    how, out = _outcome(fn, args, values)
+    want_how, want = _outcome(fn, args, base)
+    if how == "refused":
+        head = str(out).split(":", 1)[0]
+        assert arg.split("[")[0] in head or want_how == "refused", f"{name}({arg}) refused without naming it: {out}"
+        return
+    assert want_how == "ok", f"{name}({arg}={other!r}) accepted what the float value {ref!r} is refused for: {want}"
+    assert _same(out, want), f"{name}({arg}={other!r}) answered otherwise than with the float value {ref!r}"
+    for a in _arrays(out):
+        assert np.isfinite(a).all(), f"{name}({arg}={other!r}): a non-finite value in the result"
+
+
+def _batch(v: Any, n: int) -> Any:
+    return np.stack([np.asarray(v, dtype=float)] * n)
+
+
+@pytest.mark.parametrize("name, fn, args", [pytest.param(*row, id=row[0]) for row in TABLE])
+def test_batches_of_different_lengths_are_refused_naming_an_argument(name, fn, args):
+    """Every pair of arguments that each take a batch: batches of 2 and 3 do not broadcast. The refusal is a
+    ValueError naming one of the two (not numpy's "could not be broadcast"); the count is in the module doc."""
+    base = [v for _, _, v in args]
+    batchable = []
+    for k, (_arg, _kind, valid) in enumerate(args):
+        if _numeric(valid) is None:
+            continue
+        values = list(base)
+        values[k] = _batch(valid, 2)
+        how, out = _outcome(fn, args, values)
+        if how == "ok" and all(np.isfinite(a).all() for a in _arrays(out)):
+            batchable.append(k)
+    for i in batchable:
+        for j in batchable:
+            if i == j:
+                continue
+            values = list(base)
+            values[i], values[j] = _batch(base[i], 2), _batch(base[j], 3)
+            how, out = _outcome(fn, args, values)
+            names = (args[i][0].split("[")[0], args[j][0].split("[")[0])
+            assert how == "refused", f"{name}: batches of 2 ({names[0]}) and 3 ({names[1]}) gave {out!r}"
+            msg = str(out)
+            assert "could not be broadcast" not in msg, f"{name}: numpy's message, not ours: {msg}"
+            assert any(n in msg.split(":", 1)[0] for n in names), f"{name}: the message names neither {names}: {msg}"
+
+
+#: modules whose __all__ lists solver kernels (pre-validated arrays in, reached only through a swept robot method)
+KERNEL_MODULES = {
+    "puma_course.kinematics.porter.explicit": "Ver.1 kernels of Porter.ik / ik_batch (swept)",
+    "puma_course.kinematics.porter.families": "singular-family kernels of Porter.ik (swept)",
+    "puma_course.kinematics.porter.fk": "the entries of Porter.fk / frames (swept)",
+    "puma_course.kinematics.porter.geometric": "Ver.2 kernel of Porter.ik(method='geometric') (swept); angle is swept",
+    "puma_course.kinematics.three_step.geometry": "kernels of ThreeStepArm.ik (swept); arm_axis is swept",
+    "puma_course.kinematics._ops": "the scalar/array operation tables of the solvers",
+}
+
+
+def _public_objects() -> dict[int, tuple[str, Any]]:
+    """Every public callable of puma_course's base and kinematics API: puma_course.__all__, transforms, euler and
+    every module of puma_course.kinematics (walked, so a new module is found), plus each robot class's public
+    methods. Keyed by identity (a re-export is one callable)."""
+    import importlib
+    import pkgutil
+
+    from puma_course import kinematics
+
+    names = ["puma_course", "puma_course.transforms", "puma_course.euler", "puma_course.kinematics"]
+    names += [m.name for m in pkgutil.walk_packages(kinematics.__path__, "puma_course.kinematics.")]
+    out: dict[int, tuple[str, Any]] = {}
+    for mod_name in names:
+        mod = importlib.import_module(mod_name)
+        for n in getattr(mod, "__all__", []):
+            obj = getattr(mod, n)
+            if not callable(obj) or (inspect.isclass(obj) and issubclass(obj, Warning)) or inspect.ismodule(obj):
+                continue
+            where = getattr(obj, "__module__", mod_name)
+            if where in KERNEL_MODULES and not any(obj is fn for _, fn, _ in TABLE):
+                continue
+            out.setdefault(id(obj), (f"{where}.{getattr(obj, '__qualname__', n)}", obj))
+            if inspect.isclass(obj) and (issubclass(obj, puma_course.kinematics.Robot) or obj is MountedFk):
+                for m, f in inspect.getmembers(obj, callable):
+                    if not m.startswith("_") or m == "__call__" and obj is MountedFk:
+                        out.setdefault(id(f), (f"{where}.{obj.__qualname__}.{m}", f))
+    return out
+
+
+def _swept_ids() -> set[int]:
+    ids = set()
+    for _, fn, _ in TABLE:
+        ids.add(id(fn))
+        if inspect.ismethod(fn):
+            ids.add(id(fn.__func__))
+        if isinstance(fn, MountedFk):
+            ids.add(id(MountedFk.__call__))
+    return ids
+
+
+#: public callables that take no input worth sweeping, and why (qualified names)
+NO_INPUT = {
+    "parameters": "takes no argument",
+    "table": "takes no argument",
+    "__init__": "a class's constructor is swept as the class",
+}
+
+
+def test_every_public_callable_is_swept_by_identity():
+    """A public callable added to any __all__ of the base or kinematics layers (or a public robot method) fails
+    here until it has a row in TABLE or a reason in EXEMPT."""
+    exempt_names = set(EXEMPT)
+    missing = []
+    swept = _swept_ids()
+    for qual, obj in _public_objects().values():
+        if id(obj) in swept or qual.rsplit(".", 1)[-1] in NO_INPUT:
+            continue
+        short = qual.replace("puma_course.kinematics.", "").replace("puma_course.", "")
+        parts = short.split(".")
+        if any(e.split(".")[-1] == parts[-1] and set(e.split(".")) <= set(parts) for e in exempt_names):
+            continue
+        missing.append(qual)
+    assert not missing, f"public callables with no row in the sweep and no exemption: {sorted(missing)}"
+
+
+def test_the_sweep_counts_its_cases():
+    """The counts quoted in the module doc and in README: they must be what the sweep runs."""
+    assert (len(TABLE), len(_cases()), len(_equivalent_cases())) == (109, 5467, 1058)

@@ -225,8 +225,9 @@ class DHChain(Robot):
         self._theta = [lk.theta for lk in links]
         self._rev = [lk.kind == "R" for lk in links]
         self.tool = None if tool is None else as_transform(tool, "tool")
-        self._init_joints(self._rev, configurations or {}, qlim, tuple(f"θ{i + 1}" if r else f"d{i + 1}" for i, r in
-                                                                     enumerate(self._rev)))  # fmt: skip
+        configs = {} if configurations is None else configurations  # `or {}` was numpy's "ambiguous" for arrays
+        self._init_joints(self._rev, configs, qlim, tuple(f"θ{i + 1}" if r else f"d{i + 1}" for i, r in
+                                                          enumerate(self._rev)))  # fmt: skip
 
     def _split(self, q: Any) -> tuple[list[Any], int | None]:
         return split_q(q, self.n, self.check_q)

@@ -79,7 +79,9 @@ def common_normal(p1: Any, u1: Any, p2: Any, u2: Any, *, hint: Any = None, at: A
     ``hint`` (a direction) picks the sign of X when the lines intersect (the sign closer to
     ``hint``; default +u1 × u2); ``at`` (a point) picks where the normal lies when the lines are
     parallel (through the point of line 1 nearest ``at``; default p1). ``tol`` (relative to the
-    size of the points) decides "intersecting" and "parallel"; a is then snapped to 0.
+    size of the points) decides "intersecting" and "parallel"; a is then snapped to 0. It is at least
+    1e-9: for lines δ from parallel the feet carry float64 rounding / δ (2e-7 at δ = 1e-9), so a smaller
+    tolerance would answer lines nearer parallel wrongly instead of as parallel (issue 21).
 
     Two skew lines, hand-worked: the z axis and the line through (1, 0, 5) along y are 1 apart, at
     -90° about x, and the normal joins them at the height z = 5:
@@ -88,7 +90,7 @@ def common_normal(p1: Any, u1: Any, p2: Any, u2: Any, *, hint: Any = None, at: A
     >>> cn.kind, cn.a, float(np.degrees(cn.alpha)), cn.foot1.tolist(), cn.foot2.tolist()
     ('skew', 1.0, -90.0, [0.0, 0.0, 5.0], [1.0, 0.0, 5.0])
     """
-    tol = as_tol(tol, "tol")
+    tol = as_tol(tol, "tol", lower=1e-9)
     p1 = as_array(p1, "p1", (3,), max_magnitude=MAX_MAGNITUDE)
     p2 = as_array(p2, "p2", (3,), max_magnitude=MAX_MAGNITUDE)
     u1, u2 = _unit(u1, "u1"), _unit(u2, "u2")
@@ -164,6 +166,7 @@ def d_theta(z: Any, foot_prev: Any, x_prev: Any, origin: Any, x: Any, *, tol: fl
     >>> d, round(math.degrees(th), 9)
     (2.0, 90.0)
     """
+    tol = as_tol(tol, "tol", upper=0.1, lower=1e-12)  # unit vectors carry a few 1e-16 of rounding
     z = _unit(z, "z")
     p0 = as_array(foot_prev, "foot_prev", (3,), max_magnitude=MAX_MAGNITUDE)
     p1 = as_array(origin, "origin", (3,), max_magnitude=MAX_MAGNITUDE)
@@ -293,7 +296,12 @@ def frame_steps(points: Any, directions: Any, kinds: Sequence[str] | None = None
     U = np.array([_unit(u, f"directions[{i}]") for i, u in enumerate(U0)])
     if kinds is None:
         kinds = ["R"] * n
-    elif isinstance(kinds, str) or len(kinds) != n or any(not isinstance(k, str) or k not in ("R", "P") for k in kinds):
+    elif (
+        isinstance(kinds, str)
+        or not isinstance(kinds, Sequence | np.ndarray)  # a number or an object has no len() (issue 21)
+        or len(kinds) != n
+        or any(not isinstance(k, str) or k not in ("R", "P") for k in kinds)
+    ):
         raise ValueError(f"kinds: expected {n} entries each 'R' or 'P', got {kinds!r}"[:200])
     kinds = list(kinds)
     x_prev = _normal_part(_unit(x0, "x0"), U[0], "x0")

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_array
+from .._validate import MAX_MAGNITUDE, as_array, as_count
 from ..transforms import wrap_angle
 
 __all__ = [
@@ -146,7 +146,12 @@ def keys_from_bits(bits: int, flag_keys: Sequence[str]) -> tuple[str, ...]:
     >>> keys_from_bits(5, ("shoulder", "elbow", "wrist"))
     ('shoulder', 'wrist')
     """
-    return tuple(k for i, k in enumerate(flag_keys) if int(bits) >> i & 1)
+    if isinstance(flag_keys, (str, bytes)) or not isinstance(flag_keys, (list, tuple)) or not all(
+        isinstance(k, str) for k in flag_keys
+    ):
+        raise ValueError(f"flag_keys: expected a list of flag names (strings), got {flag_keys!r}"[:200])
+    n = as_count(bits, "bits", maximum=2 ** len(flag_keys) - 1)  # a bit with no name is a mistake
+    return tuple(k for i, k in enumerate(flag_keys) if n >> i & 1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -178,7 +183,8 @@ class IKSolutions(Sequence[np.ndarray]):
     joints: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
-        q = np.array(as_array(self.q, "q", what="solutions of shape (k, n)"), dtype=float)  # finite and real
+        # finite, real, and no larger than joint values are (issue 21: rows of 1e300 were accepted)
+        q = np.array(as_array(self.q, "q", what="solutions of shape (k, n)", max_magnitude=MAX_MAGNITUDE), dtype=float)
         if q.ndim != 2:
             raise ValueError(f"q: expected solutions of shape (k, n), got an array of shape {q.shape}")
         k = len(q)

@@ -18,14 +18,17 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import MAX_MAGNITUDE
+from .._validate import MAX_MAGNITUDE, as_mask
 
 __all__ = ["geometric_jacobian", "jacobian_from_axes"]
 
 
 def _as_real(value: Any, name: str) -> np.ndarray:
     """A real float array (any shape), or ValueError naming the argument."""
-    arr = np.asarray(value) if not isinstance(value, (str, bytes)) and value is not None else None
+    try:
+        arr = np.asarray(value) if not isinstance(value, (str, bytes)) and value is not None else None
+    except ValueError:  # ragged lists: numpy's "inhomogeneous shape" message does not name the argument
+        arr = None
     real = arr is not None and (np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating))
     if arr is None or arr.dtype == bool or not real:
         raise ValueError(f"{name}: expected an array of real numbers, got {value!r}")
@@ -56,7 +59,7 @@ def jacobian_from_axes(axes: np.ndarray, points: np.ndarray, pe: np.ndarray, rev
         raise ValueError(f"points: expected the shape of axes {z.shape}, got {p.shape}")
     if e.shape != z.shape[:-2] + (3,):
         raise ValueError(f"pe: expected a point of shape {z.shape[:-2] + (3,)}, got {e.shape}")
-    rev = np.asarray(revolute)
+    rev = as_mask(revolute, "revolute", z.shape[-2]) if z.ndim >= 2 else np.asarray(None)
     if rev.shape != (z.shape[-2],) or rev.dtype != bool:
         raise ValueError(f"revolute: expected a boolean mask of shape ({z.shape[-2]},), got {rev!r}")
     for arr, name in ((z, "axes"), (p, "points"), (e, "pe")):

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_transform
+from .._validate import as_count, as_length, as_tol, as_transform
 from ..transforms import axis_angle, wrap_angle
 
 __all__ = ["DLSResult", "ik_dls"]
@@ -93,15 +93,13 @@ def ik_dls(
     q = robot.check_q(q0, "q0")
     if q.ndim != 1:
         raise ValueError(f"q0: expected one joint vector of shape ({robot.n},), got an array of shape {q.shape}")
-    for name, value in (("damping", damping), ("tol", tol)):
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-            raise ValueError(f"{name}: expected a positive finite number, got {value!r}")
+    # issue 21: sizes whose squares overflow, tolerances float64 cannot honour, counts beyond memory refused
+    damping = as_length(damping, "damping", positive=True, what="a positive damping λ (one number)")
+    tol = as_tol(tol, "tol")
     if length is None:
         length = 1000.0 if getattr(robot, "units", "") == "mm" else 1.0
-    if isinstance(length, bool) or not isinstance(length, (int, float)) or not math.isfinite(length) or length <= 0:
-        raise ValueError(f"length: expected a positive finite length scale, got {length!r}")
-    if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
-        raise ValueError(f"max_iter: expected a positive whole number, got {max_iter!r}")
+    length = as_length(length, "length", positive=True, what="a positive length scale ℓ (one number)")
+    max_iter = as_count(max_iter, "max_iter", minimum=1, maximum=10**6)
     rev = np.asarray(robot.revolute, dtype=bool)
     q = q.astype(float).copy()
     lam2 = float(damping) ** 2

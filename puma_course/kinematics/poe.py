@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_array, as_length, as_transform
+from .._validate import MAX_MAGNITUDE, as_array, as_length, as_transform
 from ..transforms import rodrigues, skew
 
 __all__ = ["ets_fk", "twist_exp", "poe_fk", "porter_ets", "porter_screws"]
@@ -47,7 +47,9 @@ def ets_fk(ets: Sequence[tuple[str, Any]], q: Any) -> np.ndarray:
     >>> np.round(ets_fk([("Rz", "q0"), ("Tx", 1.0)], [np.pi / 2])[:3, 3], 12) + 0.0
     array([0., 1., 0.])
     """
-    qv = as_array(q, "q", (None,), what="joint values of shape (n,)")
+    qv = as_array(q, "q", (None,), what="joint values of shape (n,)", max_magnitude=MAX_MAGNITUDE)
+    if isinstance(ets, (str, bytes)) or not isinstance(ets, (list, tuple)):
+        raise ValueError(f"ets: expected a list of (kind, value) steps, got {type(ets).__name__} {ets!r}"[:200])
     T = np.eye(4)
     for i, step in enumerate(ets):
         if not (isinstance(step, tuple) and len(step) == 2 and step[0] in {a + b for a in "RT" for b in "xyz"}):
@@ -69,7 +71,8 @@ def twist_exp(S: Any, theta: float) -> np.ndarray:
     >>> np.round(twist_exp([0, 0, 1, 0, -1, 0], np.pi)[:3, 3], 12) + 0.0  # a half turn about x = 1
     array([2., 0., 0.])
     """
-    s = as_array(S, "S", (6,), what="a screw axis (ω, v) of shape (6,)")
+    s = as_array(S, "S", (6,), what="a screw axis (ω, v) of shape (6,)", max_magnitude=MAX_MAGNITUDE)
+    theta = float(as_array(theta, "theta", (), what="a joint value (one number)", max_magnitude=MAX_MAGNITUDE))
     w, v = s[:3], s[3:]
     nw = float(np.linalg.norm(w))
     T = np.eye(4)
@@ -92,12 +95,15 @@ def poe_fk(screws: Any, M: Any, q: Any) -> np.ndarray:
     >>> np.round(poe_fk(planar, M, [0.0, np.pi / 2])[:3, 3], 12) + 0.0
     array([1., 1., 0.])
     """
-    S = as_array(screws, "screws", (None, 6), what="screw axes of shape (n, 6)")
+    S = as_array(screws, "screws", (None, 6), what="screw axes of shape (n, 6)", max_magnitude=MAX_MAGNITUDE)
     M = as_transform(M, "M")
-    qv = as_array(q, "q", (len(S),), what=f"joint values of shape ({len(S)},)")
+    qv = as_array(q, "q", (len(S),), what=f"joint values of shape ({len(S)},)", max_magnitude=MAX_MAGNITUDE)
     T = np.eye(4)
-    for Si, qi in zip(S, qv, strict=True):
-        T = T @ twist_exp(Si, float(qi))
+    for i, (Si, qi) in enumerate(zip(S, qv, strict=True)):
+        try:
+            T = T @ twist_exp(Si, float(qi))
+        except ValueError as err:  # name the row of `screws`, not twist_exp's own argument
+            raise ValueError(f"screws[{i}]{str(err)[1:]}") from None
     return T @ M
 
 

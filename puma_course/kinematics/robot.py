@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import MAX_MAGNITUDE, as_array, as_transform
+from .._validate import MAX_MAGNITUDE, as_array, as_count, as_transform
 from .ik import IKBatch, IKSolutions, SingularityWarning
 
 __all__ = ["Robot", "MountedFk"]
@@ -70,6 +70,9 @@ class Robot(ABC):
         self.qlim = lim
         self.joint_symbols = tuple(joint_symbols) if joint_symbols else tuple(f"q{i + 1}" for i in range(n))
         self.configurations = {}
+        if not isinstance(configurations, Mapping) or not all(isinstance(k, str) for k in configurations):
+            got = f"{type(configurations).__name__} {configurations!r}"[:120]
+            raise ValueError(f"configurations: expected a mapping of names to joint vectors, got {got}")
         for key, value in configurations.items():
             q = self.check_q(value, f"configurations[{key!r}]")
             if q.ndim != 1:
@@ -205,6 +208,8 @@ class MountedFk:
         position_only: bool = False,
         offset: Any = None,
     ) -> None:
+        if not callable(fk):
+            raise ValueError(f"fk: expected a forward kinematics function (robot.fk), got {type(fk).__name__}")
         self.fk = fk
         #: added to every q before ``fk``: joints whose zero lies elsewhere (a telescopic rod's fixed part)
         try:
@@ -215,12 +220,13 @@ class MountedFk:
             raise ValueError(f"offset: expected a finite vector of joint values, got {offset!r}")
         self.base = np.eye(4) if base is None else as_transform(base, "base")
         self.tool = np.eye(4) if tool is None else as_transform(tool, "tool")
-        if not isinstance(pad, int) or pad < 0:
-            raise ValueError(f"pad: expected a number of joints >= 0, got {pad!r}")
+        pad = as_count(pad, "pad", maximum=64)
+        if not isinstance(position_only, (bool, np.bool_)):
+            raise ValueError(f"position_only: expected True or False, got {position_only!r}")
         self.pad, self.position_only = pad, bool(position_only)
 
     def __call__(self, q: Any) -> np.ndarray:
-        Q = np.asarray(q, dtype=float)
+        Q = as_array(q, "q", max_magnitude=MAX_MAGNITUDE)  # np.asarray(None, float) was NaN (issue 21)
         if self.offset is not None:
             Q = Q + self.offset
         if self.pad:

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_array, as_robot_length
+from .._validate import as_array, as_robot_length, check_broadcast
 
 __all__ = ["actuator_from_joint", "joint_from_actuator", "actuator_rate"]
 
@@ -77,6 +77,7 @@ def actuator_rate(theta: Any, theta_dot: Any, b: float, c: float, gamma0: float 
     g0 = float(as_array(gamma0, "gamma0", (), what="an angle in radians (a number)"))
     t = as_array(theta, "theta", what="a joint angle in radians (a number or an array)")
     w = as_array(theta_dot, "theta_dot", what="a joint speed in rad/s (a number or an array)")
+    check_broadcast(theta=t.shape, theta_dot=w.shape)  # not numpy's "could not be broadcast" (issue 21)
     s = np.asarray(actuator_from_joint(t, b, c, g0))
     if np.any(s <= 1e-15 * (b + c)):
         raise ValueError("theta: expected an angle where the piston has a length (s > 0), got one folding it to 0")

@@ -521,3 +521,66 @@ def test_three_step_keeps_the_start_at_compound_near_singular_poses(q, d4, d2, d
     assert np.abs(arm.fk(rows) - T).max() <= 1e-9 * 2.5
     assert _wrapped(rows - q).max(axis=1).min() <= 1e-12
     assert b.valid.sum() == len(rows)
+
+
+# ---------------------------------------------------------------------------------------------------- the issue's sizes
+@pytest.mark.slow
+def test_three_step_100k_random_poses_keep_all_eight_solutions_and_the_start():
+    # issue 21, at the size that found it: 8 of 100k random poses lost half their solutions (the start included)
+    # to the elbow snap. Seeded; the truth is the pose (fk of every returned row) and the start configuration.
+    from puma_course.kinematics import ThreeStepArm
+
+    arm = ThreeStepArm(1.5, 1.0)
+    Q = np.random.default_rng(21).uniform(-3.1, 3.1, (100_000, 6))
+    T = arm.fk(Q)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        b = arm.ik_batch(T, near=Q)
+    counts = b.valid.sum(axis=1)
+    assert (counts == 8).all(), np.bincount(counts)
+    start = np.where(b.valid, _wrapped(b.q - Q[:, None, :]).max(axis=-1), np.inf).min(axis=1)
+    assert start.max() <= 1e-6
+    assert np.abs(arm.fk(b.q[b.valid]) - np.repeat(T, counts, axis=0)).max() <= 1e-9 * 2.5
+
+
+def test_puma_ik_and_ik_batch_count_alike_at_theta5_minus_1e7():
+    # issue 21: at θ5 = -1e-7, ik and ik_batch returned different counts for 11 of 200 poses
+    arm = Puma560()
+    Q = np.random.default_rng(21).uniform(-3.1, 3.1, (200, 6))
+    Q[:, 4] = -1e-7
+    T = arm.fk(Q)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        b = arm.ik_batch(T, near=Q)
+        for i in range(len(Q)):
+            sol = arm.ik(T[i], near=Q[i])
+            rows = np.array(list(sol))
+            brows = b.q[i][b.valid[i]]
+            assert len(brows) == len(rows)
+            for r in rows:
+                assert _wrapped(brows - r).max(axis=1).min() <= 1e-12
+            assert _pose_error(arm, rows, T[i]) <= 1e-9 * _size(arm)
+
+
+@pytest.mark.parametrize("tol", [1e-10, 1e-15, 1e-300])
+def test_common_normal_refuses_a_tolerance_below_what_rounding_allows(tol):
+    # issue 21 (found by the contract sweep): with tol = 1e-15, lines 1e-14..1e-12 rad from parallel got feet
+    # off by up to 1.0 (rounding / δ), 1.7% at 1e-14; below 1e-9 such lines must be called parallel or refused
+    from puma_course.kinematics.frame_assignment import common_normal
+
+    with pytest.raises(ValueError, match=r"^tol: expected a tolerance with 1e-09 <= tol"):
+        common_normal([0, 0, 0], [0, 0, 1.0], [1.0, 0, 5], [0, 1.0, 0], tol=tol)
+
+
+def test_is_rotation_honours_only_what_float64_can():
+    # a product of twenty rotations is off orthonormal by up to 4e-15: a tolerance below 1e-12 is refused rather
+    # than answering False for a rotation
+    from puma_course.transforms import is_rotation, rodrigues
+
+    rng = np.random.default_rng(0)
+    R = np.eye(3)
+    for _ in range(20):
+        R = R @ rodrigues(rng.normal(size=3), rng.uniform(-3, 3))
+    assert is_rotation(R, tol=1e-12)
+    with pytest.raises(ValueError, match="^tol"):
+        is_rotation(R, tol=1e-15)
