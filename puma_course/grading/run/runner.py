@@ -209,10 +209,22 @@ def grade_notebook(
         data = nb.data
     box = _box(sandbox)
     calls = make_plan(exercise, seed, student) if plan is None else plan
-    with Stage([exercise]) as stage:
-        return _grade_data(
-            data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
-        )
+    try:
+        with Stage([exercise], box.scratch.path if box.scratch else None) as stage:
+            return _grade_data(
+                data,
+                exercise,
+                student,
+                calls,
+                stage,
+                box,
+                timeout_cell,
+                timeout_total,
+                _stop_note(timeout_total, False),
+            )
+    finally:
+        if not isinstance(sandbox, Sandbox):
+            box.close()
 
 
 def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
@@ -285,6 +297,8 @@ def grade(
     finally:
         if not isinstance(cgroups, limits.Run):
             groups.close()
+        if not isinstance(sandbox, Sandbox):
+            box.close()  # its per-run copy (a sandbox passed in is the caller's to close)
 
 
 def _grade_class(
@@ -320,7 +334,8 @@ def _grade_class(
     hidden = [_PACKAGE_DIR, *_checkouts(), sub_dir, Path(output), *(Path(p) for p in private)]
     hidden += [Path(feedback)] if feedback is not None else []
     hidden += [Path(key.source)] if key.seed is None and key.source not in ("", "one-off") else []
-    with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
+    stage_in = box.scratch.path if box.scratch else None
+    with Stage([EXERCISES[n] for n in names], stage_in) as stage, _undumpable(box.kind != "bwrap"):
         hidden.append(stage.root)
         pre: dict[str, StudentFiles] = {}
         if box.kind != "bwrap":
