@@ -149,7 +149,9 @@ def runtime_tops(roots: Iterable[str] = ROOTS) -> list[tuple[str, str]]:
         base = str(dist.locate_file(""))  # type: ignore[attr-defined]
         for f in getattr(dist, "files", None) or []:
             parts = Path(str(f)).parts
-            if parts and parts[0] not in ("..", "/") and not parts[0].endswith(".pth"):
+            # not site-packages' shared __pycache__ (it also holds other packages' files: an editable install's
+            # finder names the course's folder), nor .pth files (the worker runs with -S)
+            if parts and parts[0] not in ("..", "/", "__pycache__") and not parts[0].endswith(".pth"):
                 tops.add((os.path.realpath(base), parts[0]))
     return sorted(tops)
 

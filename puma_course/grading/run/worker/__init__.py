@@ -7,19 +7,23 @@ the ``puma_course`` a student's cell imports is the student-side copy named in t
 (:mod:`puma_course.grading.run.student`). Its standard input holds one JSON line, the job::
 
     {"calls": [{"qid", "case", "function", "args"}, ...], "timeout_cell": s, "max_size": n,
-     "forbidden": {qid: ["module:attr", ...]}, "path": [folder, ...], "limits": {...}, "filename": name}
+     "forbidden": {qid: ["module:attr", ...]}, "path": [folder, ...], "limits": {...}, "filename": name,
+     "cpu_clock": {"fd": n, "format": "ns" | "stat", "wall": s}}   (cpu_clock: with a control group only)
 
 followed by the submitted notebook's bytes, which it parses here (never in the grader's process):
 its code cells, with hidden-test blocks removed as the release removes them (they check a
 solution against the package, which the student side does not have). It executes the cells in
 order in one namespace (a cell that raises or runs past ``timeout_cell`` is recorded and the next
-cell still runs), then calls each requested function on the grader's inputs and streams JSON lines
-back on the original stdout, one event per line::
+cell still runs; with ``cpu_clock``, the descriptor of the notebook's control-group CPU counter, the
+limit is CPU time of the whole notebook, with a wall-clock backstop), then calls each requested
+function on the grader's inputs and streams JSON lines back on the original stdout, one event per
+line::
 
     {"kind": "ready"}   (first, once the job is read: the worker started)
     {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
     {"kind": "cell", "index": i, "status": "error" | "timeout", "detail": "...", "line": n}   (cells that ran: nothing)
     {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
+    (a cell or call that ran out of time also says on which "clock": "cpu", "backstop" or "wall")
     {"kind": "done"}
 
 Only numbers travel back (at most ``max_size`` of them), and errors travel as a code plus the
