@@ -150,7 +150,7 @@ def test_inside_no_host_path_in_mounts_command_lines_or_environments():
     box = _box()
     assert box.copied, box.mounts  # a per-run copy was made here
     for where, text in got.items():
-        for path in _host_paths():
+        for path in [*_host_paths(), box.scratch.path]:  # the scratch holds the stage and the copy
             assert path not in str(text), (where, path, text)
     # every mount's folder in its source file system (field 4) is the system's, a kernel file system's, or a
     # folder of the run's own scratch (as root: a tmpfs of its own, so field 4 is the sandbox's own name)
