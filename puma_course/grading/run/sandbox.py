@@ -16,7 +16,11 @@ Under bubblewrap the worker gets:
   ``--die-with-parent``, no further user namespaces inside;
 * a read-only view of the system (``/usr`` and its links, the dynamic loader's files) and of the
   Python install (its prefix and site-packages; outside the system's folders at neutral names,
-  ``/python/0``, ``/python/1``, ..., so no mount point and no path it is given is a host path);
+  ``/python/0``, ``/python/1``, ..., so no mount point and no path it is given is a host path). By
+  default (:func:`choose`'s ``copy``) what it sees there is the run's in-memory copy (:mod:`.scratch`:
+  the interpreter, the standard library, the course's computational dependencies), with the stage
+  beside it, so that ``/proc/self/mountinfo``'s record of each mount's source folder names no host
+  folder either; where the copy cannot be made, the host folders themselves (:attr:`Sandbox.mounts`);
   a read-only empty folder over the course folder (its ``bank/``, ``solutions/`` and ``.git``) wherever
   it is visible (a course cloned into ``<venv>/src`` by ``pip install -e git+...``), the course package,
   the submissions, the grader's output and anything else the grader names as private, wherever they
