@@ -291,7 +291,7 @@ def _grade(args: argparse.Namespace) -> int:
                 sys.stdout.write(line.replace("\n", " ") + "\n")
                 sys.stdout.flush()
 
-    with warnings.catch_warnings(record=True) as caught, contextlib.closing(groups), contextlib.closing(box):
+    with warnings.catch_warnings(record=True) as caught, contextlib.closing(groups):
         warnings.simplefilter("always", GradingIntegrityWarning)
         warnings.simplefilter("ignore", SandboxWarning)  # said above, once
         warnings.simplefilter("ignore", LimitsWarning)  # said above, once

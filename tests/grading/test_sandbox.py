@@ -279,3 +279,19 @@ def test_the_worker_limits_itself_inside():
             result["forks"] = n
         """)
         assert got["forks"] < 8
+
+
+def test_the_copy_is_shared_while_alive_and_goes_with_the_last_sandbox():
+    box = _box()
+    if not box.copied:
+        pytest.skip(f"no per-run copy here: {box.mounts}")
+    assert choose("auto").scratch is box.scratch  # one copy while one is alive
+    from puma_course.grading.run.scratch import Scratch
+
+    scratch = Scratch()
+    path, mounted = scratch.path, scratch.mounted
+    assert mounted == (os.geteuid() == 0)  # as root, a tmpfs of its own
+    Path(path, "x").write_text("x")
+    del scratch
+    assert not os.path.exists(path)
+    assert path not in Path("/proc/self/mounts").read_text()

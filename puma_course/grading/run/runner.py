@@ -227,22 +227,10 @@ def grade_notebook(
         data = nb.data
     box = _box(sandbox)
     calls = make_plan(exercise, seed, student) if plan is None else plan
-    try:
-        with Stage([exercise], box.scratch.path if box.scratch else None) as stage:
-            return _grade_data(
-                data,
-                exercise,
-                student,
-                calls,
-                stage,
-                box,
-                timeout_cell,
-                timeout_total,
-                _stop_note(timeout_total, False),
-            )
-    finally:
-        if not isinstance(sandbox, Sandbox):
-            box.close()
+    with Stage([exercise], box.scratch.path if box.scratch else None) as stage:
+        return _grade_data(
+            data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
+        )
 
 
 def _blank(student: str, ex: Exercise, state: str, note: str | None) -> NotebookResult:
@@ -315,8 +303,6 @@ def grade(
     finally:
         if not isinstance(cgroups, limits.Run):
             groups.close()
-        if not isinstance(sandbox, Sandbox):
-            box.close()  # its per-run copy (a sandbox passed in is the caller's to close)
 
 
 def _grade_class(

@@ -41,6 +41,7 @@ import site
 import subprocess
 import sys
 import tempfile
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -156,7 +157,7 @@ class Sandbox:
         return path
 
     def close(self) -> None:
-        """Remove the per-run copy (a sandbox chosen for one run is closed at its end; later runs need a new one)."""
+        """Remove the copy now, for every sandbox sharing it (without this, it goes with the last of them)."""
         if self.scratch is not None:
             self.scratch.close()
 
@@ -311,8 +312,25 @@ def _supports(binary: str, option: str) -> bool:
     return option in text
 
 
+#: The copies alive in this process, by (interpreter, bound folders, site-packages): sandboxes chosen while one
+#: is alive share it (a test session, runs that overlap); it is removed when the last of them is collected.
+_COPIES: dict[tuple[str, tuple[str, ...], tuple[str, ...]], weakref.ref[Scratch]] = {}
+
+
 def make_scratch(exe: str, binds: Sequence[str], sites: Sequence[str]) -> tuple[Scratch | None, str]:
-    """A run's scratch holding the copy of the Python install's folders outside the system's (None, why: none)."""
+    """A scratch holding the copy of the Python install's folders outside the system's (None, why: none)."""
+    key = (exe, tuple(binds), tuple(sites))
+    alive = _COPIES.get(key)
+    shared = alive() if alive is not None else None
+    if shared is not None and os.path.isdir(os.path.join(shared.path, "python")):
+        return shared, ""
+    scratch, why = _new_scratch(exe, binds, sites)
+    if scratch is not None:
+        _COPIES[key] = weakref.ref(scratch)
+    return scratch, why
+
+
+def _new_scratch(exe: str, binds: Sequence[str], sites: Sequence[str]) -> tuple[Scratch | None, str]:
     probe = Sandbox("bwrap", python=exe, binds=tuple(binds), sites=tuple(sites))
     try:
         scratch = Scratch()
