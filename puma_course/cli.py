@@ -268,7 +268,7 @@ def _grade(args: argparse.Namespace) -> int:
     print(said, file=sys.stderr)
     box = choose(args.sandbox)
     if box.kind == "bwrap":
-        print(f"sandbox: bubblewrap ({box.binary})", file=sys.stderr)
+        print(f"sandbox: bubblewrap ({box.binary}); {box.mounts}", file=sys.stderr)
     else:
         print(
             f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
@@ -278,7 +278,7 @@ def _grade(args: argparse.Namespace) -> int:
             "or see README.md, Safety.",
             file=sys.stderr,
         )
-    groups = open_limits(box)  # a control group per notebook: limits for its whole process tree
+    groups = open_limits(box, args.timeout_cell)  # a control group per notebook: limits for its whole process tree
 
     lock = threading.Lock()
 

@@ -141,17 +141,17 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
     return list(names), collected
 
 
-def open_limits(box: Any) -> Any:
+def open_limits(box: Any, timeout_cell: float = 10.0) -> Any:
     """A control group per notebook for this run (:func:`puma_course.grading.run.limits.open_run`), said on stderr:
-    the limits in force, or loudly that they hold per process only."""
+    the limits in force and the clock each call is timed on, or loudly that they hold per process only."""
     from .grading.run import limits
 
     groups = limits.open_run()
     if groups.enforced:
-        print(f"limits: {groups.label}", file=sys.stderr)
+        print(f"limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", file=sys.stderr)
         return groups
     print(
-        f"WARNING: notebook limits are {groups.label}.\n"
+        f"WARNING: notebook limits are {groups.label}; {limits.call_limit(groups, timeout_cell)}.\n"
         "WARNING: a notebook's processes together may then use more memory, processes and CPU than one "
         "notebook's limits (README.md, Safety); the CSV's limits column says so.",
         file=sys.stderr,

@@ -17,7 +17,8 @@ says how to run it::
 
 Placeholders in the code are filled in before grading, so an attack knows what a real attacker could find
 out: ``{{SUBMISSIONS}}``, ``{{OUTPUT}}``, ``{{FEEDBACK}}``, ``{{ROOT}}`` (the course checkout),
-``{{SITE}}`` (site-packages), ``{{HOME}}`` (the grader's home), ``{{MARK}}`` (a name unique to the
+``{{SITE}}`` (site-packages), ``{{VENV}}`` and ``{{BASE}}`` (``sys.prefix``, ``sys.base_prefix``: empty when it
+is the system's), ``{{HOME}}`` (the grader's home), ``{{MARK}}`` (a name unique to the
 run), ``{{PORT}}`` (a TCP port the test listens on), ``{{TABLE}}`` (JSON: the hidden cases' answers a
 student rebuilds at home from the question bank and every seed they could know, :func:`home_table`).
 The class is graded with a secret key file in the class folder (as ``puma-course grade`` does).
@@ -44,6 +45,7 @@ import os
 import re
 import shutil
 import socket
+import sys
 import sysconfig
 import threading
 import time
@@ -291,6 +293,8 @@ def run_attack(fx: Fixture, mode: str, tmp_path: Path, monkeypatch: pytest.Monke
         "ROOT": str(ROOT),
         "SITE": str(SITE),
         "HOME": str(Path.home()),
+        "VENV": sys.prefix,
+        "BASE": "" if any(sys.base_prefix.startswith(d) for d in ("/usr", "/bin", "/lib")) else sys.base_prefix,
         "MARK": mark,
         "PORT": str(listener.port),
     }

@@ -1,8 +1,10 @@
 """Grading is robust and fair: each crafted submission in tests/fixtures/submissions gets what it earned.
 
 One grading run over a copy of the fixture class (17 students, exercise 1 only) with short
-limits (3 s per cell and per call, 8 s per notebook), under the sandbox the machine has ("auto"),
-plus a student built here who tampers with files whose paths it is given. Expected scores are
+limits (3 s per cell and per call, 30 s per notebook), under the sandbox the machine has ("auto"),
+plus a student built here who tampers with files whose paths it is given. With a control group a cell or call
+is timed on CPU time, with a wall-clock backstop of 3 x 3 s: the notebook's 30 s leave room for the two loops
+of endless_loop however loaded the machine (on the wall clock alone, 8 s did). Expected scores are
 worked out from what each crafted notebook does (see tests/fixtures/submissions/*/ex01_rotations.ipynb).
 The many more hostile submissions of tests/fixtures/hostile/ are graded by the test_hostile_* files.
 """
@@ -82,7 +84,7 @@ def graded(tmp_path_factory):
     fb = root / "feedback"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SandboxWarning)
-        results = grade(subs, out, feedback=fb, jobs=2, timeout_cell=3, timeout_total=8, seed=11, exercises=[EX])
+        results = grade(subs, out, feedback=fb, jobs=2, timeout_cell=3, timeout_total=30, seed=11, exercises=[EX])
     with open(out, newline="", encoding="utf-8") as fh:
         rows = {row["student"]: row for row in csv.DictReader(fh)}
     return {
@@ -156,7 +158,8 @@ def test_feedback_explains_what_passed_and_failed(graded):
     text = (fb / "answer_key.md").read_text(encoding="utf-8")
     assert "puma_course.rodrigues is not available in this exercise" in text
     text = (fb / "endless_loop.md").read_text(encoding="utf-8")
-    assert "ran longer than 3 s" in text
+    # the clock that held: the wall clock (no control group), CPU time, or CPU time's wall-clock backstop
+    assert any(s in text for s in ("ran longer than 3 s", "used more than 3 s of CPU", "longer than 9 s on the wall"))
     text = (fb / "malformed_json.md").read_text(encoding="utf-8")
     assert "not a readable notebook" in text
     text = (fb / "huge_print.md").read_text(encoding="utf-8")
@@ -166,5 +169,5 @@ def test_feedback_explains_what_passed_and_failed(graded):
 def test_timeouts_are_reported_per_notebook(graded):
     res = graded["results"]
     assert res["stubborn_loop"].status == "timeout"
-    assert any("ran longer than 8 s" in n for n in res["stubborn_loop"].notes)
+    assert any("ran longer than 30 s" in n for n in res["stubborn_loop"].notes)
     assert res["huge_print"].status == "ok"

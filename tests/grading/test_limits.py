@@ -125,3 +125,65 @@ def test_a_real_group_limits_memory_and_processes_of_the_tree(real_run):
         assert group is not None
         out = subprocess.run(group.wrap(["python3", "-c", forks]), capture_output=True, text=True, timeout=60)
     assert int(out.stdout) < 40 and group.usage.pids_refused >= 1, (out.stdout, group.usage)
+
+
+#: Appended to ex01's solution: the first call of q1's function first sleeps (wall clock, no CPU), or forks two
+#: children that burn 5 s of CPU each while it waits for them (CPU time of its process tree, little of its own).
+_FIRST_CALL = """
+import os as _os, time as _time
+_first = {{"done": False}}
+_real = {function}
+
+
+def {function}(*args):
+    if not _first["done"]:
+        _first["done"] = True
+        if {kind!r} == "sleeps":
+            _time.sleep(1.6)
+        else:
+            for _ in range(2):
+                if _os.fork() == 0:
+                    while _time.process_time() < 5:
+                        pass
+                    _os._exit(0)
+            for _ in range(2):
+                _os.wait()
+    return _real(*args)
+"""
+
+
+def test_a_call_is_timed_on_the_cpu_time_of_its_whole_tree(real_run, tmp_path, monkeypatch):
+    """Per call: 1 s of the notebook group's CPU time. A call that sleeps 1.6 s keeps its points (the wall clock
+    would have failed it); a call whose two children burn CPU while it waits fails on CPU time (its own process
+    used almost none), and the CSV says which clock held. (The wall-clock backstop is raised to 20 s here, so
+    that a loaded machine, which gives the children little CPU, cannot end the call on the wall clock first.)"""
+    monkeypatch.setattr(limits, "WALL_FACTOR", 20.0)
+    import csv
+
+    import nbformat
+
+    from puma_course.grading import EXERCISES, grade
+    from tests.support import ROOT
+
+    ex = EXERCISES["ex01_rotations"]
+    q1 = ex.questions[0]
+    subs = tmp_path / "subs"
+    for kind in ("sleeps", "forks"):
+        nb = nbformat.read(ROOT / "solutions" / f"{ex.name}.ipynb", as_version=4)
+        nb.cells.append(nbformat.v4.new_code_cell(_FIRST_CALL.format(function=q1.function, kind=kind)))
+        (subs / kind).mkdir(parents=True)
+        nbformat.write(nb, subs / kind / f"{ex.name}.ipynb")
+    real_run.memory = 1 << 30
+    out = tmp_path / "grades.csv"
+    results = grade(
+        subs, out, jobs=1, seed=3, exercises=[ex.name], sandbox="none", cgroups=real_run,
+        timeout_cell=1.0, timeout_total=40.0, timeout_student=60.0,
+    )  # fmt: skip
+    got = {r.student: r for r in results}
+    full = sum(q.points for q in ex.questions)
+    assert got["sleeps"].score == full, got["sleeps"].question_notes
+    assert got["forks"].score == full - q1.points, got["forks"].question_notes
+    assert any("used more than 1 s of CPU time" in n for n in got["forks"].question_notes[q1.qid])
+    with open(out, newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert all("each call 1 s of CPU time" in row["limits"] for row in rows), rows[0]["limits"]

@@ -14,6 +14,8 @@ import os
 import shutil
 import socket
 import subprocess
+import sys
+import tempfile
 import textwrap
 from pathlib import Path
 
@@ -82,7 +84,7 @@ def _inside(program: str, private=(), timeout=60) -> dict:
         pytest.skip(f"sandbox check not run: bubblewrap cannot run here ({box.reason})")
     import tempfile
 
-    with tempfile.TemporaryDirectory() as tmp:
+    with tempfile.TemporaryDirectory(dir=box.scratch.path if box.scratch else None) as tmp:
         lib, pkg = Path(tmp, "lib"), Path(tmp, "bin", "puma_worker")
         lib.mkdir()
         pkg.mkdir(parents=True)
@@ -91,9 +93,13 @@ def _inside(program: str, private=(), timeout=60) -> dict:
         pkg.joinpath("__init__.py").write_text(
             f"def main():\n    import json, sys\n    result = {{}}\n{body}\n    sys.stdout.write(json.dumps(result))\n"
         )
-        out = subprocess.run(
-            box.command(lib, pkg.parent, private), capture_output=True, timeout=timeout, env=child_env(f"{MOUNT}/work")
-        )
+        cmd, fd = box.launch(lib, pkg.parent, private)
+        try:
+            out = subprocess.run(
+                cmd, capture_output=True, timeout=timeout, env=child_env(f"{MOUNT}/work"), pass_fds=(fd,)
+            )
+        finally:
+            os.close(fd)
     assert out.returncode == 0, out.stderr.decode()[-2000:]
     return json.loads(out.stdout)
 
@@ -120,6 +126,44 @@ def test_inside_no_network_own_pids_no_capabilities():
     assert len(got["pids"]) <= 3 and max(got["pids"]) < 10  # only the sandbox's own processes
     assert int(got["caps"], 16) == 0 and got["host"] == "grading" and got["sid"] is False or got["sid"] is True
     assert got["userns"] == -1
+
+
+def _host_paths() -> list[str]:
+    """What the sandbox must never name: the checkout, the venv, the Python install (not the system's), site-packages,
+    the grader's home and temporary folder."""
+    paths = [str(ROOT), sys.prefix, *_box().sites, str(Path.home()), tempfile.gettempdir() + "/"]
+    if not sys.base_prefix.startswith(("/usr", "/bin", "/lib")):
+        paths.append(sys.base_prefix)
+    return list(dict.fromkeys(os.path.realpath(p) + ("/" if p.endswith("/") else "") for p in paths))
+
+
+def test_inside_no_host_path_in_mounts_command_lines_or_environments():
+    got = _inside("""
+        import os
+        for name in ("/proc/self/mountinfo", "/proc/1/cmdline", "/proc/1/environ", "/proc/self/environ",
+                     "/proc/self/cmdline", "/proc/1/mountinfo"):
+            with open(name, "rb") as fh:
+                result[name] = fh.read().decode("utf-8", "replace")
+        result["fds"] = {f: os.readlink("/proc/self/fd/" + f) for f in os.listdir("/proc/self/fd")
+                         if os.path.exists("/proc/self/fd/" + f)}
+    """)
+    box = _box()
+    assert box.copied, box.mounts  # a per-run copy was made here
+    for where, text in got.items():
+        for path in [*_host_paths(), box.scratch.path]:  # the scratch holds the stage and the copy
+            assert path not in str(text), (where, path, text)
+    # every mount's folder in its source file system (field 4) is the system's, a kernel file system's, or a
+    # folder of the run's own scratch (as root: a tmpfs of its own, so field 4 is the sandbox's own name)
+    dev = os.stat(box.scratch.path).st_dev
+    scratch = f"{os.major(dev)}:{os.minor(dev)}"
+    for line in got["/proc/self/mountinfo"].splitlines():
+        fields = line.split()
+        root, point, fs = fields[3], fields[4], fields[fields.index("-") + 1]
+        system = root.startswith(("/usr/", "/etc/")) or root in ("/usr", "/") or root == point
+        system = system or (root, point) == ("/newroot", "/")  # bubblewrap's own root, a tmpfs
+        assert system or fs in ("proc", "devtmpfs") or fields[2] == scratch, line
+        if box.scratch.kind == "tmpfs" and point.startswith("/python/"):
+            assert root == point, line  # the copy of the Python install: nothing but its name in the sandbox
 
 
 def test_inside_everything_is_read_only_but_a_small_work_folder():
@@ -235,3 +279,19 @@ def test_the_worker_limits_itself_inside():
             result["forks"] = n
         """)
         assert got["forks"] < 8
+
+
+def test_the_copy_is_shared_while_alive_and_goes_with_the_last_sandbox():
+    box = _box()
+    if not box.copied:
+        pytest.skip(f"no per-run copy here: {box.mounts}")
+    assert choose("auto").scratch is box.scratch  # one copy while one is alive
+    from puma_course.grading.run.scratch import Scratch
+
+    scratch = Scratch()
+    path, mounted = scratch.path, scratch.mounted
+    assert mounted == (os.geteuid() == 0)  # as root, a tmpfs of its own
+    Path(path, "x").write_text("x")
+    del scratch
+    assert not os.path.exists(path)
+    assert path not in Path("/proc/self/mounts").read_text()

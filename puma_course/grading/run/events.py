@@ -18,6 +18,7 @@ from ..model import Exercise, NotebookResult, Question, Verdict, reconcile, scor
 from ..output.text import quoted
 from ..plan import Plan
 from .child import ChildResult
+from .limits import WALL_FACTOR
 from .worker import NOT_ATTEMPTED
 
 __all__ = ["apply", "malformed_note", "call_verdict", "cell_note", "JUDGING_SECONDS"]
@@ -82,6 +83,8 @@ def call_verdict(
             "not-numbers": f"returned a {quoted(detail, 60)}, which is not an array of numbers",
             "too-many": f"returned {_int(event.get('size'))} numbers, more than the 10000 allowed",
         }
+        if error == "timeout":
+            return Verdict(timeout_words("the call", event, limits))
         if error == "answer-key" and detail.startswith("tamper:"):
             return Verdict(
                 f"switched off the grader's watch on the answer key ({detail[7:]}) while being graded: the case fails"
@@ -102,12 +105,25 @@ def call_verdict(
         return Verdict(f"could not compare the value ({type(exc).__name__})")
 
 
+def timeout_words(what: str, event: dict[str, Any], limits: str) -> str:
+    """What ran out of time, and on which clock: the worker says "cpu" (its CPU time limit), "backstop" (timed
+    on CPU time but stopped by the wall-clock backstop, :data:`.limits.WALL_FACTOR` times the limit), or
+    "wall" (no CPU time counter: the wall clock). ``limits`` is the limit as the student reads it ("10 s")."""
+    clock = event.get("clock")
+    if clock == "cpu":
+        return f"{what} used more than {limits} of CPU time".strip()
+    if clock == "backstop":
+        seconds = float(limits.split()[0]) * WALL_FACTOR
+        return f"{what} ran longer than {seconds:g} s on the wall clock (while waiting, not computing)".strip()
+    return f"{what} ran longer than {limits}".strip()
+
+
 def cell_note(event: dict[str, Any], limits: str) -> str | None:
     """The note for a code cell that raised or ran out of time (None for one that ran)."""
     index = _int(event.get("index")) + 1
     status = event.get("status")
     if status == "timeout":
-        return f"code cell {index}: ran longer than {limits}"
+        return f"code cell {index}: " + timeout_words("", event, limits)
     if status == "error":
         return f"code cell {index}: {quoted(_text(event.get('detail')))}{_where(event)}"
     return None

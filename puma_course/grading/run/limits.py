@@ -10,8 +10,11 @@ it detaches (``setsid``, double forks), so the limits below hold for the noteboo
 * CPU: at most :data:`CPUS` cores (a CFS quota), and an equal share against every other notebook graded
   at the same time (the groups have equal weights, and the kernel's per-session autogroups, which gave a
   notebook's sixty ``setsid`` children sixty shares, apply only outside control groups); the run's folder
-  weighs as many ordinary processes as notebooks are graded at once (:meth:`Run.share`). A slowish
-  classmate's calls are timed on the wall clock, but its share of the CPU cannot be taken.
+  weighs as many ordinary processes as notebooks are graded at once (:meth:`Run.share`);
+* each call (and each code cell) is timed on the CPU time of the notebook's group (:meth:`Group.cpu_clock`),
+  so a classmate who takes the CPU cannot make a right but slowish call fail, with a wall-clock backstop of
+  :data:`WALL_FACTOR` times the limit (a call that sleeps or waits); without a group, on the wall clock
+  (:func:`call_limit` says which).
 
 :func:`open_run` makes a folder for the grading run in each controller's hierarchy, under the grader's own
 group (so limits set on the grader, by systemd or a container, still hold above), in the first layout
@@ -41,7 +44,19 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["MEMORY", "PROCESSES", "CPUS", "ROOT", "Run", "Group", "Usage", "open_run", "describe"]
+__all__ = [
+    "MEMORY",
+    "PROCESSES",
+    "CPUS",
+    "ROOT",
+    "Run",
+    "Group",
+    "Usage",
+    "open_run",
+    "describe",
+    "call_limit",
+    "WALL_FACTOR",
+]
 
 #: The notebook's memory, all of its processes together (plus the worker's in-memory folder's pages).
 MEMORY = 4 << 30
@@ -105,6 +120,27 @@ class Group:
                 with contextlib.suppress(OSError):
                     os.kill(pid, signal.SIGKILL)
             time.sleep(0.01)
+
+    def cpu_clock(self) -> tuple[int, str]:
+        """An open, read-only descriptor of the group's CPU time counter and its format ("ns": v1's
+        ``cpuacct.usage``; "stat": v2's ``cpu.stat``), or (-1, "") where there is none.
+
+        The worker reads it before and after each call (calls run one at a time, so a call's CPU time is
+        the difference: every process of the notebook included, however many it forks). The counter is
+        made read-only for everyone first (v1's can be reset by its owner, and inside the sandbox the
+        notebook runs as the grader's user id, without capabilities).
+        """
+        if self.version == 1 and "cpuacct" in self.folders:
+            path, fmt = self.folders["cpuacct"] / "cpuacct.usage", "ns"
+        elif self.version == 2:
+            path, fmt = self.folders["cpu"] / "cpu.stat", "stat"
+        else:
+            return -1, ""
+        try:
+            os.chmod(path, 0o444)
+            return os.open(path, os.O_RDONLY | os.O_CLOEXEC), fmt
+        except OSError:
+            return -1, ""
 
     def read_usage(self) -> Usage:
         u = Usage()
@@ -205,6 +241,24 @@ def describe(run: Run) -> str:
     if run.enforced:
         return f"per notebook (cgroup v{run.version}): {_gib(run.memory)}, {run.processes} processes, {run.cpus:g} CPU"
     return f"PER PROCESS ONLY (no control group: {run.reason})"
+
+
+#: The wall-clock backstop of a call timed on its CPU time: this many times the per-call limit.
+WALL_FACTOR = 3.0
+
+
+def call_limit(run: Run, seconds: float) -> str:
+    """The per-call time limit as it holds, in a few words (the CSV's ``limits`` column, the terminal).
+
+    >>> call_limit(Run(1), 10)
+    'each call 10 s of CPU time (its whole process tree; wall-clock backstop 30 s)'
+    >>> call_limit(Run(0, reason="not root"), 10)
+    'each call 10 s WALL CLOCK (no CPU time counter)'
+    """
+    if run.enforced:
+        backstop = WALL_FACTOR * seconds
+        return f"each call {seconds:g} s of CPU time (its whole process tree; wall-clock backstop {backstop:g} s)"
+    return f"each call {seconds:g} s WALL CLOCK (no CPU time counter)"
 
 
 def _gib(n: int) -> str:

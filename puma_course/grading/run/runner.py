@@ -34,6 +34,7 @@ from ..output.text import quoted
 from ..plan import Plan, make_plan
 from ..secret import Secret, choose_key
 from . import child, events, limits
+from . import limits as limits_mod
 from .collect import Collected
 from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
 from .sandbox import Sandbox, child_env, choose
@@ -89,16 +90,26 @@ def _box(sandbox: str | Sandbox) -> Sandbox:
     return sandbox if isinstance(sandbox, Sandbox) else choose(sandbox)
 
 
-def _job(exercise: Exercise, plan: Plan, timeout_cell: float, timeout: float, paths: list[str], nproc: bool) -> bytes:
+def _job(
+    exercise: Exercise,
+    plan: Plan,
+    timeout_cell: float,
+    timeout: float,
+    paths: list[str],
+    nproc: bool,
+    clock: tuple[int, str] = (-1, ""),
+) -> bytes:
     """The worker's first line: what to call (never what is expected), its limits, its import path.
 
     The process limit is set only inside the sandbox's user namespace, where it counts the worker's
-    own processes; outside, it would count every process of the grading user.
+    own processes; outside, it would count every process of the grading user. ``clock`` is the
+    descriptor and format of the notebook group's CPU time counter (:meth:`.limits.Group.cpu_clock`):
+    each cell and call is then limited to ``timeout_cell`` s of CPU time, with a wall-clock backstop.
     """
-    limits = {**LIMITS, "cpu_seconds": int(timeout) + 2}
+    limits: dict[str, Any] = {**LIMITS, "cpu_seconds": int(timeout) + 2}
     if not nproc:
         limits.pop("processes")
-    job = {
+    job: dict[str, Any] = {
         "calls": [item.job() for item in plan],
         "timeout_cell": timeout_cell,
         "max_size": 10_000,
@@ -107,6 +118,8 @@ def _job(exercise: Exercise, plan: Plan, timeout_cell: float, timeout: float, pa
         "limits": limits,
         "filename": f"{exercise.name}.ipynb",
     }
+    if clock[0] >= 0:
+        job["cpu_clock"] = {"fd": clock[0], "format": clock[1], "wall": limits_mod.WALL_FACTOR * timeout_cell}
     return json.dumps(job).encode() + b"\n"
 
 
@@ -129,17 +142,22 @@ def _run_worker(
 
     def launch(work: str | None) -> child.ChildResult:
         lib, _, seen_work = box.paths(stage.libs[exercise.name], stage.bin, Path(work or "."))
-        payload = _job(exercise, plan, timeout_cell, timeout, [lib, *box.seen_sites], box.kind == "bwrap") + data
         # fd: bubblewrap's --args file; cwd "/": the launcher's shell would export the grader's folder as PWD
         cmd, fd = box.launch(stage.libs[exercise.name], stage.bin, private)
+        clock = -1
         try:
             with groups.notebook() if groups is not None else contextlib.nullcontext() as group:
                 cmd = group.wrap(cmd) if group is not None else cmd
-                fds: dict[str, Any] = {"pass_fds": (fd,)} if fd >= 0 else {}
-                return child.run(cmd, payload, cwd=work or "/", env=child_env(seen_work), timeout=timeout, **fds)
+                clock, fmt = group.cpu_clock() if group is not None else (-1, "")  # calls timed on CPU time
+                paths = [lib, *box.seen_sites]
+                job = _job(exercise, plan, timeout_cell, timeout, paths, box.kind == "bwrap", (clock, fmt))
+                passed = tuple(f for f in (fd, clock) if f >= 0)
+                fds: dict[str, Any] = {"pass_fds": passed} if passed else {}
+                return child.run(cmd, job + data, cwd=work or "/", env=child_env(seen_work), timeout=timeout, **fds)
         finally:
-            if fd >= 0:
-                os.close(fd)
+            for f in (fd, clock):
+                if f >= 0:
+                    os.close(f)
 
     if box.kind == "bwrap":
         return launch(None)
@@ -209,7 +227,7 @@ def grade_notebook(
         data = nb.data
     box = _box(sandbox)
     calls = make_plan(exercise, seed, student) if plan is None else plan
-    with Stage([exercise]) as stage:
+    with Stage([exercise], box.scratch.path if box.scratch else None) as stage:
         return _grade_data(
             data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
         )
@@ -304,7 +322,9 @@ def _grade_class(
     collected: Collected | None,
 ) -> list[NotebookResult]:
     if not groups.enforced:
-        warnings.warn(f"notebook limits: {groups.label}", LimitsWarning, stacklevel=3)
+        warnings.warn(
+            f"notebook limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", LimitsWarning, stacklevel=3
+        )
     groups.share(jobs)
 
     def read(s: StudentFolder) -> StudentFiles:
@@ -320,7 +340,8 @@ def _grade_class(
     hidden = [_PACKAGE_DIR, *_checkouts(), sub_dir, Path(output), *(Path(p) for p in private)]
     hidden += [Path(feedback)] if feedback is not None else []
     hidden += [Path(key.source)] if key.seed is None and key.source not in ("", "one-off") else []
-    with Stage([EXERCISES[n] for n in names]) as stage, _undumpable(box.kind != "bwrap"):
+    stage_in = box.scratch.path if box.scratch else None
+    with Stage([EXERCISES[n] for n in names], stage_in) as stage, _undumpable(box.kind != "bwrap"):
         hidden.append(stage.root)
         pre: dict[str, StudentFiles] = {}
         if box.kind != "bwrap":
@@ -398,7 +419,14 @@ def _grade_class(
         )
     late = None if collected is None else collected.late()
     write_csv(
-        output, results, names, seed=key.seed, sandbox=box.label, secret=key.fingerprint, late=late, limits=groups.label
+        output,
+        results,
+        names,
+        seed=key.seed,
+        sandbox=box.label,
+        secret=key.fingerprint,
+        late=late,
+        limits=f"{groups.label}; {limits.call_limit(groups, timeout_cell)}",
     )
     if feedback is not None:
         unsandboxed = box.reason if box.kind != "bwrap" else None

@@ -16,7 +16,11 @@ Under bubblewrap the worker gets:
   ``--die-with-parent``, no further user namespaces inside;
 * a read-only view of the system (``/usr`` and its links, the dynamic loader's files) and of the
   Python install (its prefix and site-packages; outside the system's folders at neutral names,
-  ``/python/0``, ``/python/1``, ..., so no mount point and no path it is given is a host path);
+  ``/python/0``, ``/python/1``, ..., so no mount point and no path it is given is a host path). By
+  default (:func:`choose`'s ``copy``) what it sees there is the run's in-memory copy (:mod:`.scratch`:
+  the interpreter, the standard library, the course's computational dependencies), with the stage
+  beside it, so that ``/proc/self/mountinfo``'s record of each mount's source folder names no host
+  folder either; where the copy cannot be made, the host folders themselves (:attr:`Sandbox.mounts`);
   a read-only empty folder over the course folder (its ``bank/``, ``solutions/`` and ``.git``) wherever
   it is visible (a course cloned into ``<venv>/src`` by ``pip install -e git+...``), the course package,
   the submissions, the grader's output and anything else the grader names as private, wherever they
@@ -37,9 +41,12 @@ import site
 import subprocess
 import sys
 import tempfile
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from .scratch import Scratch, copy_python
 
 __all__ = ["MODES", "Sandbox", "choose", "python_layout", "bwrap_candidates", "MOUNT", "WORK_BYTES"]
 
@@ -101,6 +108,33 @@ class Sandbox:
     binds: tuple[str, ...] = ()
     sites: tuple[str, ...] = ()
     disable_userns: bool = False
+    #: the run's in-memory folder (:mod:`.scratch`) holding the copy of the Python install bound in the sandbox
+    #: (``<scratch>/python/<i>``) and the stage; None: the host folders themselves are bound
+    scratch: Scratch | None = field(default=None, compare=False, repr=False)
+    #: why there is no copy (when ``scratch`` is None under bubblewrap)
+    copy_note: str = ""
+
+    @property
+    def mounts(self) -> str:
+        """What the worker's mount table shows of the host, in a few words (the terminal, README)."""
+        if self.kind != "bwrap":
+            return "no sandbox"
+        if self.scratch is None:
+            return f"HOST FOLDERS named in the mount table (no per-run copy: {self.copy_note or 'not asked'})"
+        if self.scratch.kind == "tmpfs":
+            return "a per-run copy on a tmpfs of its own: the mount table names no host folder"
+        return "a per-run copy in /dev/shm: the mount table names only the run's folder there"
+
+    @property
+    def copied(self) -> bool:
+        """Whether the worker reads a per-run copy (its mount table then names no host folder)."""
+        return self.scratch is not None
+
+    def source(self, host: str, view: str) -> str:
+        """The folder bound at ``view``: the run's copy of ``host``, or ``host`` itself."""
+        if self.scratch is None:
+            return host
+        return os.path.join(self.scratch.path, "python", view.rsplit("/", 1)[-1])
 
     @property
     def label(self) -> str:
@@ -120,6 +154,18 @@ class Sandbox:
         for host, view in self.views():
             if _inside(path, host):
                 return view + path[len(host.rstrip("/")) :]
+        return path
+
+    def close(self) -> None:
+        """Remove the copy now, for every sandbox sharing it (without this, it goes with the last of them)."""
+        if self.scratch is not None:
+            self.scratch.close()
+
+    def copy_of(self, path: str) -> str:
+        """Where the run's copy holds ``path`` (``path`` itself outside the copied folders, or without a copy)."""
+        for host, view in self.views():
+            if _inside(path, host):
+                return self.source(host, view) + path[len(host.rstrip("/")) :]
         return path
 
     @property
@@ -175,9 +221,9 @@ class Sandbox:
                 args += ["--ro-bind", f, f]
         libs = []
         for d, view in self.views():  # at neutral names; what the system dirs hold stays where it is
-            args += ["--ro-bind", d, view]
+            args += ["--ro-bind", self.source(d, view), view]
             mounted.append(d)
-            if any(n.startswith("libpython") for n in _names(os.path.join(d, "lib"))):
+            if any(n.startswith("libpython") for n in _names(os.path.join(self.source(d, view), "lib"))):
                 libs.append(f"{view}/lib")  # an install whose python finds libpython by an absolute RUNPATH
         if libs:
             args += ["--setenv", "LD_LIBRARY_PATH", ":".join(libs)]
@@ -185,6 +231,8 @@ class Sandbox:
         # course checkout holding the Python install is not mounted: only the install's folders are, at
         # neutral names; a course cloned inside the install, into <venv>/src, is covered there)
         for p in dict.fromkeys(os.path.realpath(p) for p in private if os.path.exists(p)):
+            if self.scratch is not None and not os.path.lexists(self.copy_of(p)):
+                continue  # not in the copy: nothing to hide
             args += [self.seen(a) if a.startswith("/") else a for a in _hide(p, mounted)]
         args += ["--proc", "/proc", "--dev", "/dev", "--size", str(SHM_BYTES), "--tmpfs", "/dev/shm"]
         args += ["--ro-bind", str(lib), f"{MOUNT}/lib", "--ro-bind", str(bin_dir), f"{MOUNT}/bin"]
@@ -229,7 +277,7 @@ def _hide(path: str, mounted: Sequence[str]) -> list[str]:
 
 def _probe(box: Sandbox, timeout: float = 30.0) -> str | None:
     """None if ``box`` runs a worker-like Python with numpy here; else why not (bubblewrap's own words)."""
-    with tempfile.TemporaryDirectory(prefix="puma-probe-") as tmp:
+    with tempfile.TemporaryDirectory(prefix="probe-", dir=box.scratch.path if box.scratch else None) as tmp:
         lib, bin_dir = Path(tmp, "lib"), Path(tmp, "bin")
         (bin_dir / "puma_worker").mkdir(parents=True)
         lib.mkdir()
@@ -264,9 +312,44 @@ def _supports(binary: str, option: str) -> bool:
     return option in text
 
 
-def choose(mode: str = "auto") -> Sandbox:
+#: The copies alive in this process, by (interpreter, bound folders, site-packages): sandboxes chosen while one
+#: is alive share it (a test session, runs that overlap); it is removed when the last of them is collected.
+_COPIES: dict[tuple[str, tuple[str, ...], tuple[str, ...]], weakref.ref[Scratch]] = {}
+
+
+def make_scratch(exe: str, binds: Sequence[str], sites: Sequence[str]) -> tuple[Scratch | None, str]:
+    """A scratch holding the copy of the Python install's folders outside the system's (None, why: none)."""
+    key = (exe, tuple(binds), tuple(sites))
+    alive = _COPIES.get(key)
+    shared = alive() if alive is not None else None
+    if shared is not None and os.path.isdir(os.path.join(shared.path, "python")):
+        return shared, ""
+    scratch, why = _new_scratch(exe, binds, sites)
+    if scratch is not None:
+        _COPIES[key] = weakref.ref(scratch)
+    return scratch, why
+
+
+def _new_scratch(exe: str, binds: Sequence[str], sites: Sequence[str]) -> tuple[Scratch | None, str]:
+    probe = Sandbox("bwrap", python=exe, binds=tuple(binds), sites=tuple(sites))
+    try:
+        scratch = Scratch()
+    except OSError as exc:
+        return None, f"no in-memory folder for the copy ({exc.strerror})"
+    try:
+        copy_python(probe.views(), os.path.join(scratch.path, "python"), exe, sites)
+    except OSError as exc:
+        scratch.close()
+        return None, f"the copy failed ({exc.strerror})"
+    return scratch, ""
+
+
+def choose(mode: str = "auto", *, copy: bool = True) -> Sandbox:
     """The sandbox for a grading run (``mode`` one of :data:`MODES`; see the module docstring).
 
+    With ``copy`` (the default) the worker reads a per-run in-memory copy of the Python install
+    (:mod:`.scratch`), so its mount table names no host folder; where the copy cannot be made or does
+    not run, the host folders are bound as they are (and :attr:`Sandbox.mounts` says so).
     ValueError naming ``sandbox`` for an unknown mode, or for "bwrap" when bubblewrap cannot run here.
     """
     if mode not in MODES:
@@ -279,21 +362,28 @@ def choose(mode: str = "auto") -> Sandbox:
             raise ValueError(f"sandbox: expected a system where bubblewrap runs (Linux), got {sys.platform}")
         return Sandbox("none", reason=f"bubblewrap needs Linux; this is {sys.platform}", sites=tuple(sites))
     failures, working = [], []
+    scratch, why_not = make_scratch(exe, binds, sites) if copy and bwrap_candidates() else (None, "not asked")
     for binary in bwrap_candidates():
-        box = Sandbox(
-            "bwrap",
-            binary,
-            python=exe,
-            binds=tuple(binds),
-            sites=tuple(sites),
-            disable_userns=_supports(binary, "--disable-userns"),
-        )
-        why = _probe(box)
-        if why is None and box.disable_userns:
-            return box
-        if why is None:
-            working.append(box)  # older than 0.8: no --disable-userns; used only if nothing better runs
-        else:
+        for held in [scratch, None] if scratch is not None else [None]:
+            box = Sandbox(
+                "bwrap",
+                binary,
+                python=exe,
+                binds=tuple(binds),
+                sites=tuple(sites),
+                disable_userns=_supports(binary, "--disable-userns"),
+                scratch=held,
+                copy_note=why_not if held is None and copy else "",
+            )
+            why = _probe(box)
+            if why is None and box.disable_userns:
+                return box
+            if why is None:
+                working.append(box)  # older than 0.8: no --disable-userns; used only if nothing better runs
+                break
+            if held is not None:
+                why_not = f"the copy did not run ({why})"
+                continue
             failures.append(f"{binary}: {why}")
     if working:
         return working[0]

@@ -28,8 +28,9 @@ WORKER_DIR = Path(__file__).resolve().parent / "worker"
 class Stage:
     """A run's read-only folder (see the module docstring); use as a context manager, or call :meth:`close`."""
 
-    def __init__(self, exercises: Iterable[Exercise]) -> None:
-        self.root = Path(tempfile.mkdtemp(prefix="puma-stage-"))
+    def __init__(self, exercises: Iterable[Exercise], parent: str | None = None) -> None:
+        """``parent``: the folder to build it in (the run's in-memory scratch, :mod:`.scratch`; default: /tmp)."""
+        self.root = Path(tempfile.mkdtemp(prefix="stage-" if parent else "puma-stage-", dir=parent))
         try:
             self.bin = self.root / "bin"
             shutil.copytree(WORKER_DIR, self.bin / "puma_worker", ignore=shutil.ignore_patterns("__pycache__"))

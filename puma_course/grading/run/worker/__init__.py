@@ -7,19 +7,23 @@ the ``puma_course`` a student's cell imports is the student-side copy named in t
 (:mod:`puma_course.grading.run.student`). Its standard input holds one JSON line, the job::
 
     {"calls": [{"qid", "case", "function", "args"}, ...], "timeout_cell": s, "max_size": n,
-     "forbidden": {qid: ["module:attr", ...]}, "path": [folder, ...], "limits": {...}, "filename": name}
+     "forbidden": {qid: ["module:attr", ...]}, "path": [folder, ...], "limits": {...}, "filename": name,
+     "cpu_clock": {"fd": n, "format": "ns" | "stat", "wall": s}}   (cpu_clock: with a control group only)
 
 followed by the submitted notebook's bytes, which it parses here (never in the grader's process):
 its code cells, with hidden-test blocks removed as the release removes them (they check a
 solution against the package, which the student side does not have). It executes the cells in
 order in one namespace (a cell that raises or runs past ``timeout_cell`` is recorded and the next
-cell still runs), then calls each requested function on the grader's inputs and streams JSON lines
-back on the original stdout, one event per line::
+cell still runs; with ``cpu_clock``, the descriptor of the notebook's control-group CPU counter, the
+limit is CPU time of the whole notebook, with a wall-clock backstop), then calls each requested
+function on the grader's inputs and streams JSON lines back on the original stdout, one event per
+line::
 
     {"kind": "ready"}   (first, once the job is read: the worker started)
     {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
     {"kind": "cell", "index": i, "status": "error" | "timeout", "detail": "...", "line": n}   (cells that ran: nothing)
     {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
+    (a cell or call that ran out of time also says on which "clock": "cpu", "backstop" or "wall")
     {"kind": "done"}
 
 Only numbers travel back (at most ``max_size`` of them), and errors travel as a code plus the
@@ -43,6 +47,7 @@ import json
 import os
 import signal
 import sys
+import time
 from typing import Any
 
 from .guard import (
@@ -75,7 +80,38 @@ NOT_ATTEMPTED = "not attempted yet"
 
 
 class CellTimeout(BaseException):
-    """Raised by the alarm when a cell or a call runs past its time limit."""
+    """Raised by the alarm when a cell or a call runs past its time limit (``args``: ("cpu",) for its CPU time,
+    ("backstop",) for the wall-clock backstop of a CPU-timed call, () for the wall clock alone)."""
+
+
+#: How often (s) a cell or call timed on CPU time checks the counter.
+TICK = 0.05
+
+
+def _cpu_clock(spec: Any) -> Any:
+    """A function giving the notebook group's CPU seconds, read from the descriptor the grader passed (None: none).
+
+    ``spec`` is ``{"fd": n, "format": "ns" | "stat"}`` (v1's ``cpuacct.usage``, v2's ``cpu.stat``).
+    """
+    if not isinstance(spec, dict) or not isinstance(spec.get("fd"), int) or spec.get("format") not in ("ns", "stat"):
+        return None
+    fd, fmt, lseek, read = spec["fd"], spec["format"], os.lseek, os.read
+
+    def now() -> float:
+        lseek(fd, 0, 0)
+        data = read(fd, 4096)
+        if fmt == "ns":
+            return int(data.split()[0]) / 1e9
+        for line in data.split(b"\n"):
+            if line.startswith(b"usage_usec "):
+                return int(line.split()[1]) / 1e6
+        raise OSError("no usage_usec in cpu.stat")
+
+    try:
+        now()
+    except (OSError, ValueError, IndexError):
+        return None
+    return now
 
 
 def _ready(job: dict[str, Any]) -> None:
@@ -137,14 +173,32 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
 
     timeout = float(job.get("timeout_cell", 10.0))
     max_size = int(job.get("max_size", 10_000))
+    cpu_now = _cpu_clock(job.get("cpu_clock"))
+    wall = float((job.get("cpu_clock") or {}).get("wall", timeout)) if cpu_now is not None else timeout
+    monotonic = time.monotonic
 
     def run_timed(fn: Any, *args: Any) -> Any:
-        signal.signal(signal.SIGALRM, on_alarm)
-        setitimer(ITIMER_REAL, timeout)
+        if cpu_now is None:  # no CPU time counter: the wall clock
+            signal.signal(signal.SIGALRM, on_alarm)
+            setitimer(ITIMER_REAL, timeout)
+        else:  # the notebook's CPU time, checked every TICK s, and the wall-clock backstop
+            cpu0, wall0 = cpu_now(), monotonic()
+
+            def on_tick(signum: int, frame: Any) -> None:
+                if cpu_now() - cpu0 > timeout:
+                    raise CellTimeout("cpu")
+                if monotonic() - wall0 > wall:
+                    raise CellTimeout("backstop")
+
+            signal.signal(signal.SIGALRM, on_tick)
+            setitimer(ITIMER_REAL, TICK, TICK)
         try:
             return fn(*args)
         finally:
             setitimer(ITIMER_REAL, 0)
+
+    def clock(exc: CellTimeout) -> str:
+        return exc.args[0] if exc.args in (("cpu",), ("backstop",)) else "wall"
 
     def described(exc: BaseException) -> tuple[str, int]:
         try:
@@ -168,8 +222,8 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
             code = compile(strip_magics(source), f"<cell {index + 1}>", "exec")
             run_timed(exec, code, ns)
             continue  # a cell that ran says nothing
-        except CellTimeout:
-            event["status"] = "timeout"
+        except CellTimeout as exc:
+            event["status"], event["clock"] = "timeout", clock(exc)
         except BaseException as exc:  # noqa: BLE001 - SystemExit, KeyboardInterrupt: all are the student's
             event["status"] = "error"
             event["detail"], event["line"] = described(exc)
@@ -192,8 +246,8 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
                 value, hit = run_timed(guarded_call, fn, args, codes.get(call["qid"], {}))
                 if hit is not None and state["hit"] is None:
                     state["hit"] = hit
-            except CellTimeout:
-                event["error"] = "timeout"
+            except CellTimeout as exc:
+                event["error"], event["clock"] = "timeout", clock(exc)
                 slow.add(call["qid"])
             except NotImplementedError:
                 event["error"] = "not-attempted"
