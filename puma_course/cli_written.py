@@ -77,7 +77,7 @@ def collect_written(args: argparse.Namespace, course: Path) -> int:
     for line in done.problems:
         print(f"not read: {line}", file=sys.stderr)
     for (name, qid), count in done.answers.items():
-        print(f"{name} {qid}: {count} answer(s) -> {args.output / f'{name}-{qid}.md'}")
+        print(f"{name} {qid}: {count} written answer(s) (blank ones listed too) -> {args.output / f'{name}-{qid}.md'}")
     print(f"wrote {len(done.files)} file(s) to {args.output}; fill in the *-marks.csv files, then grade ... --marks")
     return 0
 

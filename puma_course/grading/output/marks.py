@@ -17,7 +17,8 @@ Once grading is done the marks go into
 * each gradebook (``--gradebook``): one column ``<exercise> written`` per exercise with written questions,
   with its points possible, counted in the total (:func:`puma_course.grading.output.gradebook.gradebook_rows`);
 * each student's feedback file: a section "Written questions" with, per question, the points, the rubric
-  lines and the points awarded on each, and the marker's comment.
+  criteria by name with the points awarded on each (never their texts, which are the marker's key), and the
+  marker's comment.
 """
 
 from __future__ import annotations
@@ -194,11 +195,13 @@ def feedback_section(marks: Marks, student: str, exercises: Sequence[str]) -> st
                 continue
             lines += [head, "", f"**{m.points:g} / {w.points:g}** points.", ""]
             given = dict(m.criteria)
+            # the criterion's name and points only: its text is the marker's key and may hold the answer of an
+            # auto-graded question (ex02's frames give away q3's table), read by a classmate who hands in late
             for c in w.spec.criteria:
                 if given:
-                    lines.append(f"- {given.get(c.name, 0):g} / {c.points:g} · {c.name}: {c.text}")
+                    lines.append(f"- {given.get(c.name, 0):g} / {c.points:g} · {c.name}")
                 else:
-                    lines.append(f"- ({c.points:g}) {c.name}: {c.text}")
+                    lines.append(f"- ({c.points:g}) {c.name}")
             if m.comment:
                 lines += ["", "Comment:", ""] + [f"> {one_line(line, 2000)}" for line in m.comment.splitlines()]
             lines.append("")
