@@ -181,6 +181,8 @@ class Run:
     #: what each notebook's group used, in the order they ended
     usages: list[Usage] = field(default_factory=list)
     _count: int = 0
+    #: made in a subtree root delegated to the grading user (:mod:`.delegation`)
+    delegated: bool = False
 
     @property
     def enforced(self) -> bool:
@@ -237,9 +239,12 @@ def describe(run: Run) -> str:
     'per notebook (cgroup v1): 4 GiB, 64 processes, 1 CPU'
     >>> describe(Run(0, reason="not root"))
     'PER PROCESS ONLY (no control group: not root)'
+    >>> describe(Run(1, delegated=True))
+    'per notebook (cgroup v1, delegated): 4 GiB, 64 processes, 1 CPU'
     """
     if run.enforced:
-        return f"per notebook (cgroup v{run.version}): {_gib(run.memory)}, {run.processes} processes, {run.cpus:g} CPU"
+        how = f"cgroup v{run.version}, delegated" if run.delegated else f"cgroup v{run.version}"
+        return f"per notebook ({how}): {_gib(run.memory)}, {run.processes} processes, {run.cpus:g} CPU"
     return f"PER PROCESS ONLY (no control group: {run.reason})"
 
 
@@ -361,7 +366,7 @@ def _try_v2(root: Path, own: dict[str, str], name: str) -> Run | str:
         run = parent / name
         run.mkdir()
     except OSError as exc:
-        return f"cannot make a group under {parent} ({exc.strerror}; run as root or in a delegated scope)"
+        return f"cannot make a group under {parent} ({exc.strerror}; not root: see puma-course limits delegate)"
     try:
         _write(run / "cgroup.subtree_control", "+memory +pids +cpu")
     except OSError as exc:
@@ -393,9 +398,18 @@ def _try_v1(root: Path, own: dict[str, str], name: str) -> Run | str:
         except OSError as exc:
             for made in dict.fromkeys(folders.values()):
                 _rmdir(made)
-            return f"cannot make a group under {parent} ({exc.strerror}; run as root or in a delegated scope)"
+            return f"cannot make a group under {parent} ({exc.strerror}; not root: see puma-course limits delegate)"
         folders[controller] = run
     return Run(1, folders)
+
+
+def _try_delegated(root: Path, own: dict[str, str], name: str) -> Run | str | None:
+    """Not root: the run's groups in a subtree delegated to this user (:func:`.delegation.find_delegated`)."""
+    if not hasattr(os, "geteuid") or os.geteuid() == 0:
+        return None
+    from .delegation import find_delegated
+
+    return find_delegated(root, own, name)
 
 
 def open_run(
@@ -420,8 +434,10 @@ def open_run(
     own = _own_groups(proc_cgroup)
     name = f"puma-grading-{os.getpid()}-{secrets.token_hex(4)}"
     why = []
-    for attempt in (_try_v2, _try_v1):
+    for attempt in (_try_v2, _try_delegated, _try_v1):
         got = attempt(base, own, name)
+        if got is None:
+            continue
         if isinstance(got, Run):
             got.memory, got.processes, got.cpus = memory, processes, cpus
             try:  # a group that cannot take the limits is no group
