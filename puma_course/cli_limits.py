@@ -27,7 +27,7 @@ def add_limits_parser(sub: Any) -> None:
         "makes a control group per notebook under it ('per notebook (cgroup v1, delegated)').",
     )
     lim.set_defaults(run=limits_command)
-    actions = lim.add_subparsers(dest="action", required=True, metavar="ACTION")
+    actions = lim.add_subparsers(dest="action", required=True, metavar="ACTION", help="show or delegate")
     actions.add_parser("show", help="the limits a grading run here would get, and why")
     dg = actions.add_parser("delegate", help="(root) give USER a control-group subtree for its grader")
     dg.add_argument("--user", required=True, metavar="NAME", help="the grading user (who runs puma-course grade)")

@@ -176,7 +176,9 @@ def _find(mount: Path, own: str, name: str) -> Path | None:
 
 def find_delegated(root: Path, own: dict[str, str], run_name: str, user: str | None = None) -> Run | str | None:
     """The run's groups under this user's delegated parent (:class:`~.limits.Run` with ``delegated`` True),
-    why they cannot be made there (a string), or None where there is no delegated parent."""
+    why they cannot be made there (a string), or None where there is no delegated parent, or for root."""
+    if user is None and (not hasattr(os, "geteuid") or os.geteuid() == 0):
+        return None
     if user is None:
         try:
             user = pwd.getpwuid(os.geteuid()).pw_name

@@ -21,9 +21,9 @@ group (so limits set on the grader, by systemd or a container, still hold above)
 that works here: the unified hierarchy (cgroup v2: ``memory.max``, ``memory.swap.max``, ``pids.max``,
 ``cpu.weight``, ``cpu.max``) where it has the controllers, else the v1 controllers of a hybrid hierarchy
 (``memory.limit_in_bytes`` and ``memory.memsw.limit_in_bytes``, ``pids.max``, ``cpu.shares``,
-``cpu.cfs_quota_us``). It needs to be root, or a delegated subtree (systemd's ``Delegate=yes``; for a user,
-``systemd-run --user --scope -p Delegate=yes puma-course grade ...``). Where it cannot, it says why, and
-the grader says so loudly (terminal, CSV ``limits`` column) and falls back to the per-process limits.
+``cpu.cfs_quota_us``). It needs root, or a subtree delegated to the grading user (``puma-course limits delegate
+--user NAME``, :mod:`.delegation`; or systemd's ``Delegate=yes``). Where it cannot, it says why, and the grader
+says so loudly (terminal, CSV ``limits`` column) and falls back to the per-process limits.
 
 :meth:`Run.notebook` makes the group of one notebook; :meth:`Group.wrap` prefixes the worker's command
 with a tiny ``/bin/sh`` launcher that writes its own process id into the group's ``cgroup.procs`` and
@@ -403,15 +403,6 @@ def _try_v1(root: Path, own: dict[str, str], name: str) -> Run | str:
     return Run(1, folders)
 
 
-def _try_delegated(root: Path, own: dict[str, str], name: str) -> Run | str | None:
-    """Not root: the run's groups in a subtree delegated to this user (:func:`.delegation.find_delegated`)."""
-    if not hasattr(os, "geteuid") or os.geteuid() == 0:
-        return None
-    from .delegation import find_delegated
-
-    return find_delegated(root, own, name)
-
-
 def open_run(
     memory: int = MEMORY,
     processes: int = PROCESSES,
@@ -434,7 +425,9 @@ def open_run(
     own = _own_groups(proc_cgroup)
     name = f"puma-grading-{os.getpid()}-{secrets.token_hex(4)}"
     why = []
-    for attempt in (_try_v2, _try_delegated, _try_v1):
+    from .delegation import find_delegated  # not root: in a subtree delegated to this user
+
+    for attempt in (_try_v2, find_delegated, _try_v1):
         got = attempt(base, own, name)
         if got is None:
             continue
