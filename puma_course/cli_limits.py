@@ -49,11 +49,12 @@ def limits_command(args: argparse.Namespace) -> int:
         return 0 if run.enforced else 1
     if not hasattr(os, "geteuid") or os.geteuid() != 0:
         raise ValueError("delegate: expected to run as root (it gives a user a control-group subtree), got a user")
+    try:
+        lines = delegation.undelegate(args.user) if args.undo else delegation.delegate(args.user)
+    except OSError as exc:  # the hierarchy refused (read-only, or a v2 parent that holds processes)
+        raise ValueError(f"delegate: the control-group file system refused: {exc}") from exc
+    print("\n".join(lines))
     if args.undo:
-        for line in delegation.undelegate(args.user):
-            print(line)
         return 0
-    for line in delegation.delegate(args.user):
-        print(line)
     print(f"undo: puma-course limits delegate --user {args.user} --undo")
     return 0
