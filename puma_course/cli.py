@@ -7,7 +7,7 @@
                       [--sandbox auto|bwrap|none] [--exercise NAME ...]
     puma-course check NOTEBOOK [--course DIR] [--exercise NAME]
     puma-course grade ... [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
-    puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (also collect-written: see cli_platform)
+    puma-course gradescope EXERCISE -o autograder.zip [--course DIR]   (also collect-written, limits: see cli_platform)
     puma-course site [--course DIR] [-o DIR] [--repo-url URL]
     puma-course edition DIR [--course DIR]
     puma-course slides [--course DIR] [-o DIR] [--lecture NN ...]   (see :mod:`puma_course.instructor`)
@@ -399,7 +399,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     handlers["keys"] = lambda a: run_keys(a, _course(a))
     try:
         require_extra(args.command)
-        return handlers[args.command](args)
+        return (handlers.get(args.command) or args.run)(args)
     except MissingExtraError as exc:
         print(str(exc), file=sys.stderr)
         return 2

@@ -19,6 +19,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from .cli_limits import add_limits_parser
 from .cli_written import add_marks_argument, add_written_parser, check_marks, merge_marks
 
 __all__ = ["add_grade_arguments", "add_gradescope_parser", "collect_or_explain", "write_gradebooks", "gradescope"]
@@ -59,8 +60,10 @@ def add_grade_arguments(gr: argparse.ArgumentParser) -> None:
 
 
 def add_gradescope_parser(sub: Any, course: argparse.ArgumentParser) -> None:
-    """The ``gradescope`` sub-command (and ``collect-written``, :mod:`puma_course.cli_written`)."""
+    """The ``gradescope`` sub-command (and ``collect-written``, :mod:`puma_course.cli_written`; ``limits``,
+    :mod:`puma_course.cli_limits`)."""
     add_written_parser(sub, course)
+    add_limits_parser(sub)
     gs = sub.add_parser(
         "gradescope",
         parents=[course],
@@ -149,6 +152,11 @@ def open_limits(box: Any, timeout_cell: float = 10.0) -> Any:
     groups = limits.open_run()
     if groups.enforced:
         print(f"limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", file=sys.stderr)
+        if groups.delegated and box.kind != "bwrap":  # the notebook runs as this user and sees /sys/fs/cgroup
+            print(
+                "WARNING: delegated groups without the sandbox: a notebook could move itself out of its group.",
+                file=sys.stderr,
+            )
         return groups
     print(
         f"WARNING: notebook limits are {groups.label}; {limits.call_limit(groups, timeout_cell)}.\n"
@@ -156,6 +164,11 @@ def open_limits(box: Any, timeout_cell: float = 10.0) -> Any:
         "notebook's limits (README.md, Safety); the CSV's limits column says so.",
         file=sys.stderr,
     )
+    if hasattr(os, "geteuid") and os.geteuid() != 0:
+        print(
+            "WARNING: root can give this user per-notebook groups: puma-course limits delegate --user NAME",
+            file=sys.stderr,
+        )
     if box.kind == "bwrap" and hasattr(os, "geteuid") and os.geteuid() == 0:
         print(
             "WARNING: grading as root without control groups: the per-process process limit is not enforced.",

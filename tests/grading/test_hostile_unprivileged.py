@@ -10,6 +10,9 @@ the blank one zero, no attack gains a point or signals a leak (exit code 97), th
 limits hold per process only (no control group for that user), the worker reads a per-run copy in /dev/shm and
 nothing of the run is left behind. The user and everything made for it are removed afterwards.
 
+With a delegated subtree (``puma-course limits delegate --user NAME``, run by root) the same user's grader
+limits each notebook in a control group of its own (``-k delegated``; figures printed with ``-s``).
+
 Skipped, saying why, where it cannot run: not root, no useradd/runuser, no bubblewrap, no venv for
 /usr/bin/python3. Mark: ``unprivileged``.
 """
@@ -18,6 +21,7 @@ from __future__ import annotations
 
 import csv
 import glob
+import json
 import os
 import secrets
 import shutil
@@ -35,7 +39,7 @@ import pytest
 
 from puma_course.grading import EXERCISES
 from puma_course.grading.run.sandbox import choose
-from tests.grading.hostile import Listener, _notebook, fixtures
+from tests.grading.hostile import SLOWISH, Listener, _notebook, fixtures
 from tests.support import ROOT
 
 pytestmark = [pytest.mark.hostile, pytest.mark.unprivileged]
@@ -225,3 +229,118 @@ def _read(path: str) -> bytes:
         return Path(path).read_bytes()
     except OSError:
         return b""
+
+
+# --- a delegated control-group subtree (issue 21): per-notebook groups without root --------------------------------
+
+DRIVE = """
+import json, sys, warnings
+from puma_course.grading import grade
+from puma_course.grading.run.limits import open_run
+
+subs, out = sys.argv[1], sys.argv[2]
+run = open_run(memory=1 << 30)
+warnings.simplefilter("ignore")
+try:
+    grade(subs, out, exercises=[{exercise!r}], sandbox="bwrap", cgroups=run, jobs=2, seed=5,
+          timeout_cell=8, timeout_total=20, timeout_student=40)
+finally:
+    run.close()
+print(json.dumps({{"label": run.label, "usages": [u.__dict__ for u in run.usages]}}))
+"""
+
+
+def _limits_cli(*args: str) -> subprocess.CompletedProcess[str]:
+    """``puma-course limits ...`` run by root, as the instructor would."""
+    cmd = [sys.executable, "-m", "puma_course.cli", "limits", *args]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=60, cwd=ROOT)
+
+
+def _class(grader: Grader, name: str, attacker: str, slowish: bool, values: dict[str, str]) -> Path:
+    subs = grader.base / name / "submissions"
+    (subs / "honest").mkdir(parents=True)
+    shutil.copy(ROOT / "solutions" / f"{EXERCISE}.ipynb", subs / "honest")
+    fx = next(f for f in fixtures() if f.name == attacker)
+    (subs / "attacker").mkdir()
+    nbformat.write(_notebook(fx, EXERCISE, values), subs / "attacker" / f"{EXERCISE}.ipynb")
+    if slowish:
+        (subs / "b_slowish").mkdir()  # graded beside the attacker (jobs 2, students in name order)
+        nb = nbformat.read(ROOT / "solutions" / f"{EXERCISE}.ipynb", as_version=4)
+        names = list(dict.fromkeys(q.function for q in EXERCISES[EXERCISE].questions))
+        nb.cells.append(nbformat.v4.new_code_cell(SLOWISH.format(functions=names)))
+        nbformat.write(nb, subs / "b_slowish" / f"{EXERCISE}.ipynb")
+    subprocess.run(["chown", "-R", grader.user, str(grader.base / name)], check=True)
+    return subs
+
+
+def _rows(path: Path) -> dict[str, dict[str, str]]:
+    with open(path, newline="", encoding="utf-8") as fh:
+        return {r["student"]: r for r in csv.DictReader(fh)}
+
+
+def test_a_delegated_subtree_limits_each_notebook(grader: Grader) -> None:
+    """Root delegates a subtree to the grading user (``puma-course limits delegate``); that user's grader then
+    holds a forked-memory attacker to its notebook's 1 GiB (the kernel ends one of its processes) and sixty
+    setsid busy children to one notebook's CPU (a slowish classmate beside them keeps every point); the banner
+    and the CSV say "delegated"; ``--undo`` removes every group, and the user is back to PER PROCESS ONLY
+    (``limits show``, and the memory attack graded again: what it then holds is printed, not asserted)."""
+    made = _limits_cli("delegate", "--user", grader.user)
+    if made.returncode != 0:
+        pytest.skip(f"NO DELEGATED CONTROL GROUPS here: {made.stderr.strip()}")
+    parents = sorted(glob.glob(f"/sys/fs/cgroup/*/puma-grading-{grader.user}"))
+    try:
+        assert "--undo" in made.stdout and parents, made.stdout
+        assert all(os.stat(p).st_uid == grader.venv.stat().st_uid for p in parents), parents
+        mark = f"puma-hostile-{uuid.uuid4().hex[:12]}"
+        values = {"MARK": mark, "SUBMISSIONS": "", "OUTPUT": "", "FEEDBACK": "", "ROOT": "", "SITE": "", "HOME": "",
+                  "VENV": "", "BASE": "", "PORT": "0"}  # fmt: skip
+        # 1. CPU: the command-line grader, its banner and CSV
+        subs = _class(grader, "cpu", "setsid_busy_children", True, values)
+        out = subs.parent / "grades.csv"
+        t0 = time.perf_counter()
+        done = grader.run(
+            [str(grader.venv / "bin" / "puma-course"), "grade", str(subs), "--output", str(out), "--sandbox", "bwrap",
+             "--exercise", EXERCISE, "--seed", "5", "--jobs", "2", "--timeout-cell", "3", "--timeout-total", "30",
+             "--timeout-student", "60"],
+            cwd=grader.course,
+        )  # fmt: skip
+        print(f"\ndelegated: setsid attacker + slowish + honest graded in {time.perf_counter() - t0:.1f} s")
+        assert done.returncode == 0, done.stderr[-3000:]
+        assert "limits: per notebook (cgroup v1, delegated)" in done.stderr, done.stderr
+        assert "of CPU time" in done.stderr and "PER PROCESS ONLY" not in done.stderr, done.stderr
+        rows = _rows(out)
+        full = sum(q.points for q in EXERCISES[EXERCISE].questions)
+        for student in ("honest", "b_slowish"):
+            assert (rows[student]["status"], float(rows[student]["score"])) == ("ok", full), rows[student]
+        assert all("(cgroup v1, delegated)" in r["limits"] for r in rows.values()), rows
+        # 2. memory: four processes of 400 MB under a 1 GiB notebook limit (the grader's API, as that user)
+        subs = _class(grader, "memory", "forked_memory", False, values)
+        drive = grader.base / "memory" / "drive.py"
+        drive.write_text(DRIVE.format(exercise=EXERCISE), encoding="utf-8")
+        done = grader.run([str(grader.venv / "bin" / "python"), str(drive), str(subs), str(subs.parent / "g.csv")],
+                          cwd=grader.course)  # fmt: skip
+        assert done.returncode == 0, done.stderr[-3000:]
+        report = json.loads(done.stdout.strip().splitlines()[-1])
+        peaks = [u["peak_memory"] for u in report["usages"]]
+        print(f"delegated: peak memory per notebook {[f'{p / 2**20:.0f} MiB' for p in peaks]} under 1 GiB")
+        assert report["label"].startswith("per notebook (cgroup v1, delegated): 1 GiB"), report
+        assert max(peaks) <= (1 << 30) + (1 << 20), peaks
+        assert max(u["oom_kills"] for u in report["usages"]) >= 1, report
+        rows = _rows(subs.parent / "g.csv")
+        assert "exit code 97" not in rows["attacker"]["notes"], rows["attacker"]
+        assert float(rows["honest"]["score"]) == full, rows["honest"]
+        left = [d for p in parents for d in os.listdir(p) if Path(p, d).is_dir()]
+        assert left == [], left  # the run's groups are gone with the run
+    finally:
+        undone = _limits_cli("delegate", "--user", grader.user, "--undo")
+    assert undone.returncode == 0 and "removed" in undone.stdout, undone.stdout + undone.stderr
+    assert glob.glob(f"/sys/fs/cgroup/*/puma-grading-{grader.user}") == []
+    shown = grader.run([str(grader.venv / "bin" / "puma-course"), "limits", "show"], cwd=grader.course)
+    assert shown.returncode == 1 and "PER PROCESS ONLY" in shown.stdout, shown.stdout + shown.stderr
+    # without the subtree, the same memory attack as the same user: no group, said so (what it took: printed)
+    again = grader.base / "memory" / "again.csv"
+    done = grader.run([str(grader.venv / "bin" / "python"), str(drive), str(subs), str(again)], cwd=grader.course)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert json.loads(done.stdout.strip().splitlines()[-1])["label"].startswith("PER PROCESS ONLY"), done.stdout
+    row = _rows(again)["attacker"]
+    print(f"without delegation: four processes held 1.6 GB at once: {'exit code 97' in row['notes']} ({row['notes']})")

@@ -21,9 +21,9 @@ group (so limits set on the grader, by systemd or a container, still hold above)
 that works here: the unified hierarchy (cgroup v2: ``memory.max``, ``memory.swap.max``, ``pids.max``,
 ``cpu.weight``, ``cpu.max``) where it has the controllers, else the v1 controllers of a hybrid hierarchy
 (``memory.limit_in_bytes`` and ``memory.memsw.limit_in_bytes``, ``pids.max``, ``cpu.shares``,
-``cpu.cfs_quota_us``). It needs to be root, or a delegated subtree (systemd's ``Delegate=yes``; for a user,
-``systemd-run --user --scope -p Delegate=yes puma-course grade ...``). Where it cannot, it says why, and
-the grader says so loudly (terminal, CSV ``limits`` column) and falls back to the per-process limits.
+``cpu.cfs_quota_us``). It needs root, or a subtree delegated to the grading user (``puma-course limits delegate
+--user NAME``, :mod:`.delegation`; or systemd's ``Delegate=yes``). Where it cannot, it says why, and the grader
+says so loudly (terminal, CSV ``limits`` column) and falls back to the per-process limits.
 
 :meth:`Run.notebook` makes the group of one notebook; :meth:`Group.wrap` prefixes the worker's command
 with a tiny ``/bin/sh`` launcher that writes its own process id into the group's ``cgroup.procs`` and
@@ -181,6 +181,8 @@ class Run:
     #: what each notebook's group used, in the order they ended
     usages: list[Usage] = field(default_factory=list)
     _count: int = 0
+    #: made in a subtree root delegated to the grading user (:mod:`.delegation`)
+    delegated: bool = False
 
     @property
     def enforced(self) -> bool:
@@ -237,9 +239,12 @@ def describe(run: Run) -> str:
     'per notebook (cgroup v1): 4 GiB, 64 processes, 1 CPU'
     >>> describe(Run(0, reason="not root"))
     'PER PROCESS ONLY (no control group: not root)'
+    >>> describe(Run(1, delegated=True))
+    'per notebook (cgroup v1, delegated): 4 GiB, 64 processes, 1 CPU'
     """
     if run.enforced:
-        return f"per notebook (cgroup v{run.version}): {_gib(run.memory)}, {run.processes} processes, {run.cpus:g} CPU"
+        how = f"cgroup v{run.version}, delegated" if run.delegated else f"cgroup v{run.version}"
+        return f"per notebook ({how}): {_gib(run.memory)}, {run.processes} processes, {run.cpus:g} CPU"
     return f"PER PROCESS ONLY (no control group: {run.reason})"
 
 
@@ -361,7 +366,7 @@ def _try_v2(root: Path, own: dict[str, str], name: str) -> Run | str:
         run = parent / name
         run.mkdir()
     except OSError as exc:
-        return f"cannot make a group under {parent} ({exc.strerror}; run as root or in a delegated scope)"
+        return f"cannot make a group under {parent} ({exc.strerror}; not root: see puma-course limits delegate)"
     try:
         _write(run / "cgroup.subtree_control", "+memory +pids +cpu")
     except OSError as exc:
@@ -393,7 +398,7 @@ def _try_v1(root: Path, own: dict[str, str], name: str) -> Run | str:
         except OSError as exc:
             for made in dict.fromkeys(folders.values()):
                 _rmdir(made)
-            return f"cannot make a group under {parent} ({exc.strerror}; run as root or in a delegated scope)"
+            return f"cannot make a group under {parent} ({exc.strerror}; not root: see puma-course limits delegate)"
         folders[controller] = run
     return Run(1, folders)
 
@@ -420,8 +425,12 @@ def open_run(
     own = _own_groups(proc_cgroup)
     name = f"puma-grading-{os.getpid()}-{secrets.token_hex(4)}"
     why = []
-    for attempt in (_try_v2, _try_v1):
+    from .delegation import find_delegated  # not root: in a subtree delegated to this user
+
+    for attempt in (_try_v2, find_delegated, _try_v1):
         got = attempt(base, own, name)
+        if got is None:
+            continue
         if isinstance(got, Run):
             got.memory, got.processes, got.cpus = memory, processes, cpus
             try:  # a group that cannot take the limits is no group
