@@ -104,7 +104,7 @@ EXERCISE = Exercise(
                 SIGN_FLIP,
             ),
             hint="Build the four elementary 4x4 motions and multiply them in the order the frames move (lecture 02 "
-            "§2: about the moving axes); your q1 must read the four numbers back from your matrix.",
+            "§5: about the moving axes); your q1 must read the four numbers back from your matrix.",
         ),
         Question(
             "q3",

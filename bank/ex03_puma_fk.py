@@ -113,7 +113,7 @@ EXERCISE = Exercise(
             judge_with=table_judge(),
             answer=puma_table,
             forbidden=keys.KEY_TABLES,
-            hint="Start from frames you trust (lecture 03 §1) and ask what the picture changes: where {0} sits, "
+            hint="Start from frames you trust (lecture 03 §2) and ask what the picture changes: where {0} sits, "
             "where the last frame sits, and which joint values the drawn pose has. Your q1 shows your table's pose "
             "at q = 0.",
         ),

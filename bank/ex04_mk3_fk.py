@@ -100,8 +100,8 @@ EXERCISE = Exercise(
             mistakes=(
                 matches(
                     "printed_formula",
-                    "your ⁴T₅ is the misprinted one: its -d5 sits in the wrong row (lecture 04 "
-                    "§3 shows four ways to decide)",
+                    "your ⁴T₅ is the misprinted one: its -d5 sits in the wrong row (lecture 04's "
+                    "Errata shows four ways to decide)",
                     ref.mk3_printed_fk,
                 ),
                 matches(

@@ -162,7 +162,7 @@ EXERCISE = Exercise(
                 ),
             ),
             hint="You need the rotation that carries each vector of the step-2 frame onto the target's (lecture 08 "
-            "§3.5): check 𝒦 F2 = F with your numbers.",
+            "§4, worked in §5 (c)): check 𝒦 F2 = F with your numbers.",
         ),
         Question(
             "q5",

@@ -45,12 +45,31 @@ def test_every_outcome_of_every_lecture_maps_to_a_question_or_says_not_assessed(
 
 def test_every_question_the_map_names_exists_in_the_bank():
     from puma_course.grading import load_bank
+    from puma_course.grading.written import written_questions
 
-    load_bank(ROOT)  # the course's questions (its bank/, beside solutions/)
+    load_bank(ROOT)  # the course's questions (its bank/, beside solutions/), auto-graded and written
     known = {f"{name}.{q.qid}" for name, ex in EXERCISES.items() for q in ex.questions}
+    known |= {f"{name}.{w.qid}" for name in EXERCISES for w in written_questions(name)}
     named = {qid for entries in load_outcome_map(ROOT).values() for e in entries for qid in e.get("assessed_by", ())}
     assert named, "the map names no question"
     assert not named - known, sorted(named - known)
+
+
+#: Questions no outcome assesses, each with the reason (none: every question assesses a lecture's outcome).
+UNMAPPED: dict[str, str] = {}
+
+
+def test_every_question_auto_graded_or_written_assesses_an_outcome():
+    from puma_course.grading import load_bank
+    from puma_course.grading.written import written_questions
+
+    load_bank(ROOT)
+    every = {f"{name}.{q.qid}" for name, ex in EXERCISES.items() for q in ex.questions}
+    written = {f"{name}.{w.qid}" for name in EXERCISES for w in written_questions(name)}
+    assert written, "the bank declares no written question"
+    named = {qid for entries in load_outcome_map(ROOT).values() for e in entries for qid in e.get("assessed_by", ())}
+    assert not set(UNMAPPED) & named, sorted(set(UNMAPPED) & named)
+    assert not (every | written) - named - set(UNMAPPED), sorted((every | written) - named - set(UNMAPPED))
 
 
 def test_a_malformed_map_entry_is_refused(tmp_path):
@@ -68,6 +87,21 @@ def test_the_schedule_covers_every_section_in_15_meetings_of_75_minutes():
         assert 60 <= sum(item[2] for item in meeting["items"]) <= 75
 
 
+def test_the_schedule_teaches_the_sections_in_course_order():
+    from puma_course.instructor import _sections
+
+    order = {(p.name[:2], title): k for k, (p, title) in
+             enumerate((p, t) for p in LECTURES for t in _sections(p))}  # fmt: skip
+    taught = []
+    for m, meeting in enumerate(load_schedule(ROOT)["meetings"], 1):
+        for number, start, _minutes in meeting["items"]:
+            if number:
+                (title,) = [t for (n, t) in order if n == number and t.startswith(start)]
+                taught.append((order[(number, title)], f"meeting {m}: {number} {title}"))
+    late = [(a[1], b[1]) for a, b in zip(taught, taught[1:], strict=False) if b[0] < a[0]]
+    assert not late, f"taught before a section it follows: {late}"
+
+
 def test_the_committed_schedule_page_is_generated_from_the_json():
     assert (ROOT / "instructor" / "schedule.md").read_text(encoding="utf-8") == schedule_markdown(ROOT)
 
@@ -76,10 +110,12 @@ def test_the_kit_has_a_syllabus_and_notes_for_every_lecture():
     assert "Schedule" in (ROOT / "instructor" / "syllabus.md").read_text(encoding="utf-8")
     for lecture in LECTURES:
         notes = (ROOT / "instructor" / "notes" / f"{lecture.name[:2]}.md").read_text(encoding="utf-8")
-        predicts = sum("**Predict" in "".join(c["source"]) for c in json.loads(lecture.read_text())["cells"])
-        assert notes.count("Predict") >= min(predicts, 1), lecture.name
-        for heading in ("Where students stumble", "On the board", "Predict"):
+        predicts = sum("".join(c["source"]).count("**Predict.**") for c in json.loads(lecture.read_text())["cells"])
+        for heading in ("Where students stumble", "On the board", "Predict answers"):
             assert f"## {heading}" in notes, (lecture.name, heading)
+        answers = re.split(r"\n## ", notes.split("## Predict answers", 1)[1])[0]
+        numbers = [int(n) for n in re.findall(r"^(\d+)\. ", answers, re.M)]
+        assert numbers == list(range(1, predicts + 1)), f"{lecture.name}: {predicts} Predict prompts, answers {numbers}"
 
 
 def _offline(folder: Path) -> None:
