@@ -172,12 +172,12 @@ def test_release_in_a_course_without_solutions_exits_2(tmp_path, capsys, monkeyp
 
 
 def test_check_finds_an_exercise_of_the_course_by_name(course_copy, capsys, monkeypatch):
-    # the course's own ex01 is a full answer, so 13 / 13 shows it was checked, not the repository's
+    # the course's own ex01 is a full answer, so 15 / 15 shows it was checked, not the repository's
     shutil.copy(ROOT / "solutions" / "ex01_rotations.ipynb", course_copy / "exercises")
     monkeypatch.chdir(course_copy / "notebooks")
     for name in ("ex01_rotations", "ex01_rotations.ipynb"):
         assert main(["check", name]) == 0
-        assert "13 / 13 on the public cases" in capsys.readouterr().out
+        assert "15 / 15 on the public cases" in capsys.readouterr().out
     assert main(["check", "ex99_nothing"]) == 2
     err = capsys.readouterr().err
     assert "notebook: expected" in err and str(course_copy / "exercises" / "ex99_nothing.ipynb") in err
@@ -275,7 +275,7 @@ def test_grade_writes_csv_and_feedback(tmp_path, capsys):
     assert code == 0
     with open(out, newline="", encoding="utf-8") as fh:
         rows = {r["student"]: r for r in csv.DictReader(fh)}
-    assert rows["ann"]["score"] == "13" and rows["ann"]["status"] == "ok"
+    assert rows["ann"]["score"] == "15" and rows["ann"]["status"] == "ok"
     assert rows["ben"]["score"] == "0" and rows["ben"]["status"] == "missing"
     assert (fb / "ann.md").exists() and (fb / "ben.md").exists()
     assert "graded 2 notebook(s)" in capsys.readouterr().out
@@ -289,9 +289,9 @@ def test_grade_rejects_a_missing_folder(tmp_path, capsys):
 def test_check_grades_a_notebook_on_public_cases(capsys):
     assert main(["check", str(ROOT / "solutions" / "ex01_rotations.ipynb")]) == 0
     out = capsys.readouterr().out
-    assert "13 / 13 on the public cases" in out
+    assert "15 / 15 on the public cases" in out
     assert main(["check", str(ROOT / "exercises" / "ex01_rotations.ipynb")]) == 0
-    assert "0 / 13" in capsys.readouterr().out
+    assert "0 / 15" in capsys.readouterr().out
 
 
 def test_check_rejects_an_unknown_exercise(tmp_path, capsys):

@@ -154,7 +154,7 @@ def test_feedback_explains_what_passed_and_failed(graded):
     assert sorted(p.stem for p in fb.glob("*.md")) == sorted(EXPECTED)
     text = (fb / "missing_function.md").read_text(encoding="utf-8")
     assert "no function named rodrigues_formula() was defined" in text
-    assert "7 / 13" in text  # q5 is not answered either (these submissions predate it)
+    assert "7 / 15" in text  # q5 and q6 are not answered either (these submissions predate it)
     text = (fb / "answer_key.md").read_text(encoding="utf-8")
     assert "puma_course.rodrigues is not available in this exercise" in text
     text = (fb / "endless_loop.md").read_text(encoding="utf-8")
@@ -163,7 +163,7 @@ def test_feedback_explains_what_passed_and_failed(graded):
     text = (fb / "malformed_json.md").read_text(encoding="utf-8")
     assert "not a readable notebook" in text
     text = (fb / "huge_print.md").read_text(encoding="utf-8")
-    assert "10 / 13" in text
+    assert "10 / 15" in text
 
 
 def test_timeouts_are_reported_per_notebook(graded):

@@ -174,14 +174,14 @@ def test_the_zip_holds_what_the_specification_asks_at_its_root(autograder_zip):
 @pytest.mark.parametrize("sandbox", [False, True], ids=["no-os-sandbox", "os-sandbox"])
 def test_honest_notebook_gets_full_marks(autograder_zip, tmp_path, sandbox):
     r = _run(autograder_zip, tmp_path, (ROOT / "solutions" / f"{EX}.ipynb").read_bytes(), sandbox)
-    assert r["score"] == 13
+    assert r["score"] == 15
     scored = [t for t in r["tests"] if "max_score" in t]
-    assert [t["name"].split()[0] for t in scored] == ["q1", "q2", "q3", "q4", "q5"]
+    assert [t["name"].split()[0] for t in scored] == ["q1", "q2", "q3", "q4", "q5", "q6"]
     assert all(t["score"] == t["max_score"] and t["visibility"] == "visible" for t in scored)
-    assert sum(t["max_score"] for t in scored) == 13
-    assert "passed" in scored[0]["output"] and "13 / 13" in r["output"]
+    assert sum(t["max_score"] for t in scored) == 15
+    assert "passed" in scored[0]["output"] and "15 / 15" in r["output"]
     feedback = [t for t in r["tests"] if t["name"] == "Feedback file"][0]
-    assert feedback["visibility"] == "after_due_date" and "Total: **13 / 13**" in feedback["output"]
+    assert feedback["visibility"] == "after_due_date" and "Total: **15 / 15**" in feedback["output"]
     assert r["extra_data"]["version"] == __version__
 
 
