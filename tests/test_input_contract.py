@@ -14,14 +14,14 @@ exempted with a reason, so a new function cannot skip the contract.
 
 Issue 21 made it systematic. ``test_every_public_callable_is_swept_by_identity`` enumerates
 ``puma_course.__all__``, ``transforms``, ``euler`` and every module of ``puma_course.kinematics``
-(walked) plus each arm's public methods: 121 public callables, each a TABLE row (109 rows) or an
+(walked) plus each arm's public methods: 126 public callables, each a TABLE row (113 rows) or an
 exemption with its reason. The counts (``test_the_sweep_counts_its_cases`` keeps them honest):
 
-* 5,467 junk inputs: each argument gets its kind's bad values and the universal catalogue (None,
+* 5,641 junk inputs: each argument gets its kind's bad values and the universal catalogue (None,
   text, bytes, booleans, NaN, ±inf, complex, objects, ragged lists, object arrays, empty arrays,
   dicts, NaN arrays); the answer is a ValueError naming the argument (an empty batch may instead
   give an empty result);
-* 1,058 dtype cases: the valid numbers as int8/uint8/int64/object arrays, lists or numpy scalars
+* 1,081 dtype cases: the valid numbers as int8/uint8/int64/object arrays, lists or numpy scalars
   give the float value's answer bit for bit, or a ValueError naming the argument;
 * 70 pairs of batch arguments given batches of 2 and 3: a ValueError naming one of them.
 
@@ -93,6 +93,7 @@ BAD: dict[str, list[Any]] = {
     "ik_tol": ["1e-9", None, True, float("nan"), float("inf"), -1e-9, 0.0, 0.5, 1j, 1e-16, 1e-13],
     "duration": [*_REAL, 1e300, 0.0, -1.0, [1.0, 2.0], 1e-200, 1e100],
     "elbow": ["left", None, 1, np.array(["up", "down"])],
+    "wrist_motion": ["spherical", None, 1, np.array(["joint"])],
     "method": ["numeric", None, 1, np.array(["explicit"])],
     "name": [None, 1, np.array([]), "nope"],
     "mask2": [[1, 0], [True], "ab", None],
@@ -271,6 +272,14 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
     ("three_step.arm_axis", ts.arm_axis, [("theta0", "angle", 0.3)]),
     ("three_step.as_state", ts.as_state, [("start", "start", None)]),
     ("three_step.motion", ts.motion, [("result", "result", SOL), ("steps_per_phase", "count", 4)]),
+    (
+        "three_step.motion_joints",
+        ts.motion_joints,
+        [("result", "result", SOL), ("steps_per_phase", "count", 4), ("wrist", "wrist_motion", "joint")],
+    ),  # fmt: skip
+    ("three_step.wrist_goal", ts.wrist_goal, [("result", "result", SOL), ("start", "q3", np.zeros(3))]),
+    ("three_step.forearm_frames", ts.forearm_frames, [("joints", "q3", np.zeros(3))]),
+    ("MK3.nearest_attainable", MK3_.nearest_attainable, [("T", "transform", T_MK3), ("tol", "tol", 1e-9)]),
     (
         "three_step.ArmState",
         ts.ArmState,
@@ -551,6 +560,7 @@ EXEMPT = {
     "frame_assignment.FrameWalk": "a result type built by frame_steps()",
     "three_step.ThreeStepSolution": "a result type built by three_step()",
     "three_step.Motion": "a result type built by motion()",
+    "mk3.Attainable": "a result type built by MK3.nearest_attainable()",
     "numerical.DLSResult": "a result type built by ik_dls()",
     "robot.Robot": "the abstract base class of the arms (not instantiable); its methods are swept on each arm",
     "dh.DHChain.ik": "raises NotImplementedError: a general chain has no closed form (the arms' own ik are swept)",
@@ -953,4 +963,4 @@ def test_every_public_callable_is_swept_by_identity():
 
 def test_the_sweep_counts_its_cases():
     """The counts quoted in the module doc and in README: they must be what the sweep runs."""
-    assert (len(TABLE), len(_cases()), len(_equivalent_cases())) == (109, 5467, 1058)
+    assert (len(TABLE), len(_cases()), len(_equivalent_cases())) == (113, 5641, 1081)

@@ -190,7 +190,7 @@ def test_blank_notebook_scores_0_and_hidden_case_details_wait_for_the_due_date(a
     r = _run(autograder_zip, tmp_path, (ROOT / "exercises" / f"{EX}.ipynb").read_bytes())
     assert r["score"] == 0
     scored = [t for t in r["tests"] if "max_score" in t]
-    assert all(t["score"] == 0 for t in scored) and len(scored) == 5
+    assert all(t["score"] == 0 for t in scored) and len(scored) == 6
     assert all("hidden case " not in t["output"] for t in r["tests"] if t["visibility"] == "visible")
     assert "hidden case" not in r["output"]
 

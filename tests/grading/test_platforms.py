@@ -21,7 +21,7 @@ from tests.support import ROOT
 EX1, EX2 = "ex01_rotations", "ex02_dh_frames"
 HONEST = {EX1: ROOT / "solutions" / f"{EX1}.ipynb", EX2: ROOT / "solutions" / f"{EX2}.ipynb"}
 BLANK = {EX1: ROOT / "exercises" / f"{EX1}.ipynb", EX2: ROOT / "exercises" / f"{EX2}.ipynb"}
-MAX = {EX1: 13.0, EX2: 10.0}
+MAX = {EX1: 15.0, EX2: 12.0}
 
 
 def _rows(path: Path) -> list[list[str]]:
@@ -105,13 +105,13 @@ def test_grade_canvas_download_writes_late_column_and_both_gradebooks(canvas_dow
     assert rows[1][0].strip() == "Points Possible" and [float(x) for x in rows[1][5:7]] == [MAX[EX1], MAX[EX2]]
     body = {r[1]: r for r in rows[2:]}  # by Canvas user id, as Canvas matches them
     assert set(body) == {"101", "102"}
-    assert body["101"][0] == "smithjohn" and [float(x) for x in body["101"][5:]] == [13, 10, 23]
-    assert [float(x) for x in body["102"][5:]] == [13, 0, 13]
+    assert body["101"][0] == "smithjohn" and [float(x) for x in body["101"][5:]] == [MAX[EX1], MAX[EX2], MAX[EX1] + MAX[EX2]]
+    assert [float(x) for x in body["102"][5:]] == [MAX[EX1], 0, MAX[EX1]]
     assert all(len(r) == len(rows[0]) for r in rows)
 
     wide = {r["student"]: r for r in _dicts(out.parent / "grades-wide.csv")}
     assert wide["doejane_102"]["late"] == EX1 and wide["doejane_102"]["user id"] == "102"
-    assert float(wide["smithjohn_101"]["total"]) == 23
+    assert float(wide["smithjohn_101"]["total"]) == MAX[EX1] + MAX[EX2]
 
 
 def test_grade_moodle_download_and_its_gradebook_with_a_roster(moodle_download, tmp_path, capsys):
@@ -130,7 +130,7 @@ def test_grade_moodle_download_and_its_gradebook_with_a_roster(moodle_download, 
     assert rows[0] == ["Full name", "ID number", "Email address", EX1, EX2, "Total"]
     body = {r[0]: r for r in rows[1:]}
     assert body["Ann O'Neil, Jr"][1:3] == ["S-1", "ann@example.org"]
-    assert [float(x) for x in body["Ann O'Neil, Jr"][3:]] == [13, 10, 23]
+    assert [float(x) for x in body["Ann O'Neil, Jr"][3:]] == [MAX[EX1], MAX[EX2], MAX[EX1] + MAX[EX2]]
     assert body['Bob "Bobby" Li'][1:3] == ["S-2", "bob@example.org"]
     assert [float(x) for x in body['Bob "Bobby" Li'][3:]] == [0, 0, 0]
     # the names with a comma and quotes went through the csv module's quoting, and back

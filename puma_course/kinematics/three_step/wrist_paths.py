@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._validate import as_choice, as_count
+from ..._validate import MAX_MAGNITUDE, as_array, as_choice, as_count
 from ...euler import zyz_from_rotation
 from ...transforms import wrap_angle
 from .procedure import ThreeStepSolution, motion
@@ -41,7 +41,8 @@ def forearm_frames(joints: Any) -> np.ndarray:
            [ 0.,  1.,  0.],
            [ 1.,  0.,  0.]])
     """
-    j = np.asarray(joints, dtype=float)
+    j = as_array(joints, "joints", (3,), batch=True, what="arm joints (θ0, θ1, θ2) as (3,) or (N, 3)",
+                 max_magnitude=MAX_MAGNITUDE)  # fmt: skip
     t0, t12 = j[..., 0], j[..., 1] + j[..., 2]
     c0, s0, c, s = np.cos(t0), np.sin(t0), np.cos(t12), np.sin(t12)
     z = np.zeros_like(c0)
@@ -69,9 +70,8 @@ def wrist_goal(result: ThreeStepSolution, start: Any) -> np.ndarray:
     array([   0.  , -149.47,   45.  ])
     """
     r = _check(result)
-    a = np.asarray(start, dtype=float)
-    if a.shape != (3,) or not np.all(np.isfinite(a)):
-        raise ValueError(f"start: expected three finite wrist angles (φ, ϑ, ψ) in radians, got shape {a.shape}")
+    a = as_array(start, "start", (3,), what="three finite wrist angles (φ, ϑ, ψ) in radians",
+                 max_magnitude=MAX_MAGNITUDE)  # fmt: skip
     relative = forearm_frames(r.joints).T @ np.asarray(r.target)
     first = zyz_from_rotation(relative, psi=a[2])
     second = wrap_angle(first * np.array([1.0, -1.0, 1.0]) + np.array([math.pi, 0.0, math.pi]))
