@@ -105,7 +105,8 @@ def test_grade_canvas_download_writes_late_column_and_both_gradebooks(canvas_dow
     assert rows[1][0].strip() == "Points Possible" and [float(x) for x in rows[1][5:7]] == [MAX[EX1], MAX[EX2]]
     body = {r[1]: r for r in rows[2:]}  # by Canvas user id, as Canvas matches them
     assert set(body) == {"101", "102"}
-    assert body["101"][0] == "smithjohn" and [float(x) for x in body["101"][5:]] == [MAX[EX1], MAX[EX2], MAX[EX1] + MAX[EX2]]
+    assert body["101"][0] == "smithjohn"
+    assert [float(x) for x in body["101"][5:]] == [MAX[EX1], MAX[EX2], MAX[EX1] + MAX[EX2]]
     assert [float(x) for x in body["102"][5:]] == [MAX[EX1], 0, MAX[EX1]]
     assert all(len(r) == len(rows[0]) for r in rows)
 
