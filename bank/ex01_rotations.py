@@ -203,7 +203,7 @@ EXERCISE = Exercise(
                     "(a + π, π - b, c + π) is the same rotation, but the question asks for b in [-π/2, π/2]",
                     xyz_other_branch_all,
                 ),
-                degrees_out([0, 1, 2]),
+                degrees_out(),  # every entry is an angle (a (k, 3) array: flat indices would miss rows)
             ),
             hint="Multiply Rx(a) Ry(b) Rz(c) out as lecture 01 §6 does for ZYZ, find the entry that is sin b alone "
             "and the pairs that give a and c; then set b = π/2 and see what is left. Check by multiplying back.",

@@ -134,7 +134,7 @@ EXERCISE = Exercise(
             ),
             hidden=lambda rng: ref.standard_tables(rng, 5),
             reference=ref.standard_expected,
-            judge_with=table_judge(),
+            judge_with=table_judge(standard_section="lecture 02 §8"),
             answer=modified_from_standard,
             forbidden=keys.KEY_TABLES,
             hint="Write both products for a two-joint chain and group the factors (lecture 02 §8): which joint's "

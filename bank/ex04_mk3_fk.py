@@ -148,9 +148,11 @@ EXERCISE = Exercise(
             "the nearest pose the MK3 on its rail can take",
             public=(
                 (ref.mk3_rail_goal([0.4, 0.9, -1.2, 0.6, 0.3], [0.2, -0.5, 1.0], 0.9, 300.0), 300.0),
-                (ref.mk3_rail_goal([-0.6, 0.5, -0.9, 1.0, 0.7], [0.0, 0.0, 1.0], 0.0, -250.0), -250.0),
+                (ref.mk3_rail_goal([-0.6, 0.5, -0.9, 1.0, 0.7], [1.0, 0.3, 0.0], 0.5, -250.0), -250.0),
             ),
-            hidden=lambda rng: ref.mk3_nearest_cases(rng, 4),
+            # every public goal is unattainable (returning T unchanged fails each); one hidden goal is attainable
+            # (it must come back unchanged, however the turn's axis z × z' is computed)
+            hidden=lambda rng: [*ref.mk3_nearest_cases(rng, 4), *ref.mk3_attainable_cases(rng, 1)],
             reference=ref.mk3_rail_nearest,
             forbidden=(
                 "puma_course.kinematics.mk3:MK3.nearest_attainable",

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from puma_course.grading.judge.diagnose import SIGN_FLIP, matches, negated
+from puma_course.grading.judge.diagnose import SIGN_FLIP, matches, negated, unit_axis_out
 from puma_course.grading.judge.judges import solution_set_judge
 from puma_course.grading.model import Exercise, Question
 
@@ -59,6 +59,18 @@ def _lecture_det(q: Any, a2: float, a3: float, d3: float, d4: float) -> float:
 def _lecture_direction(q: Any, a2: float, a3: float, d3: float, d4: float) -> np.ndarray:
     """The mistake: the lost direction with the controller's q used as the lecture's."""
     return ref.puma_lost_direction(np.asarray(q, dtype=float) - chains.PUMA_ZERO, a2, a3, d3, d4)
+
+
+def _lecture_radial(horizontal: bool) -> Any:
+    """The mistake: the direction of the wrist centre (from the base origin, or from the base axis if
+    ``horizontal``) with the controller's q used as the lecture's, the arm then not singular at all."""
+
+    def wrong(q: Any, a2: float, a3: float, d3: float, d4: float) -> np.ndarray:
+        p = ref.puma_fk(np.asarray(q, dtype=float), a2, a3, d3, d4)[:3, 3]
+        u = np.array([p[0], p[1], 0.0]) if horizontal else p
+        return u / np.linalg.norm(u)
+
+    return wrong
 
 
 EXERCISE = Exercise(
@@ -124,6 +136,9 @@ EXERCISE = Exercise(
             forbidden=keys.KEY_JACOBIAN,
             mistakes=(
                 matches("joint_zero", ZERO, _lecture_direction),
+                matches("joint_zero", ZERO, _lecture_radial(False)),
+                matches("joint_zero", ZERO, _lecture_radial(True)),
+                unit_axis_out(3, "direction"),
                 negated(
                     "sign_flip",
                     "your direction points the wrong way: the question asks for the unit vector u "

@@ -139,65 +139,74 @@ $h + a_2 + d_4 + d_6$.
 
 PORTER_COUNT = Written(
     points=4,
-    title="why four configurations, not eight",
+    title="how many configurations the telescopic rod leaves, and why",
     prompt=r"""
-Porter writes that a hand frame of his chain is reached by "eight (or less)" configurations. For a hand frame in
-general position (the wrist point $p_4$ off the base axis, $c_4 \ne 0$, a stroke $q_2 > 0$):
+Question 2's chain has a telescopic rod: a fixed part $l_2$ plus the stroke $q_2 \ge 0$, so that
+$|p_3 - p_2| = l_2 + q_2$. Take its first public case: the hand frame that Porter's chain with
+$(l_1, l_3, l_4) = (1, 0.5, 0.3)$ takes at $q = (0.3, 0.7, 1.3, -0.4, 0.9, 0.6)$, and $l_2 = 1.6$.
 
-1. **How many** configurations reach it? **Justify** the number from the choices the method of this exercise
-   makes: which steps offer two values, and why the others offer one.
-2. **Which** of Porter's eight is not a configuration, and why?
-3. The configurations make fewer different point sequences $p_0, \dots, p_5$ than there are configurations.
-   How many, and why?
-4. How does the count change when $p_4$ lies on the base axis $z_0$?
+1. **How many** configurations of the telescopic-rod chain reach this hand frame? **Justify** the number from
+   the rod lengths $|p_3 - p_2|$ that Porter's four configurations of it need (give them, to 3 decimals).
+2. The configurations drop out **in pairs**. Which configurations (arm-plane side, sign of $c_4$) form each pair,
+   and why must a pair always stay or go together?
+3. Keep the hand frame and change $l_2$: for which $l_2$ do all four configurations remain, for which two, and
+   for which is the hand frame out of reach?
+4. Lecture 06 §4 finds a singular family at zero stroke ($\alpha_2$ free). What becomes of it on this chain? What
+   happens at this hand frame when $l_2$ equals the shorter rod length you found?
 
 Answer in a few sentences each; a sketch is welcome.
 """,
     criteria=(
         Criterion(
-            "two times two",
+            "two remain",
             1,
-            "four: alpha1 (the arm plane through z0 and p4, entered from either side: "
-            "atan2 and +pi) times alpha4 (the arcsine's two values, c4 = ±: two directions of the l3 rod); "
-            "alpha5, alpha23, alpha2 and q2 then follow uniquely",
+            "two: Porter's four configurations need rod lengths 1.300 (twice) and 1.924 (twice); with l2 = 1.6 "
+            "the shorter would need the stroke q2 = -0.300 < 0 (dropped), the longer has q2 = 0.324 (kept)",
         ),
         Criterion(
-            "not eight",
+            "pairs",
             1,
-            "Porter's third pair (alpha2 and alpha2 + pi from an arctan) flips the sign of "
-            "the stroke: q2 < 0 is outside the joint's range, so it is no configuration",
+            "each pair shares its points p0 ... p5 (the two sides of the arm plane give the same points), hence "
+            "its rod length: (front, c4 > 0) with (back, c4 < 0) at 1.300, (front, c4 < 0) with (back, c4 > 0) at "
+            "1.924 (the back side turns the frame, so the same rod direction has the other sign of c4)",
         ),
         Criterion(
-            "two sequences",
+            "range of l2",
             1,
-            "two point sequences: the two sides of the arm plane give the same points "
-            "(the column turned by pi, every later frame turned with it); only p3 differs between the two "
-            "directions of the rod",
+            "all four for l2 <= 1.300, two for 1.300 < l2 <= 1.924, none (out of reach) for l2 > 1.924: the count "
+            "is 4, 2 or 0, never odd",
         ),
         Criterion(
-            "on the axis",
+            "no zero-stroke family",
             1,
-            "p4 on z0: every vertical plane through z0 contains it, alpha1 is free, "
-            "infinitely many configurations (a singular family)",
+            "the family needs p3 = p2 (a rod of length 0); here |p3 - p2| >= l2 > 0, so alpha2 is always "
+            "fixed by the rod's direction and the family is gone; at l2 = 1.300 the pair's stroke is 0, the "
+            "stroke's end: both configurations remain (q2 = 0 is allowed), four in all, none singular",
         ),
     ),
     full_answer=r"""
-Four configurations: two arm-plane sides ($\alpha_1$, $\alpha_1 + \pi$) times two rod directions ($\alpha_4$ and
-$\pi - \alpha_4$), the rest unique; Porter's extra factor two is $\alpha_2 + \pi$ with the stroke $-q_2 < 0$; two point
-sequences, because the sides of the plane give the same points; $p_4$ on $z_0$ leaves $\alpha_1$ free (a continuum).
+Two: the four configurations need rods of $1.300$ and $1.924$ (each twice), and only the longer exceeds
+$l_2 = 1.6$; the pairs are the two sides of the arm plane with the same points ((front, $c_4 > 0$) with
+(back, $c_4 < 0$); (front, $c_4 < 0$) with (back, $c_4 > 0$)); four for $l_2 \le 1.300$, two up to $1.924$,
+none beyond; the zero-stroke family needs a rod of length 0, which $l_2 > 0$ rules out: $q_2 = 0$ is only the
+stroke's end.
 """,
     worked=r"""
-1. Four. $p_4 = p_5 - l_4 x_5$ is fixed by $T$; the arm plane must contain $z_0$ and $p_4$ (one plane, two
-   sides: $\alpha_1 = \operatorname{atan2}(p_{4,2}, p_{4,1})$ or $+\pi$). In that plane
-   $s_4 = c_1 x_{5,2} - s_1 x_{5,1}$ has two angles, $\alpha_4$ and $\pi - \alpha_4$ (the $l_3$ rod perpendicular
-   to $x_5$, in two directions). Each pair then gives one $\alpha_5$ (the sign of $c_4$), one $\alpha_{23}$, and
-   the vector $q_2(c_2, s_2)$, hence $\alpha_2$, $q_2 \ge 0$, $\alpha_3 = \alpha_{23} - \alpha_2$: $2 \times 2 = 4$.
-2. The second value of Porter's arctan for $\alpha_2$: $\alpha_2 + \pi$ flips $c_2$ and $s_2$, so the same equations
-   need the stroke $-q_2 < 0$, which the prismatic joint cannot take.
-3. Two: the back side of the plane turns the column by $\pi$, and every later frame with it, but the points
-   $p_0, \dots, p_5$ stay; only the two rod directions give different elbow points $p_3$.
-4. With $p_4$ on $z_0$ every vertical plane through $z_0$ contains it: $\alpha_1$ is free, infinitely many
-   configurations (Porter's "indefinite number").
+1. Two. Porter's four configurations of this hand frame have the rod lengths $|p_3 - p_2| = 1.300$,
+   $1.924$, $1.924$, $1.300$ (his $q_2$, from `Porter(1, 0.5, 0.3).ik(T)`); the telescopic chain needs the
+   stroke $q_2 = |p_3 - p_2| - l_2$, which is $-0.300 < 0$ for the first pair (the rod would have to be shorter
+   than its fixed part) and $0.324 \ge 0$ for the second. So front/$c_4 < 0$ and back/$c_4 > 0$ remain.
+2. The other side of the arm plane ($\alpha_1 + \pi$) turns the column by $\pi$ and every later frame with it,
+   but leaves the points $p_0, \dots, p_5$ where they are: the same $p_2$, the same $p_3$, the same rod length.
+   The turned frames reverse the sign of $c_4$ for the same rod direction, so (front, $c_4 > 0$) pairs with
+   (back, $c_4 < 0$) at $1.300$, and (front, $c_4 < 0$) with (back, $c_4 > 0$) at $1.924$. A pair has one stroke,
+   so it stays or goes as a whole: away from singular poses the count is 4, 2 or 0.
+3. All four for $l_2 \le 1.300$, two for $1.300 < l_2 \le 1.924$, none for $l_2 > 1.924$ (the rod's fixed
+   part is longer than either point sequence allows).
+4. Lecture 06's family needs $p_3 = p_2$: a rod of length zero, whose direction then does not matter. Here the
+   rod is never shorter than $l_2 > 0$, so its direction, and $\alpha_2$ with it, is always fixed: the family
+   is gone. At $l_2 = 1.300$ the first pair needs $q_2 = 0$: the slide at the end of its stroke, allowed, and
+   nothing singular about it; four configurations reach the hand frame.
 """,
 )
 

@@ -12,29 +12,61 @@ one already there. Nothing is written to disk; saving writes what JupyterLab wri
 from __future__ import annotations
 
 import platform
+import sys
 from typing import Any
 
 from jupyter_server.services.contents.largefilemanager import AsyncLargeFileManager
 
-__all__ = ["CourseContentsManager", "with_running_python"]
+__all__ = ["CourseContentsManager", "kernel_language_info", "with_running_python"]
+
+
+def kernel_language_info(version: str | None = None) -> dict[str, Any]:
+    """The ``language_info`` an IPython kernel on this interpreter reports (ipykernel's ``kernel_info`` reply).
+
+    JupyterLab writes exactly this into a notebook's metadata when its kernel connects.
+
+    >>> sorted(kernel_language_info("3.12.4").items())[-1]
+    ('version', '3.12.4')
+    """
+    return {
+        "codemirror_mode": {"name": "ipython", "version": sys.version_info[0]},
+        "file_extension": ".py",
+        "mimetype": "text/x-python",
+        "name": "python",
+        "nbconvert_exporter": "python",
+        "pygments_lexer": f"ipython{sys.version_info[0]}",
+        "version": version or platform.python_version(),
+    }
 
 
 def with_running_python(model: dict[str, Any], version: str | None = None) -> dict[str, Any]:
-    """``model`` (a contents model) with a Python notebook's ``language_info.version`` set to ``version``.
+    """``model`` (a contents model) with a Python notebook's ``language_info`` as the running kernel reports it.
 
-    ``version`` defaults to this interpreter's; other models, and notebooks of other languages or
-    without ``language_info``, come back unchanged.
+    The version becomes ``version`` (default: this interpreter's), and whatever else the kernel reports and
+    the notebook lacks is filled in (a notebook saved by a tool that wrote no ``version``, or only
+    ``name``, would otherwise be marked modified on opening). A notebook whose kernel is Python but which
+    has no ``language_info`` gets one. Other models, and notebooks of other languages, come back unchanged.
 
     >>> m = {"type": "notebook", "content": {"metadata": {"language_info": {"name": "python", "version": "3.9.1"}}}}
     >>> with_running_python(m, "3.12.4")["content"]["metadata"]["language_info"]["version"]
     '3.12.4'
+    >>> m = {"type": "notebook", "content": {"metadata": {"language_info": {"name": "python"}}}}
+    >>> with_running_python(m, "3.12.4")["content"]["metadata"]["language_info"]["mimetype"]
+    'text/x-python'
     >>> with_running_python({"type": "file", "content": "x"}, "3.12.4")
     {'type': 'file', 'content': 'x'}
     """
     content = model.get("content") if model.get("type") == "notebook" else None
-    info = content.get("metadata", {}).get("language_info") if isinstance(content, dict) else None
-    if isinstance(info, dict) and info.get("name") == "python" and "version" in info:
-        info["version"] = version or platform.python_version()
+    meta = content.get("metadata") if isinstance(content, dict) else None
+    if not isinstance(meta, dict):
+        return model
+    info, spec = meta.get("language_info"), meta.get("kernelspec")
+    if isinstance(info, dict):
+        python = info.get("name") == "python"
+    else:
+        python = info is None and isinstance(spec, dict) and spec.get("language") == "python"
+    if python:
+        meta["language_info"] = {**(info or {}), **kernel_language_info(version)}
     return model
 
 

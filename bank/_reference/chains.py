@@ -286,6 +286,19 @@ def mk3_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]
     return out
 
 
+def mk3_attainable_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """``n`` goals (T, s) the MK3 on its rail reaches as they are (its nearest pose is the goal itself), the tool
+    point at least 100 mm off the base axis; the carriage 100 to 600 mm from the rail's middle, either way."""
+    arm, out = MK3(), []
+    while len(out) < n:
+        T = arm.fk(rng.uniform(-np.pi, np.pi, 5))
+        if float(np.hypot(T[0, 3], T[1, 3])) < 100.0:
+            continue
+        s = float(rng.choice([-1.0, 1.0]) * rng.uniform(100.0, 600.0))
+        out.append((transforms.transl([0.0, s, 0.0]) @ T, s))
+    return out
+
+
 def mk3_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     """``n`` cases (q, d1, a1, a2, a3, d5) with lengths around the lecture's (mm)."""
     base = np.array([360.0, 135.0, 250.0, 215.0, 100.0])

@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from .judge.diagnose import Mistake
+from .judge.judges.tables import record_diagnosis, table_judge
 from .model import BANK_MODULE, Exercise, Question
 from .remake import Made, remake
 
@@ -198,6 +199,8 @@ def public_exercise(ex: Exercise) -> Exercise:
             expected = public_q.reference(*copy.deepcopy(args))
             if not callable(expected) and not isinstance(expected, dict):
                 expected = np.asarray(expected, dtype=float)
+            if isinstance(q.judge_with, Made) and q.judge_with.factory is table_judge:
+                record_diagnosis(expected)  # the poses its diagnosis asks for (a joint reversed, q = 0, ...)
             for got in _probes(q, args):
                 try:
                     public_q.judge(got, expected, tuple(args))

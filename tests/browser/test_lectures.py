@@ -328,3 +328,20 @@ def test_lecture_as_a_student_gets_it(name: str, lab: Lab, page: Any, artifacts:
     sources = page.locator(".jp-Notebook .jp-CodeCell .jp-InputArea").all_inner_texts()
     assert not any("NBVAL" in s for s in sources), f"{name}: an nbval pragma is shown in a cell"
     assert not page.errors, f"{name}: errors on the page: {page.errors}"
+
+
+def test_start_here_and_an_exercise_open_unmodified(page: Any, tmp_path: Path) -> None:
+    """START_HERE and an exercise (saved without language_info.version) open with no ● on their tab."""
+    from tests.support import ROOT
+
+    folder = tmp_path / "course"
+    (folder / "exercises").mkdir(parents=True)
+    (folder / "START_HERE.ipynb").write_bytes((ROOT / "START_HERE.ipynb").read_bytes())
+    exercise = sorted((ROOT / "exercises").glob("*.ipynb"))[0]
+    (folder / "exercises" / exercise.name).write_bytes(exercise.read_bytes())
+    with Lab(folder) as lab:
+        for name in ("START_HERE.ipynb", f"exercises/{exercise.name}"):
+            open_notebook(page, lab, name)
+            page.wait_for_timeout(1500)  # the kernel's language_info has arrived (idle) and been written
+            dirty = page.locator(".lm-DockPanel-tabBar .lm-TabBar-tab.jp-mod-dirty")
+            assert dirty.count() == 0, f"{name}: JupyterLab marks the notebook modified right after opening it"

@@ -630,3 +630,45 @@ def test_a_standard_table_rewritten_and_left_as_it_was():
     good[1:, :2], good[0, :2] = std[:-1, :2], 0.0  # α and a move down one row
     assert judge(name, "q4", good, std).passed
     assert_named(judge(name, "q4", np.array(std, dtype=float), std), "standard_dh", "standard-DH")
+
+
+# ------------------------------------------------------------------------------------------ the student-eye review
+def test_xyz_angles_in_degrees_are_named_on_every_row():
+    """ex01 q6 returns a (k, 3) array of angles: degrees are recognised in every row, not the first only."""
+    q = EXERCISES["ex01_rotations"].question("q6")
+    for args in q.public:
+        assert_named(judge("ex01_rotations", "q6", np.degrees(right("ex01_rotations", "q6", *args)), *args), "degrees")
+
+
+def test_the_lost_direction_with_the_lectures_joint_values_or_not_of_length_one():
+    """ex09 q4: the solution's method without the controller's zero (the arm then not singular), and a direction
+    of length 2, on every public case."""
+    from puma_course.kinematics import Puma560
+
+    q = EXERCISES["ex09_puma_ik"].question("q4")
+
+    def lecture_values(qc, a2, a3, d3, d4):  # the solution's method, θ taken as the lecture's
+        t = np.asarray(qc, dtype=float)
+        p = Puma560(a2, a3, d3, d4).fk(t)[:3, 3]
+        if abs(a3 * np.sin(t[2]) + d4 * np.cos(t[2])) < 1e-9:
+            return p / np.linalg.norm(p)
+        u = np.array([p[0], p[1], 0.0])
+        return u / np.linalg.norm(u)
+
+    for args in q.public:
+        assert_named(judge("ex09_puma_ik", "q4", lecture_values(*args), *args), "joint_zero", "controller's zero")
+        got = 2.0 * right("ex09_puma_ik", "q4", *args)
+        assert_named(judge("ex09_puma_ik", "q4", got, *args), "unnormalised", "direction", "length 2, not 1")
+
+
+def test_a_standard_table_returned_unchanged_is_sent_to_lecture_02_section_8():
+    """ex02 q4 rewrites a standard-DH table: returning it unchanged is the standard-DH mistake, told where the
+    lecture compares the two conventions (§8); ex02 q3 keeps §5, the modified link matrix."""
+    q = EXERCISES["ex02_dh_frames"].question("q4")
+    for (table,) in q.public:
+        verdict = judge("ex02_dh_frames", "q4", np.array(table), table)
+        assert_named(verdict, "standard_dh", "lecture 02 §8")
+        assert "§5" not in verdict.reason
+    H, h, d2 = np.pi / 2, 0.8, 0.2
+    standard = np.array([[H, 0.0, 0.0, h, 0], [H, 0.0, H, -d2, 0], [0.0, 0.0, 0.0, 0.0, 1]])
+    assert_named(judge("ex02_dh_frames", "q3", standard, h, d2), "standard_dh", "lecture 02 §5")

@@ -31,6 +31,8 @@ import pytest
 from puma_course.cli import main
 from puma_course.grading import EXERCISES
 from puma_course.grading.edition import write_edition
+from puma_course.grading.judge.judges import table_judge
+from puma_course.grading.judge.judges.tables import modified_table_fk
 from puma_course.grading.model import score_question
 from puma_course.grading.public import DATA_FILE, _key, dumps, public_exercise
 from puma_course.grading.remake import Made
@@ -232,7 +234,48 @@ def _answers(q, ns):
     out.append(("transposed", lambda *a: np.swapaxes(np.atleast_2d(np.asarray(right(*a), float)), -1, -2)))
     out.append(("degrees", lambda *a: np.degrees(np.asarray(right(*a), float))))
     out.append(("negated", lambda *a: -np.asarray(right(*a), float)))
+    if isinstance(q.judge_with, Made) and q.judge_with.factory is table_judge:
+        out += _wrong_tables(right)
     return out
+
+
+def _reversed_joint(table, j):
+    """``table`` with joint j's axis z_j reversed (0-based, not the last): the same chain with q_j negated.
+
+    Rot(X, α+π) Trans(X, a) Rot(Z, -θ - q) Trans(Z, -d) = Rot(X, α) Trans(X, a) Rot(Z, θ + q) Trans(Z, d) Rot(X, π)
+    (and Trans(Z, -d + q) for a prismatic joint); the next row's α_j + π takes the Rot(X, π) back.
+    """
+    t = np.array(table, dtype=float)
+    t[j, 0] += np.pi
+    t[j, 2:4] = -t[j, 2:4]
+    t[j + 1, 0] += np.pi
+    return t
+
+
+def _wrong_tables(right):
+    """Wrong DH tables of the right shape: an offset's sign, each joint reversed, random numbers."""
+
+    def sign(*a):
+        t = np.array(right(*a), dtype=float)
+        i, k = np.argwhere(np.abs(t[:, [1, 3]]) > 1e-9)[-1]  # the last non-zero offset (a or d)
+        t[i, [1, 3][k]] *= -1
+        return t
+
+    def random_table(*a):
+        t = np.array(right(*a), dtype=float)
+        rng = np.random.default_rng(int(1e3 * np.sum(np.abs(t))))
+        t[:, :4] = rng.uniform(-1.5, 1.5, (len(t), 4))
+        return t
+
+    out = [("a sign wrong", sign), ("random table", random_table)]
+    for j in range(5):
+        out.append((f"joint {j + 1} reversed", lambda *a, j=j: _reversed_or_same(right(*a), j)))
+    return out
+
+
+def _reversed_or_same(table, j):
+    t = np.asarray(table, dtype=float)
+    return _reversed_joint(t, j) if j < len(t) - 1 else t * [1, 1, 1, -1, 1]
 
 
 @pytest.mark.parametrize(("name", "qid"), QUESTIONS, ids=[f"{n}:{q}" for n, q in QUESTIONS])
@@ -246,9 +289,28 @@ def test_the_edition_self_check_agrees_with_the_instructors(public, solutions, n
     for label, fn in answers:
         ours, theirs = public_outcomes(q_bank, fn), public_outcomes(q_pub, fn)
         assert theirs == ours, (label, ours, theirs)
+        assert not any("LookupError" in (reason or "") for _, reason in theirs), (label, theirs)
+        if label == "joint 1 reversed":  # the course names it, so must the edition
+            assert all("joint 1" in (reason or "") and "the wrong way" in (reason or "") for _, reason in theirs)
         assert score_question(q_pub.points, theirs) == score_question(q_bank.points, ours)
     solution_outcomes = public_outcomes(q_pub, solutions[name][q_bank.function])
     assert all(reason is None for _, reason in solution_outcomes), solution_outcomes
+
+
+def test_a_table_judge_missing_a_recorded_pose_still_says_what_differs():
+    """An edition whose data lacks a pose the diagnosis asks for answers as the grader's last resort does."""
+    chain = np.array([[0.0, 0.0, 0.0, 0.8, 0], [np.pi / 2, 0.0, 0.0, 0.0, 0]])
+    Q = np.random.default_rng(1).uniform(-np.pi, np.pi, (6, 2))
+
+    def fk(P):
+        if P is not Q:
+            raise LookupError("the self-check has no recorded value for these arguments (a public case only)")
+        return modified_table_fk(chain, P)
+
+    expected = {"fk": fk, "Q": Q, "revolute": np.array([True, True]), "scale": 1.0}
+    wrong = chain + [[0, 0, 0, 0, 0], [0, 0, 0.9, 0, 0]]  # a tool frame turned: the diagnosis asks fk(-Q)
+    verdict = table_judge()(wrong, expected, ())
+    assert not verdict.passed and verdict.reason.startswith("your chain reaches other poses"), verdict
 
 
 def test_the_public_data_holds_no_bank_code_and_no_hidden_cases(public):

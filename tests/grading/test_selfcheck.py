@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from puma_course.grading import check, use_exercise
+from puma_course.grading import EXERCISES, check, use_exercise
 
 
 def test_check_prints_one_clear_line(capsys, right_rotation):
@@ -97,3 +97,25 @@ def test_check_judges_a_modelling_question_by_what_the_answer_does(capsys):
     check("ex02_dh_frames:q3", lambda h, d2: np.array([[half, 0, 0, h, 0], [half, 0, half, -d2, 0], [0, 0, 0, 0, 1]]))
     out = capsys.readouterr().out
     assert "FAILED" in out and "standard-DH table" in out
+
+
+def test_a_do_nothing_nearest_pose_fails_every_public_case():
+    """ex04 q4: the goal returned unchanged, or only its approach projected, is wrong on every public case."""
+    from puma_course.grading.selfcheck import public_outcomes
+
+    q = EXERCISES["ex04_mk3_fk"].question("q4")
+
+    def z_only(T, s):  # the approach projected onto the arm plane, x and y kept (not a rotation)
+        out = np.array(T, dtype=float)
+        p, z = out[:3, 3] - [0.0, s, 0.0], out[:3, 2]
+        n = np.array([-p[1], p[0], 0.0]) / np.hypot(p[0], p[1])  # the arm plane's normal
+        out[:3, 2] = (z - (z @ n) * n) / np.linalg.norm(z - (z @ n) * n)
+        return out
+
+    for answer in (lambda T, s: np.array(T, dtype=float), z_only):
+        outcomes = public_outcomes(q, answer)
+        assert all(reason is not None for _, reason in outcomes), outcomes
+    # one hidden goal is attainable as it is: the reference gives it back unchanged
+    hidden = q.hidden(np.random.default_rng(5))
+    same = [np.allclose(q.reference(T, s), T, atol=1e-9) for T, s in hidden]
+    assert sum(same) == 1 and not any(np.allclose(q.reference(T, s), T, atol=1e-6) for T, s in q.public)

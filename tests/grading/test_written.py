@@ -19,6 +19,7 @@ from __future__ import annotations
 import base64
 import csv
 import shutil
+import warnings
 from pathlib import Path
 
 import nbformat
@@ -39,7 +40,9 @@ from puma_course.grading.written import (
     written_exercises,
     written_questions,
 )
+from puma_course.kinematics.porter import Porter
 from puma_course.kinematics.puma560 import Puma560
+from puma_course_bank._reference.porter_chain import porter_rod_fk
 from tests.support import ROOT
 
 EX = "ex02_dh_frames"
@@ -125,6 +128,43 @@ def test_the_worked_entry_of_0t6_is_the_pedestal_robots():
     T0 = Puma560(0.4, 0.02, 0.15, 0.43).fk(np.radians([0, -90, -90, 0, 0, 0]))
     assert 1.0 + T0[2, 3] + 0.05 * T0[2, 2] == pytest.approx(1.0 + 0.4 + 0.43 + 0.05)
     assert "h + a_2 + d_4 + d_6" in w.spec.worked
+
+
+def test_the_worked_count_of_the_telescopic_rod_is_the_chains():
+    """ex06's written question: the rod lengths, the pairs, the count for each l2 and the stroke's end, worked out
+    from Porter's chain's configurations and frames (the points p2, p3), and the telescopic chain's own fk."""
+    (w,) = written_questions("ex06_porter_explicit")
+    text = " ".join((w.spec.prompt + w.spec.worked + w.spec.full_answer).split())
+    q_pub, L = np.array([0.3, 0.7, 1.3, -0.4, 0.9, 0.6]), (1.0, 0.5, 0.3)
+    arm = Porter(*L)
+    T = arm.fk(q_pub)
+    T_case, l1, l2, l3, l4 = EXERCISES["ex06_porter_explicit"].question("q2").public[0]  # the prompt's case
+    assert np.allclose(T_case, T) and (l1, l3, l4) == L and l2 == 1.6 and "l_2 = 1.6" in text
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = arm.ik(T)
+    frames = arm.frames(sol.q)
+    rods = np.linalg.norm(frames[:, 3, :3, 3] - frames[:, 2, :3, 3], axis=1)  # |p3 - p2| from the points
+    assert np.allclose(rods, sol.q[:, 2])
+    short, long = np.sort(np.unique(np.round(rods, 9)))
+    assert f"{short:.3f}" == "1.300" and f"{long:.3f}" == "1.924" and "1.924" in text and "1.300" in text
+    assert f"{short - 1.6:.3f}" == "-0.300" and f"{long - 1.6:.3f}" == "0.324" and "0.324" in text
+    # the pairs: the same points, one per side of the arm plane, opposite signs of c4
+    by_label = dict(zip(sol.labels, range(len(sol.labels)), strict=True))
+    for front, back, rod in (("front/c4+", "back/c4-", short), ("front/c4-", "back/c4+", long)):
+        i, j = by_label[front], by_label[back]
+        assert np.allclose(frames[i, :, :3, 3], frames[j, :, :3, 3]) and np.isclose(rods[i], rod)
+    assert "(front, $c_4 > 0$) pairs with (back, $c_4 < 0$) at $1.300$" in text
+    # the count for l2: the configurations whose stroke |p3 - p2| - l2 is >= 0, each reaching T on the rod chain
+    for l2, count in ((1.0, 4), (short, 4), (1.6, 2), (long, 2), (2.0, 0)):
+        keep = rods - l2 >= -1e-8
+        assert int(np.sum(keep)) == count
+        for q in sol.q[keep]:
+            stroke = max(q[2] - l2, 0.0)
+            rod_q = np.r_[q[:2], stroke, q[3:]]
+            assert np.allclose(porter_rod_fk(rod_q, L[0], l2, L[1], L[2]), T, atol=1e-9)
+            assert q[2] > 0.5  # never a zero-length rod: alpha2 fixed by the rod's direction
+    assert "front/$c_4 < 0$ and back/$c_4 > 0$ remain" in text
 
 
 def _hand_in(base: Path, answer: str | None, attach: bool = False, honest: bool = True) -> nbformat.NotebookNode:

@@ -85,8 +85,8 @@ def angle_2pi(indices: Sequence[int] | None = None, where: str = "the range aske
     return Mistake("angle_2pi", made(check, angle_2pi, indices, where, attr="check"))
 
 
-def unit_axis_out(stop: int = 3) -> Mistake:
-    """The axis (the first ``stop`` entries) in the right direction but not of length 1.
+def unit_axis_out(stop: int = 3, what: str = "axis") -> Mistake:
+    """The axis (the first ``stop`` entries) in the right direction but not of length 1 (``what``: its name).
 
     >>> unit_axis_out().check(np.array([0.0, 0.0, 2.0, 1.0]), np.array([0.0, 0.0, 1.0, 1.0]), (), None)[:24]
     'the axis you returned ha'
@@ -103,7 +103,7 @@ def unit_axis_out(stop: int = 3) -> Mistake:
             return None
         fixed[:stop] = g[:stop] / norm
         if close(fixed, ref):
-            return f"the axis you returned has length {norm:.4g}, not 1: divide it by its norm"
+            return f"the {what} you returned has length {norm:.4g}, not 1: divide it by its norm"
         return None
 
-    return Mistake("unnormalised", made(check, unit_axis_out, stop, attr="check"))
+    return Mistake("unnormalised", made(check, unit_axis_out, stop, what, attr="check"))

@@ -52,7 +52,45 @@ def standard_table_fk(table: Any, Q: Any) -> np.ndarray:
     return np.stack(out) if np.ndim(Q) > 1 else out[0]
 
 
-def table_judge(chain_fk: TableFk = modified_table_fk, standard_fk: TableFk = standard_table_fk) -> Judge:
+def diagnosis_points(Q: Any, revolute: Any, scale: float) -> list[np.ndarray]:
+    """Every set of joint values, besides ``Q``, at which the table judge's diagnosis asks the reference's fk.
+
+    ``Q`` with each joint's value negated (a joint turning the wrong way), then q = 0, then each joint moved
+    alone from q = 0 (right only at q = 0). A student edition records the reference's poses at these too
+    (:mod:`puma_course.grading.public`), so that its self-check names the same mistakes as the course.
+
+    >>> [P.tolist() for P in diagnosis_points([[0.1, 0.2]], [True, False], 2.0)]
+    [[[-0.1, 0.2]], [[0.1, -0.2]], [[0.0, 0.0]], [[0.7, 0.0]], [[0.0, 0.6]]]
+    """
+    Q = np.atleast_2d(np.asarray(Q, dtype=float))
+    rev = np.asarray(revolute, dtype=bool)
+    n = len(rev)
+    out = []
+    for j in range(n):
+        flipped = Q.copy()
+        flipped[:, j] = -flipped[:, j]
+        out.append(flipped)
+    zero = np.zeros((1, n))
+    out.append(zero)
+    for j in range(n):
+        single = zero.copy()
+        single[0, j] = 0.7 if rev[j] else 0.3 * max(float(scale), 1e-9)
+        out.append(single)
+    return out
+
+
+def record_diagnosis(expected: Any) -> None:
+    """Ask ``expected["fk"]`` (a table judge's reference) for the poses at every :func:`diagnosis_points`."""
+    fk = expected["fk"]
+    for P in diagnosis_points(expected["Q"], expected["revolute"], float(expected["scale"])):
+        fk(P)
+
+
+def table_judge(
+    chain_fk: TableFk = modified_table_fk,
+    standard_fk: TableFk = standard_table_fk,
+    standard_section: str = "lecture 02 §5",
+) -> Judge:
     """Judge a DH table (rows α_{i-1}, a_{i-1}, θ_i, d_i, σ_i) by the poses its chain reaches.
 
     ``chain_fk(table, Q)`` evaluates a table with Craig's modified link matrices and
@@ -60,6 +98,7 @@ def table_judge(chain_fk: TableFk = modified_table_fk, standard_fk: TableFk = st
     engine's :func:`modified_table_fk` and :func:`standard_table_fk`, which a student edition carries). The
     reference gives ``{"fk": poses of Q, "Q": hidden joint values (N, n), "revolute": (n,) mask,
     "scale": the mechanism's size}``; the table passes when its chain reaches every reference pose.
+    ``standard_section`` is where a standard-DH table is sent to read (the question's own lecture section).
     """
 
     def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
@@ -90,9 +129,15 @@ def table_judge(chain_fk: TableFk = modified_table_fk, standard_fk: TableFk = st
             return Verdict(f"your table cannot be evaluated: {str(exc)[:200]}")
         if np.all(pose_ok(T_got, T_ref, scale)):
             return Verdict(None)
-        return _table_mistake(table, T_got, T_ref, fk, Q, rev, scale, chain_fk, standard_fk)
+        try:
+            return _table_mistake(table, T_got, T_ref, fk, Q, rev, scale, chain_fk, standard_fk, standard_section)
+        except LookupError:  # a student edition without a recorded pose: say what differs, name nothing
+            return Verdict(
+                f"your chain reaches other poses: at the hidden joint values the tool is off by up to "
+                f"{_off(T_got, T_ref)}"
+            )
 
-    return made(judge, table_judge, chain_fk, standard_fk)
+    return made(judge, table_judge, chain_fk, standard_fk, standard_section)
 
 
 def _table_mistake(
@@ -105,6 +150,7 @@ def _table_mistake(
     scale: float,
     chain_fk: TableFk,
     standard_fk: TableFk,
+    standard_section: str,
 ) -> Verdict:
     angles = table[:, [0, 2]]
     if np.max(np.abs(angles)) > 2 * np.pi + 1e-6:
@@ -121,14 +167,14 @@ def _table_mistake(
         return Verdict(
             "this is a standard-DH table (Paul, Robotics Toolbox): with the link matrix Rot(Z, θ) Trans(Z, d) "
             "Trans(X, a) Rot(X, α) it reaches the right poses, but the course uses Craig's modified DH, where row i "
-            "holds α_(i-1) and a_(i-1) of the previous frame (lecture 02 §5)",
+            "holds α_(i-1) and a_(i-1) of the previous frame "
+            f"({standard_section})",
             "standard_dh",
         )
     n = len(rev)
+    points = diagnosis_points(Q, rev, scale)  # the reference is asked at these only (an edition records them)
     for j in range(n):
-        flipped = Q.copy()
-        flipped[:, j] = -flipped[:, j]
-        if np.all(pose_ok(T_got, fk(flipped), scale)):
+        if np.all(pose_ok(T_got, fk(points[j]), scale)):
             what = "turns" if rev[j] else "slides"
             return Verdict(
                 f"joint {j + 1} {what} the wrong way: your z_{j + 1} points against the positive sense the picture "
@@ -161,11 +207,10 @@ def _table_mistake(
             "(every pose is off by the same transform on the tool side)",
             "tool_frame",
         )
-    zero = np.zeros((1, n))
+    zero = points[n]
     if np.all(pose_ok(chain_fk(table, zero), fk(zero), scale)):
         for j in range(n):
-            single = zero.copy()
-            single[0, j] = 0.7 if rev[j] else 0.3 * max(scale, 1e-9)
+            single = points[n + 1 + j]
             if not np.all(pose_ok(chain_fk(table, single), fk(single), scale)):
                 return Verdict(
                     f"your table gives the right pose at q = 0 but not when the joints move: moving joint {j + 1} "
