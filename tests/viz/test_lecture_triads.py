@@ -23,6 +23,7 @@ FIGURES = [
     ("02_dh_frame_attachment", "p4 = dict(alpha_prev=", ["x", "y", "z"]),
     ("03_puma560_forward_kinematics", 'names = ["qz", "qr", "qs", "qn"]', ["x", "y", "z"] * 2),
     ("08_three_step_wrist_frame", "target_pose = np.eye(4)", ["$f_1$", "$f_2$", "$f_3$"]),
+    ("09_puma560_inverse_kinematics", "ring = np.linspace(0, 2 * np.pi, 100)", ["x", "y", "z"]),
 ]
 
 
