@@ -31,7 +31,7 @@ from __future__ import annotations
 from . import animation, arms, frames, panels, style, three_step, viewer, widgets
 from .animation import jshtml
 from .arms import animate_frames, animate_robot, draw_chain, draw_robot, plot_chain, plot_robot
-from .frames import AXIS_COLORS, draw_frame, draw_frames, draw_points, new_axes, set_equal
+from .frames import AXIS_COLORS, draw_frame, draw_frames, draw_points, new_axes, set_equal, triad_letters
 from .panels import RobotPanel, dh_link_panel, robot_panel
 from .style import COURSE_STYLE, PROJECTOR_STYLE, projector_style, use_course_style, use_projector_style
 from .viewer import RobotViewer, Viewer
@@ -60,6 +60,7 @@ __all__ = [
     "draw_frames",
     "draw_points",
     "draw_robot",
+    "triad_letters",
     "frame_name",
     "frames",
     "joint_sliders",

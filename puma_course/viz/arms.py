@@ -117,7 +117,10 @@ def draw_robot(
     ``"all"``, ``"none"`` or a list of indices into ``robot.frames(q)``; ``labels`` has one text
     per frame, e.g. ``["{0}", "", ..., "{6}"]`` (default: no texts); ``axes`` adds each frame's
     z axis (its joint axis) dashed. Use a low ``alpha`` for ghost arms and ``label`` for a legend
-    (given to the first arm's links only). ``length`` (triads) defaults to 8 % of the total link
+    (given to the first arm's links only). A triad with a text in ``labels`` has its axes lettered x, y, z
+    (:func:`~puma_course.viz.frames.draw_frame`); the others stay bare, as in a ghost arm or an animation's
+    frames, where letters would clutter (a still picture names the triads it asks the reader to read, e.g.
+    with :func:`~puma_course.viz.frames.triad_letters`). ``length`` (triads) defaults to 8 % of the total link
     length. Returns the artists, per arm: the links line first, then axes and triads.
 
     >>> import matplotlib

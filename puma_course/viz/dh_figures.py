@@ -18,7 +18,7 @@ from .._validate import as_array, as_length
 from ..kinematics.frame_assignment import CommonNormal, FrameWalk, common_normal, d_theta
 from ..kinematics.spaces import actuator_from_joint
 from ..transforms import homogeneous
-from .frames import AXIS_COLORS, frame_tightly
+from .frames import AXIS_COLORS, frame_tightly, triad_letters
 from .labels import Label, place_labels
 
 if TYPE_CHECKING:
@@ -193,10 +193,11 @@ def draw_frame_walk(ax: Any, walk: FrameWalk, upto: int | None = None, *, points
     Every joint axis is a dashed line through its frame's origin and the foot of the previous
     normal, ``half`` beyond them, with a chevron at its positive end and its number; ``points`` (an
     arm's polyline, e.g. ``robot.points(q)``) is drawn faint for orientation. Frames placed before
-    are faint; frame {upto} is bold, with its normal to the next axis (purple, a), the twist α to
-    the next axis (an arc about X) and its offset d along its own axis (brown) where they are not
-    zero. ``upto=None`` draws every frame bold, ``upto=0`` the axes alone. The view frames
-    ``view_points`` (default: all that is drawn); what falls outside it is clipped. Returns the placed labels.
+    are faint and bare (the context); frame {upto} is bold, its axes lettered x, y, z beside their tips,
+    with its normal to the next axis (purple, a), the twist α to the next axis (an arc about X) and its
+    offset d along its own axis (brown) where they are not zero. ``upto=None`` draws every frame bold (each
+    lettered), ``upto=0`` the axes alone. The view frames ``view_points`` (default: all that is drawn); what
+    falls outside it is clipped. Returns the placed labels (the letters first).
     """
     n = len(walk.steps)
     k = n if upto is None else int(upto)
@@ -218,10 +219,14 @@ def draw_frame_walk(ax: Any, walk: FrameWalk, upto: int | None = None, *, points
     def inside(p: np.ndarray) -> bool:
         return bool(np.all(p >= box[0] - 1e-12) and np.all(p <= box[1] + 1e-12))
 
-    def line(a: np.ndarray, b: np.ndarray, **kw: Any) -> np.ndarray | None:
+    drawn: list[np.ndarray] = []  # the joint axes and bold triads as drawn: the labels keep off them
+
+    def line(a: np.ndarray, b: np.ndarray, keep: bool = False, **kw: Any) -> np.ndarray | None:
         part = _clip(np.asarray(a, float), np.asarray(b, float), box[0], box[1])
         if part is not None:
             _seg(ax, *part, **kw)
+            if keep:
+                drawn.append(np.stack(part))
         return None if part is None else part[1]
 
     if Pp is not None:
@@ -231,17 +236,21 @@ def draw_frame_walk(ax: Any, walk: FrameWalk, upto: int | None = None, *, points
     for st, (lo, hi) in zip(walk.steps, segs, strict=True):
         strong = not upto or st.i in (k, k + 1)
         style = dict(lw=1.8 if strong else 1.0, color="0.15" if strong else "0.55")
-        end = line(lo, hi, ls="--", **style)
+        end = line(lo, hi, keep=True, ls="--", **style)
         if end is not None and inside(hi):
             _sense(ax, hi, st.z, 0.035 * span, eye, **style)
         if end is not None:
             labels.append(Label(end, f"{st.i}", "0.15" if strong else "0.45", prefer=90, size=10))
+    letters: list[Label] = []  # x, y, z at the bold triads' tips (the faint ones are the steps before: bare)
     for st in walk.steps[:k]:
         bold = upto is None or st.i == k
         L = length if bold else 0.7 * length
-        for c in range(3):
-            line(st.origin, st.origin + L * st.frame[:3, c], color=AXIS_COLORS[c], alpha=1.0 if bold else 0.3,
-                 lw=2.5 if bold else 1.5)  # fmt: skip
+        ends = [line(st.origin, st.origin + L * st.frame[:3, c], keep=bold, color=AXIS_COLORS[c],
+                     alpha=1.0 if bold else 0.3, lw=2.5 if bold else 1.5) for c in range(3)]  # fmt: skip
+        for lb, end in zip(triad_letters(ax, st.frame, L) if bold else [], ends, strict=False):
+            if end is not None:  # at the axis' tip, or where the view cuts it
+                lb.point = end
+                letters.append(lb)
         both = st.i == 1 and np.allclose(walk.base, st.frame)  # {0} = {1} at q = 0
         if bold:
             labels.append(Label(st.origin, "$\\{0\\}, \\{1\\}$" if both else f"$\\{{{st.i}\\}}$", "black", prefer=200))
@@ -265,7 +274,8 @@ def draw_frame_walk(ax: Any, walk: FrameWalk, upto: int | None = None, *, points
     for axis, name in zip((ax.xaxis, ax.yaxis, ax.zaxis), "xyz", strict=True):  # room for the tick numbers
         axis.set_label_text(f"{name}{u}")
         axis.labelpad = 10
-    return place_labels(ax, [lb for lb in labels if inside(np.asarray(lb.point, float))], fontsize=11)
+    shown_labels = [lb for lb in letters + labels if inside(np.asarray(lb.point, float))]
+    return place_labels(ax, shown_labels, lines=drawn, fontsize=11)
 
 
 def draw_piston_joint(ax: Any, theta: float, b: float, c: float, gamma0: float = 0.0, *,

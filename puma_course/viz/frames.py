@@ -25,6 +25,8 @@ __all__ = [
     "frame_tightly",
     "draw_frame",
     "draw_frames",
+    "triad_letters",
+    "triad_key",
     "draw_points",
     "note_below",
 ]
@@ -177,6 +179,58 @@ def draw_frames(ax: Any, frames: Any, labels: Sequence[str] | None = None, lengt
     for T, lab in zip(F, labels, strict=False):
         artists += draw_frame(ax, T, lab, length=length, **kw)
     return artists
+
+
+def triad_letters(
+    ax: Any, T: Any, length: float, *, size: float = 10.0, names: Sequence[str] = AXIS_LETTERS
+) -> list[Any]:
+    """Labels x, y, z for the tips of the triad of ``T`` (length ``length``), to place with the figure's other labels.
+
+    Each :class:`~puma_course.viz.labels.Label` sits at its axis' tip, in the axis' colour, and prefers the side
+    its axis points to on the screen, so :func:`~puma_course.viz.labels.place_labels` puts it just beyond the
+    tip unless another label or a line is there. Set the view and the limits first (the side is measured on
+    the projected figure). ``names`` may carry subscripts, e.g. ``["$x_4$", "$y_4$", "$z_4$"]``.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig, ax = new_axes(elev=0, azim=-90)  # looking along +y: x points right, z up
+    >>> [(lb.text, round(lb.prefer)) for lb in triad_letters(ax, np.eye(4), 1.0)[::2]]
+    [('x', 0), ('z', 90)]
+    >>> plt.close(fig)
+    """
+    from .labels import Label, screen_points
+
+    T = as_array(T, "T", (4, 4))
+    if len(names) != 3:
+        raise ValueError(f"names: expected three texts (x, y, z), got {names!r}")
+    o, tips = T[:3, 3], T[:3, 3] + float(length) * T[:3, :3].T
+    S = ax.transData.transform(screen_points(ax, np.vstack([o, tips])))
+    out = []
+    for k in range(3):
+        d = S[k + 1] - S[0]
+        prefer = float(np.degrees(np.arctan2(d[1], d[0]))) % 360.0 if np.hypot(*d) > 1e-9 else 45.0
+        out.append(Label(tips[k], names[k], AXIS_COLORS[k], prefer=prefer, size=size))
+    return out
+
+
+def triad_key(ax: Any, loc: str = "upper left", **kw: Any) -> Any:
+    """A legend naming a triad's colours: x red, y green, z blue (solid lines), for figures with many bare triads.
+
+    Where letters at every tip would clutter (a panel of six frames), the key says which colour is which
+    axis; other keywords go to ``ax.legend``. Returns the legend.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig, ax = new_axes()
+    >>> [t.get_text() for t in triad_key(ax).get_texts()]
+    ['x axis', 'y axis', 'z axis']
+    >>> plt.close(fig)
+    """
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], color=c, lw=2.5) for c in AXIS_COLORS]
+    kw = {"fontsize": 9, "handlelength": 1.5, "framealpha": 0.85, "title": kw.pop("title", "triads"), **kw}
+    return ax.legend(handles, [f"{n} axis" for n in AXIS_LETTERS], loc=loc, **kw)
 
 
 def draw_points(

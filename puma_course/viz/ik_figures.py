@@ -25,13 +25,15 @@ from ..kinematics.ik import IKSolutions, SingularityWarning, nearest_index
 from ..kinematics.puma560 import BRANCH_LABELS, Puma560
 from ..transforms import wrap_angle
 from .arms import draw_robot
-from .frames import draw_frame, set_equal
+from .frames import draw_frame, set_equal, triad_letters
+from .labels import Label, place_labels
 
 __all__ = [
     "DECIDED_JOINT",
     "SWEPT_JOINT",
     "branch_gaps",
     "draw_wrist",
+    "wrist_letters",
     "plot_shoulder_top_view",
     "plot_singularity_sweeps",
     "plot_solutions",
@@ -89,15 +91,47 @@ def draw_wrist(ax: Any, arm: Puma560, q: Any, *, length: float = 0.07, frames: S
         for j in (4, 5, 6):
             z = F[j, :3, 2]
             arts += ax.plot(*np.stack([w - 1.4 * L * z, w + 1.4 * L * z]).T, ls="--", lw=1, color="0.45")
-    places = {4: w - 1.4 * L * z4, 5: w, 6: w + 1.5 * L * z6}
-    for j in sorted(set(frames)):
-        T = F[j].copy()
-        T[:3, 3] = places[j]
+    for j, T in _wrist_triads(F, L, frames).items():
         arts += draw_frame(ax, T, None, length=L, lw=lw)
         if labels:  # beyond the tip of the x axis (red): the axis a flip reverses
             box = {"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.8}
-            arts.append(ax.text(*(places[j] + 1.3 * L * T[:3, 0]), f"{{{j}}}", ha="center", va="center", bbox=box))
+            arts.append(ax.text(*(T[:3, 3] + 1.3 * L * T[:3, 0]), f"{{{j}}}", ha="center", va="center", bbox=box))
     return arts
+
+
+def _drawn_lines(ax: Any) -> list[np.ndarray]:
+    """The polylines drawn on a 3-D axes, each (m, 3): the letters keep off them."""
+    lines: list[Any] = list(ax.lines)
+    return [np.transpose(ln.get_data_3d()) for ln in lines]
+
+
+def _wrist_triads(F: np.ndarray, L: float, frames: Sequence[int]) -> dict[int, np.ndarray]:
+    """The frames of :func:`draw_wrist`, each moved along its link to where it is drawn: {4} back on the
+    forearm, {5} at the wrist centre, {6} at the end of the flange."""
+    w, z4, z6 = F[4, :3, 3], F[4, :3, 2], F[6, :3, 2]
+    places = {4: w - 1.4 * L * z4, 5: w, 6: w + 1.5 * L * z6}
+    out = {}
+    for j in sorted(set(frames)):
+        T = F[j].copy()
+        T[:3, 3] = places[j]
+        out[j] = T
+    return out
+
+
+def wrist_letters(ax: Any, arm: Puma560, q: Any, *, length: float = 0.07, frames: Sequence[int] = (4, 5, 6),
+                  subscripts: bool = True) -> list[Label]:  # fmt: skip
+    """The letters of the triads :func:`draw_wrist` draws, for :func:`~puma_course.viz.labels.place_labels`.
+
+    ``subscripts`` names each axis with its frame (x₄, y₄, z₄: the frame and the axis in one text, in place of
+    draw_wrist's ``{4}``), otherwise plain x, y, z. Call it when the view and the limits are final.
+    """
+    arm = _puma(arm)
+    F = arm.frames(arm.check_q(q))
+    out: list[Label] = []
+    for j, T in _wrist_triads(F, as_length(length, "length", positive=True), frames).items():
+        names = [f"${n}_{j}$" for n in "xyz"] if subscripts else ["x", "y", "z"]
+        out += triad_letters(ax, T, length, names=names)
+    return out
 
 
 def _view_of_wrist(F: np.ndarray) -> tuple[float, float]:
@@ -114,7 +148,8 @@ def plot_wrist_flip(arm: Puma560, q_noflip: Any, q_flip: Any, *, titles: Sequenc
                     length: float = 0.07) -> Figure:  # fmt: skip
     """Two close-ups of the wrist side by side, seen from the same direction (:func:`draw_wrist`).
 
-    For a flip pair the forearm and the hand are the same; the triads of {4} and {5} turn over.
+    For a flip pair the forearm and the hand are the same; the triads of {4} and {5} turn over. Each triad's
+    axes are named at their tips with their frame (x₄, y₄, z₄, ...: :func:`wrist_letters`).
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
@@ -132,12 +167,16 @@ def plot_wrist_flip(arm: Puma560, q_noflip: Any, q_flip: Any, *, titles: Sequenc
     for k, (q, title) in enumerate(zip(Q, titles, strict=True)):
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
         ax.view_init(elev=elev, azim=azim)
-        arts = draw_wrist(ax, arm, q, length=length)
+        arts = draw_wrist(ax, arm, q, length=length, labels=False)
         set_equal(ax, np.hstack([a.get_data_3d() for a in arts if hasattr(a, "get_data_3d")]).T, margin=0.02)
         ax.set_box_aspect((1, 1, 1), zoom=1.2)
         ax.set_axis_off()
         t4, t5, t6 = (round(float(np.degrees(v)), 1) + 0.0 for v in q[3:])
         ax.set_title(f"{title}\nθ4 = {t4:g}°, θ5 = {t5:g}°, θ6 = {t6:g}°")
+    fig.canvas.draw()
+    for ax, q in zip(fig.axes, Q, strict=True):  # x4, y4, z4, ... beside the tips: the frame and the axis in one text
+        lines = _drawn_lines(ax)
+        place_labels(ax, wrist_letters(ax, arm, q, length=length), lines=lines, fontsize=11, draw=False)
     return fig
 
 
@@ -146,7 +185,8 @@ def plot_solutions(arm: Puma560, solutions: IKSolutions, *, grid: float = 0.25, 
     """Every solution of ``solutions`` in its own 3-D panel, all on one scale (grid lines every ``grid`` metres).
 
     Each arm carries its wrist (:func:`draw_wrist`): the hand's flange (dark) and the triad of {4}
-    on the forearm; a flip pair has the same links, and its {4} is turned over by half a turn.
+    on the forearm, its axes lettered x, y, z; a flip pair has the same links, and its {4} is turned over by
+    half a turn.
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
@@ -164,11 +204,13 @@ def plot_solutions(arm: Puma560, solutions: IKSolutions, *, grid: float = 0.25, 
     rows = -(-len(solutions) // cols)
     pts = arm.points(solutions.q).reshape(-1, 3)
     fig = plt.figure(figsize=(2.75 * cols, 2.9 * rows + 0.4))
+    shown: list[tuple[Any, np.ndarray]] = []
     for i, (label, q) in enumerate(zip(solutions.labels, solutions.q, strict=True)):
         ax = fig.add_subplot(rows, cols, i + 1, projection="3d")
         ax.view_init(elev=elev, azim=azim)
         draw_robot(ax, arm, q, triads="none", lw=3.5)
         draw_wrist(ax, arm, q, length=0.12, frames=(4,), axes=False, labels=False, lw=2.5)
+        shown.append((ax, q))
         set_equal(ax, pts, margin=0.02)
         ax.set_box_aspect((1, 1, 1), zoom=1.15)
         for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
@@ -177,6 +219,11 @@ def plot_solutions(arm: Puma560, solutions: IKSolutions, *, grid: float = 0.25, 
             axis.set_ticklabels([])
         ax.set_title(label, fontsize=11)
     fig.suptitle(f"{len(solutions)} configurations, one hand pose (grid lines every {grid:g} m)")
+    fig.canvas.draw()
+    for ax, q in shown:  # {4}'s x, y, z: a flip pair's x and y point the other way
+        lines = _drawn_lines(ax)
+        place_labels(ax, wrist_letters(ax, arm, q, length=0.12, frames=(4,), subscripts=False), lines=lines,
+                     fontsize=10, draw=False)  # fmt: skip
     return fig
 
 

@@ -23,7 +23,7 @@ from matplotlib.ticker import FixedLocator, MaxNLocator
 from .._validate import as_array, as_count
 
 __all__ = ["Label", "place_labels", "label_points", "overlapping_labels", "tidy_axes", "fit_ticks",
-           "tick_label_boxes"]  # fmt: skip
+           "tick_label_boxes", "screen_points"]  # fmt: skip
 
 _BOX = dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8)
 _SIDES = range(0, 360, 30)  # directions tried around a point, degrees (0 = right)
@@ -55,6 +55,11 @@ def _screen(ax: Any, P: np.ndarray) -> np.ndarray:
         return P
     V = np.column_stack([P, np.ones(len(P))]) @ np.asarray(ax.get_proj()).T  # homogeneous, as mplot3d projects
     return V[:, :2] / V[:, 3:4]
+
+
+def screen_points(ax: Any, points: Any) -> np.ndarray:
+    """Points (k, 3) (or (k, 2)) in the axes' 2-D data coordinates, projected as a 3-D axes draws them."""
+    return _screen(ax, np.asarray(points, float))
 
 
 def _area(a: Any, b: Any) -> float:
@@ -157,13 +162,14 @@ def _axis_texts(ax: Any, renderer: Any) -> list[Any]:
 
 
 def label_points(ax: Any, points: Any, names: Sequence[str], *, avoid: Sequence[Any] = (), fontsize: float = 10.0,
-                 color: str | Sequence[str] = "k") -> list[Any]:  # fmt: skip
+                 color: str | Sequence[str] = "k", first: Sequence[Label] = ()) -> list[Any]:  # fmt: skip
     """Label 3-D points (k, 3) with ``names`` so that no two labels overlap and no label hides a point.
 
     :func:`place_labels` for named points: empty names are skipped (their points are still kept
     free), ``avoid`` holds polylines (each (m, 3), e.g. the links) the labels should not cross,
     ``color`` is one colour or one per point. Call it last, when view and limits are set. Returns the
-    annotations.
+    annotations. Labels in ``first`` (e.g. a triad's letters, :func:`~puma_course.viz.frames.triad_letters`) are
+    placed before the names, with them, and returned first.
 
     >>> import matplotlib; matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
@@ -183,7 +189,7 @@ def label_points(ax: Any, points: Any, names: Sequence[str], *, avoid: Sequence[
     lines = [as_array(a, "avoid", (3,), batch=True, what="polylines of shape (m, 3)").reshape(-1, 3) for a in avoid]
     named = [i for i, name in enumerate(names) if name]
     unnamed = P[[i for i, name in enumerate(names) if not name]]
-    labels = [Label(P[i], names[i], colors[i]) for i in named]
+    labels = list(first) + [Label(P[i], names[i], colors[i]) for i in named]
     return place_labels(ax, labels, avoid=unnamed, lines=lines, fontsize=fontsize)
 
 

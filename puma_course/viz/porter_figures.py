@@ -24,7 +24,7 @@ from .._validate import as_array, as_count, as_transform
 from ..kinematics.ik import SingularityWarning
 from ..kinematics.porter import Porter
 from .arms import draw_chain
-from .frames import draw_points, set_equal
+from .frames import draw_points, set_equal, triad_letters
 from .labels import fit_ticks, label_points, tidy_axes
 
 __all__ = ["POINT_NAMES", "FRAME_NAMES", "ver2_points", "parallel_circle", "plot_frames", "plot_solutions",
@@ -140,7 +140,9 @@ def plot_frames(arm: Porter, Q: Any, titles: Sequence[str] | None = None, *, fig
     """One 3-D panel per configuration in ``Q`` (k, 6): links, frames F0..F5 with their triads and names.
 
     The dashed lines are the joint axes (:func:`joint_axis_lines`), as in every lecture's figures: a
-    frame's z axis is a joint axis in a Denavit-Hartenberg chain, not in Porter's.
+    frame's z axis is a joint axis in a Denavit-Hartenberg chain, not in Porter's. The base triad F0 has its
+    axes lettered x, y, z (it stands apart); the other five share its colours and stay bare, since eighteen
+    letters would crowd F4 and F5.
 
     All panels share one cube of limits (so they compare at a glance) filled by the arms.
 
@@ -168,7 +170,8 @@ def plot_frames(arm: Porter, Q: Any, titles: Sequence[str] | None = None, *, fig
             ax.set_title(titles[j])
     for j, ax in enumerate(fig.axes):
         triads = [np.stack([F[j, i, :3, 3], tips[j, i, a]]) for i in range(6) for a in range(3)]
-        label_points(ax, F[j, :, :3, 3], FRAME_NAMES, avoid=[F[j, :, :3, 3], *triads])
+        letters = triad_letters(ax, F[j, 0], L)  # F0's axes lettered: the other triads share its colours
+        label_points(ax, F[j, :, :3, 3], FRAME_NAMES, avoid=[F[j, :, :3, 3], *triads], first=letters)
     return fig
 
 
@@ -177,7 +180,8 @@ def plot_solutions(arm: Porter, solutions: Any, *, figsize: tuple[float, float] 
     """The solutions of one pose, one panel per arm plane (α1): the first solid, the others faded.
 
     ``solutions`` is an :class:`~puma_course.kinematics.ik.IKSolutions` (or (k, 6) rows) for one
-    pose. Each panel labels p0 ... p5 and, for every configuration, its elbow point p3.
+    pose. Each panel labels p0 ... p5 and, for every configuration, its elbow point p3; the base triad's axes
+    are lettered x, y, z, the other triads share its colours (letters on every one would crowd the wrist).
 
     >>> arm = Porter(1.0, 0.5, 0.3); fig = plot_solutions(arm, arm.ik(arm.fk([0.6, -0.5, 1.2, 0.8, 0.7, -0.4])))
     >>> len(fig.axes)
@@ -206,7 +210,9 @@ def plot_solutions(arm: Porter, solutions: Any, *, figsize: tuple[float, float] 
             pts.append(P[i, 3])
             names.append(f"$p_3$ ({j + 1})" if len(g) > 1 else "$p_3$")
             cols.append("k" if j == 0 else "tab:orange")
-        label_points(ax, np.array(pts), names, avoid=[P[i] for i in g], color=cols)
+        F0 = arm.frames(S[g[0]])[0]  # the base triad's axes lettered; the others share its colours
+        letters = triad_letters(ax, F0, 0.08 * float(np.ptp(P.reshape(-1, 3), axis=0).max()))
+        label_points(ax, np.array(pts), names, avoid=[P[i] for i in g], color=cols, first=letters)
     return fig
 
 

@@ -224,6 +224,7 @@ class Viewer(anywidget.AnyWidget):
                 o, z = T[:3, 3], T[:3, 2]
                 L = 1.1 * style["length"]
                 ax.plot(*np.stack([o - L * z, o + L * z]).T, ls="--", lw=1, color=AXIS_COLORS[2], alpha=0.5 * alpha)
+            # a named frame (the ends) is lettered x, y, z; the frames between stay bare, in the named ones' colours
             draw_frame(ax, T, style["label"] if style["priority"] == 2 else None, length=style["length"], alpha=alpha)
         for t in self.targets:
             draw_frame(ax, np.reshape(t["frame"], (4, 4)), t["label"], length=1.3 * sc["frames"][-1]["length"],

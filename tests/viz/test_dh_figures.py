@@ -102,6 +102,14 @@ def test_frame_walk_highlights_the_step_and_keeps_labels_apart(k):
         assert ("$a_{2}$" in names) == (k == 2) and ("$d_{3}$" in names) == (k == 3)
     assert L.overlapping_labels(texts) == []
     assert ax.get_xlabel() == "x [m]"
+    # issue 25: the bold triads' axes are lettered x, y, z, each letter anchored at its axis' tip
+    bold = [] if k == 0 else walk.steps if k is None else [walk.steps[k - 1]]
+    letters = [t for t in texts if t.get_text() in "xyz"]
+    assert [t.get_text() for t in letters] == ["x", "y", "z"] * len(bold)
+    lo, hi = np.array([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()]).T  # a tip outside the view: its cut
+    tips = [D._clip(st.origin, st.origin + 0.08 * st.frame[:3, c], lo, hi)[1] for st in bold for c in range(3)]
+    if bold:  # draw_frame_walk's length 0.08
+        np.testing.assert_allclose([t.xy for t in letters], L._screen(ax, np.array(tips)), atol=1e-12)
 
 
 def test_frame_walk_clips_what_lies_outside_a_zoomed_view():

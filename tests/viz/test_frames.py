@@ -83,3 +83,19 @@ def test_draw_points_and_frames():
     plain = V.draw_frames(ax, np.stack([np.eye(4)] * 3), letters=False)
     assert len(plain) == 3 * 4
     assert [a.get_text() for a in plain if hasattr(a, "get_text")] == ["{0}", "{1}", "{2}"]
+
+
+def test_triad_letters_sit_at_the_tips_and_face_the_way_their_axes_point():
+    """Issue 25: seen from above (elev 90, azim -90) x points right on the page, y up."""
+    from puma_course.viz.frames import new_axes, triad_letters
+
+    fig, ax = new_axes(elev=90, azim=-90)
+    T = np.eye(4)
+    T[:3, 3] = [0.2, -0.1, 0.0]
+    labels = triad_letters(ax, T, 0.5, names=["$x_1$", "$y_1$", "$z_1$"])
+    assert [lb.text for lb in labels] == ["$x_1$", "$y_1$", "$z_1$"]
+    np.testing.assert_allclose([lb.point for lb in labels], T[:3, 3] + 0.5 * np.eye(3), atol=1e-15)
+    assert abs(labels[0].prefer - 0.0) < 1e-6 or abs(labels[0].prefer - 360.0) < 1e-6
+    assert abs(labels[1].prefer - 90.0) < 1e-6
+    with pytest.raises(ValueError, match="^names: expected three texts"):
+        triad_letters(ax, T, 0.5, names=["x", "y"])

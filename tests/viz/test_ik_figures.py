@@ -230,3 +230,26 @@ def test_workspace_floor_is_a_legend_entry_with_room_below_it():
     assert side.get_ylim()[0] < -1.0  # the floor line is not on the view's edge
     assert "floor, z = -1.00 m" in [t.get_text() for t in fig.legends[0].get_texts()]
     assert [t.get_text() for t in side.texts] == []  # no label at an edge of the view
+
+
+def test_the_wrist_triads_are_lettered_and_their_letters_keep_apart():
+    """Issue 25: the flip pair names each axis with its frame (x4 ... z6), the eight panels {4}'s x, y, z."""
+    sol = ARM.ik(ARM.fk(Q_TRUE))
+    fig = F.plot_wrist_flip(ARM, sol.q[0], sol.q[1], titles=sol.labels[:2])
+    for ax in fig.axes:
+        texts = [t for t in ax.texts if t.get_text()]
+        assert sorted(t.get_text() for t in texts) == sorted(f"${a}_{j}$" for a in "xyz" for j in (4, 5, 6))
+        assert _no_overlap(texts)
+    fig = F.plot_solutions(ARM, sol)
+    for ax in fig.axes:
+        texts = [t for t in ax.texts if t.get_text()]
+        assert [t.get_text() for t in texts] == ["x", "y", "z"] and _no_overlap(texts)
+
+
+def _no_overlap(texts) -> bool:
+    fig = texts[0].figure
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    boxes = [t.get_window_extent(r) for t in texts]
+    inside = all(fig.bbox.contains(b.x0, b.y0) and fig.bbox.contains(b.x1, b.y1) for b in boxes)
+    return inside and not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1 :])

@@ -68,8 +68,10 @@ def test_plot_frames_labels_the_frames_where_they_are_by_hand():
     ax = fig.axes[0]
     hand = np.array([[0, 0, 0], [0, 0, 1], [0.8, 0, 1], [0.8, 0, 0.5], [1.1, 0, 0.5]], dtype=float)
     anchors = {t.get_text(): t.xy for t in _labels(ax)}
-    assert list(anchors) == [n for n in PF.FRAME_NAMES if n]
-    np.testing.assert_allclose(list(anchors.values()), L._screen(ax, hand), atol=1e-12)
+    assert list(anchors) == ["x", "y", "z"] + [n for n in PF.FRAME_NAMES if n]  # F0's letters first (issue 25)
+    np.testing.assert_allclose(list(anchors.values())[3:], L._screen(ax, hand), atol=1e-12)
+    tips = 0.14 * 1.1 * np.eye(3)  # F0 = the base frame; triads 0.14 of the widest extent, 1.1 (out 0.8 + l4)
+    np.testing.assert_allclose(list(anchors.values())[:3], L._screen(ax, tips), atol=1e-12)
     with pytest.raises(ValueError, match="^arm"):
         PF.plot_frames(Puma560(), np.zeros(6))
 
@@ -133,7 +135,7 @@ def test_plot_frames_is_readable_and_shows_every_frame():
     fig = PF.plot_frames(ARM, [[0, 0, 0.8, 0, 0, 0], Q_GENERAL], ["straight", "general"])
     _check_readable(fig)
     for ax in fig.axes:
-        assert sorted(t.get_text() for t in _labels(ax)) == sorted(n for n in PF.FRAME_NAMES if n)
+        assert sorted(t.get_text() for t in _labels(ax)) == sorted([n for n in PF.FRAME_NAMES if n] + ["x", "y", "z"])
     with pytest.raises(ValueError, match="^titles"):
         PF.plot_frames(ARM, np.zeros((2, 6)), ["one"])
     with pytest.raises(ValueError, match="^Q"):
