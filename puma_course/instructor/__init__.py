@@ -101,6 +101,7 @@ def build_slides(
     from traitlets.config import Config
 
     from ..site.alt_text import with_animation_alt
+    from .layout import slide_cells
 
     root = _find(course)
     out_dir = Path(out) if out is not None else root / "_slides"
@@ -119,6 +120,9 @@ def build_slides(
     for nb_path in chosen:
         nb = nbformat.read(nb_path, as_version=4)
         with_animation_alt(nb)
+        notes_file = root / "instructor" / "notes" / f"{nb_path.name[:2]}.md"
+        notes = notes_file.read_text(encoding="utf-8") if notes_file.is_file() else None
+        nb = slide_cells(nb, notes)
         body, _ = exporter.from_notebook_node(nb, resources={"puma_assets": ASSETS})
         body = _with_alt_text(body, nb)
         target = out_dir / f"{nb_path.stem}.slides.html"
