@@ -27,7 +27,7 @@ sys.path.insert(0, str(ROOT))
 
 SCREEN_W, SCREEN_H = 1280, 720
 
-_MEASURE = """async () => {
+_MEASURE = r"""async () => {
   const Reveal = await new Promise(r => require(["assets/reveal/dist/reveal.js"], r));
   for (let k = 0; k < 100 && !Reveal.isReady(); k++) await new Promise(r => setTimeout(r, 100));
   if (window.MathJax && MathJax.startup) await MathJax.startup.promise;
