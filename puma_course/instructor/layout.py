@@ -259,6 +259,8 @@ def _split_outputs(cell: Any) -> list[Any]:
     for k, group in enumerate(groups):
         part = copy.deepcopy(cell) if k else cell
         if k:
+            if "id" in cell:
+                part["id"] = f"{cell['id'][:56]}-out{k}"  # ids stay unique
             part.metadata["transient"] = {"remove_source": True}
             part.metadata.pop("tags", None)
         part.outputs = group
