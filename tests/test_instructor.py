@@ -239,7 +239,7 @@ def test_slide_cells_start_slides_at_headings_and_give_a_figure_its_own_sub_slid
     kinds = [(c.source.split("\n")[0][:14], c.metadata["slideshow"]["slide_type"]) for c in cut.cells]
     assert kinds[:7] == [
         ("# Title", "slide"),
-        ("## Predict ans", "notes"),  # the notes file after the title slide's cell
+        ("**Predict answ", "notes"),  # the notes file after the title slide's cell, its headings bold lines
         ("## 1 · First", "slide"),
         ("x = 1", "-"),
         ("plot()", "subslide"),  # a figure on a sub-slide of its own

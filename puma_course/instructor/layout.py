@@ -169,7 +169,8 @@ def _set(cell: Any, slide_type: str) -> None:
 def _notes_cell(nb: Any, source: str) -> Any:
     import nbformat
 
-    cell = nbformat.v4.new_markdown_cell(source)
+    # headings as bold lines: the speaker view shows notes in a narrow pane, where an <h1> fills it
+    cell = nbformat.v4.new_markdown_cell(re.sub(r"^#{1,6} +(.+?)\s*$", r"**\1**", source, flags=re.M))
     _set(cell, "notes")
     return cell
 
