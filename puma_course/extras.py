@@ -2,7 +2,8 @@
 
 The plain install (``pip install .``) carries what the lectures and the self-checks import; the
 commands that need more say which extra to install (see ``pyproject.toml``): ``lab`` (JupyterLab
-and the kernel), ``grader`` (nbformat, bubblewrap), ``site`` (Sphinx), ``dev`` (all of them and the
+and the kernel), ``grader`` (nbformat, bubblewrap), ``site`` (Sphinx), ``instructor`` (nbconvert and MathJax for the
+slides and the keys), ``dev`` (all of them and the
 maintainers' tools). Standard library only (base layer).
 """
 
@@ -17,6 +18,8 @@ EXTRAS: dict[str, tuple[tuple[str, str], ...]] = {
     "lab": (("jupyterlab", "lab"), ("ipykernel", "lab")),
     "release": (("nbformat", "grader"),),
     "site": (("sphinx", "site"), ("myst_nb", "site")),
+    "slides": (("nbformat", "instructor"), ("nbconvert", "instructor"), ("sphinx-mathjax-offline", "instructor")),
+    "keys": (("nbformat", "instructor"), ("nbconvert", "instructor"), ("sphinx-mathjax-offline", "instructor")),
 }
 
 

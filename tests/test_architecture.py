@@ -23,7 +23,7 @@ ALLOWED = {
     "viz": {"base", "kinematics"},
     "grading": {"base", "kinematics"},
     "site": {"base"},  # it reads the course's files; it runs nothing of the course
-    "instructor": {"base", "site"},  # the instructor's kit: slides and keys from the course's files (issue 25)
+    "instructor": {"base", "site", "grading"},  # the kit: slides, keys (with the written rubrics) (issue 25)
     "cli": {"base", "kinematics", "symbolic", "viz", "grading", "site", "instructor"},
     "package": {"base", "kinematics"},  # puma_course/__init__.py: the curated light re-export
 }

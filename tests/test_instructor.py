@@ -187,3 +187,152 @@ def test_the_kit_stays_out_of_the_student_edition(tmp_path):
     assert not (tmp_path / "edition" / "instructor").exists()
     assert not list((tmp_path / "edition").rglob("outcomes.json"))
     assert not list((tmp_path / "edition").rglob("solutions"))
+
+
+# --- slides cut for a projector, speaker notes, keys with the written questions (issue 25, review) ---
+
+_H2 = re.compile(r"<h2[ >]")
+
+
+@pytest.fixture(scope="module")
+def lecture_09_slides(tmp_path_factory):
+    out = tmp_path_factory.mktemp("slides09")
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert main(["slides", "--course", str(ROOT), "-o", str(out), "--lecture", "09"]) == 0
+    return out, (out / "09_puma560_inverse_kinematics.slides.html").read_text(encoding="utf-8")
+
+
+def _headings(notebook: Path, level: str) -> list[str]:
+    from puma_course.instructor.layout import _blocks
+
+    nb = json.loads(notebook.read_text(encoding="utf-8"))
+    return [line for c in nb["cells"] if c["cell_type"] == "markdown"
+            for line, free in _blocks("".join(c["source"])) if free and line.startswith(level + " ")]  # fmt: skip
+
+
+def test_every_section_heading_of_lecture_09_starts_a_slide(lecture_09_slides):
+    _, text = lecture_09_slides
+    text = re.sub(r'<aside class="notes">.*?</aside>', "", text, flags=re.S)  # the speaker notes have headings too
+    lecture = next(p for p in LECTURES if p.name.startswith("09"))
+    sections = _headings(lecture, "##")
+    assert len(sections) >= 14  # §1-§14 and the lecture's other ## sections
+    assert len(_H2.findall(text)) == len(sections)
+    # reveal's slides are <section>s; each ## heading is in the first cell of one, alone
+    chunks = text.split("<section")
+    for chunk in chunks:
+        if _H2.search(chunk):
+            assert len(_H2.findall(chunk)) == 1
+            cells = [m.start() for m in re.finditer(r'<div class="jp-Cell ', chunk)]
+            assert cells and _H2.search(chunk).start() < (cells[1] if len(cells) > 1 else len(chunk)), chunk[:300]
+    assert text.count("<section") > 4 * len(sections)  # the long sections are flowed onto sub-slides
+
+
+def test_the_slides_carry_the_lecture_notes_as_speaker_notes_with_the_plugin_local(lecture_09_slides):
+    out, text = lecture_09_slides
+    notes = re.findall(r'<aside class="notes">(.*?)</aside>', text, flags=re.S)
+    assert notes, "no speaker notes"
+    assert "Where students stumble" in notes[0] and "On the board" in notes[0]  # notes/09.md on the title slide
+    assert text.index('<aside class="notes">') < text.index("What you will be able to do")
+    assert '"assets/reveal/plugin/notes/notes.js"' in text and "plugins: [RevealNotes]" in text
+    assert (out / "assets" / "reveal" / "plugin" / "notes" / "notes.js").is_file()
+
+
+def test_markdown_is_split_at_headings_but_not_inside_code_or_display_math():
+    from puma_course.instructor.layout import split_markdown
+
+    source = "Answer of §1.\n\n## 2 · Next\n\nText\n```python\n# a comment\n```\n$$\n# not a heading\n$$\n### 2.1 · Sub"
+    assert split_markdown(source) == [
+        "Answer of §1.",
+        "## 2 · Next\n\nText\n```python\n# a comment\n```\n$$\n# not a heading\n$$",
+        "### 2.1 · Sub",
+    ]
+    assert split_markdown("One.\n\nTwo\nstill two.\n\n\n$$\na\n\nb\n$$", at_paragraphs=True) == [
+        "One.",
+        "Two\nstill two.",
+        "$$\na\n\nb\n$$",
+    ]
+
+
+def test_slide_cells_start_slides_at_headings_and_give_a_figure_its_own_sub_slide():
+    import nbformat
+
+    from puma_course.instructor.layout import BUDGET, slide_cells
+
+    figure = nbformat.v4.new_code_cell("plot()")
+    figure.outputs = [nbformat.v4.new_output("display_data", data={"image/png": "iVBOR", "text/plain": "<Figure>"})]
+    skipped = nbformat.v4.new_markdown_cell("## hidden")
+    skipped.metadata["slideshow"] = {"slide_type": "skip"}
+    long_text = "\n\n".join(f"Paragraph {k}: " + "words " * 60 for k in range(12))
+    nb = nbformat.v4.new_notebook(cells=[
+        nbformat.v4.new_markdown_cell("# Title\n\nIntro.\n\n## 1 · First\n\nText."),
+        nbformat.v4.new_code_cell("x = 1"),
+        figure,
+        nbformat.v4.new_markdown_cell("After the figure.\n\n### 1.1 · Detail\n\nMore."),
+        skipped,
+        nbformat.v4.new_markdown_cell(long_text),
+    ])  # fmt: skip
+    cut = slide_cells(nb, "## Predict answers\n\n1. Yes.")
+    kinds = [(c.source.split("\n")[0][:14], c.metadata["slideshow"]["slide_type"]) for c in cut.cells]
+    assert kinds[:7] == [
+        ("# Title", "slide"),
+        ("**Predict answ", "notes"),  # the notes file after the title slide's cell, its headings bold lines
+        ("## 1 · First", "slide"),
+        ("x = 1", "-"),
+        ("plot()", "subslide"),  # a figure on a sub-slide of its own
+        ("After the figu", "subslide"),  # and what follows on the next
+        ("### 1.1 · Deta", "subslide"),
+    ]
+    assert ("## hidden", "skip") in kinds
+    pieces = [c for c in cut.cells if c.source.startswith("Paragraph")]
+    assert len(pieces) == 12 and sum(c.metadata["slideshow"]["slide_type"] == "subslide" for c in pieces) >= 3
+    assert len(nb.cells) == 6 and nb.cells[0].source.startswith("# Title\n\nIntro.\n\n## 1")  # the input is unchanged
+    assert BUDGET < 720
+
+
+def test_predict_answers_are_read_from_the_notes():
+    from puma_course.instructor.layout import predict_answers
+
+    notes = (ROOT / "instructor" / "notes" / "03.md").read_text(encoding="utf-8")
+    answers = predict_answers(notes)
+    assert len(answers) == len(re.findall(r"^\d+\. ", notes.split("## Predict answers")[1], flags=re.M))
+    assert answers[2].startswith("Joints 2 and 3 counted the other way") and "nothing else changes" in answers[2]
+
+
+def test_the_keys_hold_the_written_questions_and_no_solution_markers(tmp_path):
+    import importlib.util
+
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert main(["keys", "--course", str(ROOT), "-o", str(tmp_path)]) == 0
+    for page in tmp_path.glob("ex*.html"):
+        text = page.read_text(encoding="utf-8")
+        assert "BEGIN SOLUTION" not in text and "END SOLUTION" not in text, page.name
+        assert "HIDDEN TESTS" not in text, page.name
+    # the bank's own declaration, read here independently of the keys' code
+    spec = importlib.util.spec_from_file_location("_written_bank", ROOT / "bank" / "written.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module.WRITTEN
+    for exercise, items in module.WRITTEN.items():
+        text = (tmp_path / f"{exercise}.html").read_text(encoding="utf-8")
+        assert text.count("Worked answer") == len(items), exercise
+        for w in items:
+            assert w.title.split("$")[0].strip()[:30] in text, (exercise, w.title)
+            assert f"{w.points:g} points" in text
+            for c in w.criteria:
+                row = rf"<td>{re.escape(c.name)}</td>\s*<td[^>]*>{c.points:g}</td>"
+                assert re.search(row, text), (exercise, c.name)
+    _offline(tmp_path)
+
+
+@pytest.mark.parametrize("command", ["slides", "keys"])
+def test_without_the_instructor_extra_the_kit_says_which_to_install(command, tmp_path, monkeypatch, capsys):
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "sphinx-mathjax-offline" else real(name, *a)
+    )
+    assert main([command, "--course", str(ROOT), "-o", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "'instructor' extra" in err and "pip install" in err and "Traceback" not in err
+    assert not list(tmp_path.iterdir())  # nothing built

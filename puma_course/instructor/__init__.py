@@ -3,14 +3,16 @@
     puma-course slides [--course DIR] [-o DIR] [--lecture NN ...]   (default: <course>/_slides)
     puma-course keys [--course DIR] [-o DIR]                         (default: <course>/_keys)
 
-The slides are ``jupyter nbconvert --to slides`` of each lecture (reveal.js), with the cells' own
-``slideshow.slide_type`` metadata; the template (``templates/puma_slides``) takes reveal.js 4, RequireJS
-and MathJax 3 from the output folder, where they are copied from this package (``static/``: reveal.js
-4.6.1 and RequireJS 2.3.8 from npm, MIT) and from ``sphinx-mathjax-offline`` (MathJax 3.2.2), so the
-slides open from a USB stick with no network. Speaker view: press ``s``.
+The slides are ``jupyter nbconvert --to slides`` of each lecture (reveal.js), cut for a 1280×720 projector by
+:mod:`.layout` (a slide at every ``#``/``##`` heading, a sub-slide at ``###`` and wherever the content would run
+beyond about one screen, the instructor notes as reveal's speaker notes); the template (``templates/puma_slides``)
+takes reveal.js 4, RequireJS and MathJax 3 from the output folder, where they are copied from this package
+(``static/``: reveal.js 4.6.1 and RequireJS 2.3.8 from npm, MIT) and from ``sphinx-mathjax-offline`` (MathJax
+3.2.2), so the slides open from a USB stick with no network. Speaker view: press ``s``.
 
-The answer keys are ``solutions/*.ipynb`` (the worked solutions, with their outputs) rendered to an
-HTML page each and an index, for the instructor only: the output folder is outside the student
+The answer keys are ``solutions/*.ipynb`` (the worked solutions, with their outputs, the release's solution
+markers taken out, and each written question's prompt, rubric and worked answer from ``bank/written.py`` added)
+rendered to an HTML page each and an index, for the instructor only: the output folder is outside the student
 edition (which is written from an explicit list of folders) and the default ``_keys`` is git-ignored.
 
 The syllabus, the schedule, the outcome map and the instructor notes are Markdown and JSON files
@@ -30,7 +32,16 @@ from typing import Any
 
 from ..course import course_root
 
-__all__ = ["SlidesReport", "build_slides", "build_keys", "load_outcome_map", "lecture_outcomes", "CDN_HOSTS"]
+__all__ = [
+    "SlidesReport",
+    "build_slides",
+    "build_keys",
+    "key_notebook",
+    "written_key",
+    "load_outcome_map",
+    "lecture_outcomes",
+    "CDN_HOSTS",
+]
 
 _HERE = Path(__file__).parent
 ASSETS = "assets"
@@ -101,6 +112,7 @@ def build_slides(
     from traitlets.config import Config
 
     from ..site.alt_text import with_animation_alt
+    from .layout import slide_cells
 
     root = _find(course)
     out_dir = Path(out) if out is not None else root / "_slides"
@@ -119,6 +131,9 @@ def build_slides(
     for nb_path in chosen:
         nb = nbformat.read(nb_path, as_version=4)
         with_animation_alt(nb)
+        notes_file = root / "instructor" / "notes" / f"{nb_path.name[:2]}.md"
+        notes = notes_file.read_text(encoding="utf-8") if notes_file.is_file() else None
+        nb = slide_cells(nb, notes)
         body, _ = exporter.from_notebook_node(nb, resources={"puma_assets": ASSETS})
         body = _with_alt_text(body, nb)
         target = out_dir / f"{nb_path.stem}.slides.html"
@@ -149,9 +164,12 @@ def build_keys(course: str | Path | None = None, out: str | Path | None = None) 
     config.TemplateExporter.extra_template_basedirs = [str(_HERE / "templates")]
     config.HTMLExporter.template_name = "puma_keys"
     exporter = HTMLExporter(config=config)
+    from ..grading import load_bank
+
+    load_bank(root)  # the course's questions: the written ones' rubrics and worked answers go into the keys
     files, items = [], []
     for nb_path in solutions:
-        nb = nbformat.read(nb_path, as_version=4)
+        nb = key_notebook(nbformat.read(nb_path, as_version=4), nb_path.stem)
         body, _ = exporter.from_notebook_node(nb, resources={"puma_assets": ASSETS})
         target = out_dir / f"{nb_path.stem}.html"
         target.write_text(body, encoding="utf-8")
@@ -168,6 +186,49 @@ def build_keys(course: str | Path | None = None, out: str | Path | None = None) 
     )
     files.append(index)
     return SlidesReport(out_dir, tuple(files), time.perf_counter() - start, _size(out_dir))
+
+
+#: the release's markers around a solution or hidden tests (a line of its own); the keys leave them out
+_MARKER = re.compile(r"^[ \t]*#+[ \t]*(?:BEGIN|END)[ \t]+(?:SOLUTION|HIDDEN TESTS)[ \t]*\n?", re.M)
+
+
+def _cell(text: str) -> str:
+    return " ".join(text.replace("|", "\\|").split())
+
+
+def written_key(exercise: str) -> str:
+    """The Markdown of ``exercise``'s written questions for the key: each one's prompt, rubric with points
+    (the lines a marker scores) and worked answer ("" when it has none). Needs the course's bank loaded."""
+    from ..grading.written import written_questions
+
+    out = []
+    for w in written_questions(exercise):
+        rubric = "\n".join(f"| {c.name} | {c.points:g} | {_cell(c.text)} |" for c in w.spec.criteria)
+        out.append(
+            f"### {w.qid} · written · {w.points:g} points · {w.spec.title}\n\n"
+            f"**Prompt (what the students read)**\n\n{w.spec.prompt.strip()}\n\n"
+            f"**Rubric**\n\n| criterion | points | what earns them |\n|---|---:|---|\n{rubric}\n"
+            f"| **total** | **{w.points:g}** | |\n\n"
+            f"**A full answer**\n\n{w.spec.full_answer.strip()}\n\n"
+            f"**Worked answer**\n\n{w.spec.worked.strip()}"
+        )
+    if not out:
+        return ""
+    return "## Written questions (marked by hand): rubrics and worked answers\n\n" + "\n\n".join(out)
+
+
+def key_notebook(nb: Any, exercise: str) -> Any:
+    """The worked solution ``nb`` as the key shows it: the solution and hidden-test markers taken out of the
+    code and the exercise's written questions (:func:`written_key`) added at the end. Changes ``nb``."""
+    import nbformat
+
+    for cell in nb.cells:
+        if cell.cell_type == "code":
+            cell.source = _MARKER.sub("", cell.source)
+    written = written_key(exercise)
+    if written:
+        nb.cells.append(nbformat.v4.new_markdown_cell(written))
+    return nb
 
 
 _NO_ALT = 'alt="No description has been provided for this image"'
