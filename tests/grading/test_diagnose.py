@@ -428,17 +428,24 @@ def test_the_nearest_solution_and_unwrapped_distances():
     told = nearest_of(farther, expected, (T, q_ref, *L))
     assert_named(told, "not_nearest", "not the nearest")
     assert "not wrapped" not in (told.reason or "")  # never the heuristic "nearest if not wrapped" (issue 22)
-    q, r = EXERCISES["ex10_trajectories"].question("q1").public[0]
-    assert_named(judge("ex10_trajectories", "q1", np.linalg.norm(q - r), q, r), "unwrapped_distance")
+    q, r, w = EXERCISES["ex10_trajectories"].question("q1").public[0]
+    assert_named(judge("ex10_trajectories", "q1", np.sqrt(np.sum(w * (q - r) ** 2)), q, r, w), "unwrapped_distance")
+    d = np.angle(np.exp(1j * (q - r)))  # lecture 10's D, the weights left out (worked out here, not by the bank)
+    assert judge("ex10_trajectories", "q1", np.sqrt(np.sum(w * d * d)), q, r, w).passed
+    assert_named(judge("ex10_trajectories", "q1", np.sqrt(np.sum(d * d)), q, r, w), "lecture_mechanism", "weight")
 
 
 def test_solutions_sorted_in_another_order():
     name = "ex10_trajectories"
-    S, q_prev = EXERCISES[name].question("q2").public[0]
-    good = right(name, "q2", S, q_prev)
-    assert judge(name, "q2", good, S, q_prev).passed
-    assert_named(judge(name, "q2", good[::-1], S, q_prev), "solution_order", "another order")
-    assert_named(judge(name, "q2", np.vstack([good, good[:1]]), S, q_prev), "duplicates")
+    S, q_prev, w = EXERCISES[name].question("q2").public[0]
+    good = right(name, "q2", S, q_prev, w)
+    d = np.angle(np.exp(1j * (S - q_prev)))
+    assert np.allclose(good, S[np.argsort(np.sum(w * d * d, axis=1), kind="stable")])  # by hand: weighted, wrapped
+    assert judge(name, "q2", good, S, q_prev, w).passed
+    assert_named(judge(name, "q2", good[::-1], S, q_prev, w), "solution_order", "another order")
+    assert_named(judge(name, "q2", np.vstack([good, good[:1]]), S, q_prev, w), "duplicates")
+    unweighted = S[np.argsort(np.sum(d * d, axis=1), kind="stable")]
+    assert_named(judge(name, "q2", unweighted, S, q_prev, w), "lecture_mechanism", "unweighted")
 
 
 def test_a_robot_in_a_cell_solved_as_if_at_the_origin_or_without_its_tool():

@@ -43,8 +43,8 @@ ex09 q2    L09 cells 7-16                                         0/4
 ex09 q3    L09 cell 34                                            0/2
 ex09 q4    L09 cell 41                                            0/2
 ex09 q5    L09 cells 7-16 on the cell's pose                      0/4
-ex10 q1    L10 §2 cell 4, D(q, q')                                2/2 ★
-ex10 q2    L10 §2 cell 4, sorted by D                             2/2 ★
+ex10 q1    L10 §2 cell 4, D(q, q') (the weights left out)         0/2
+ex10 q2    L10 §2 cell 4, sorted by D (unweighted)                0/2
 ex10 q3    L10 §2 cells 4-5, nearest at every step                0/6
 ex10 q4    L10 §5, the quintic, unwrapped                         0.33/2
 =========  =====================================================  ===========
