@@ -27,7 +27,7 @@ ex04 q2    L04 cell 2, the table multiplied                       3/3 ★
 ex04 q3    L04 cell 2, the table printed                          0/5
 ex04 q4    L04 §8, Craig's nearest pose                           0/3
 ex05 q1    L05 cells 7, 9, the nine motions (two fixtures)        0/3
-ex05 q2    L05 cell 29, the first 1, 3, 5, 7, 9 factors           2/2 ★
+ex05 q2    L05 cell 29, the first 1, 3, 5, 7, 9 factors, a pen     0/2
 ex05 q3    none (NO_LECTURE_CELL: Porter has no DH table)         --
 ex06 q1    L06 cell 5, p4 = p5 - l4 x5                            0/2
 ex06 q2    L06 cells 5-11, Ver.1                                  0/5
