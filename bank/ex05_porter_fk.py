@@ -4,7 +4,8 @@ Question 1 is a variant of lecture 05's chain (the hand pitches about y4 through
 lecture's product does not answer it; question 2 asks the joint points of that variant and the tip of a pen the
 hand holds along its x axis (lecture 05 cell 29's points alone do not answer it). The modelling question: Porter
 writes his chain without Denavit-Hartenberg tables; the student gives it one (joint axes along y and x included,
-the slide third), ending in a tool frame whose z axis is the hand's turning axis. Graded by the poses the table's chain reaches.
+the slide third), ending in a tool frame whose z axis is the hand's turning axis. Graded by the poses the
+table's chain reaches.
 """
 
 from __future__ import annotations
