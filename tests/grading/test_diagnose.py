@@ -160,7 +160,7 @@ def test_link_matrices_multiplied_in_the_wrong_order():
 
 
 def test_the_printed_misprint_used_as_printed():
-    q, L = np.array([0.3, 0.8, -0.5, 0.2, 1.0]), (360.0, 135.0, 250.0, 215.0, 100.0)
+    q, L = np.array([0.3, 0.8, -0.5, 0.2, 1.0]), (360.0, 135.0, 250.0, 215.0, 100.0, np.eye(4))  # no tool: E = I
     T = right("ex04_mk3_fk", "q2", q, *L)
     # the printed 4T5: its offset (0, 0, -d5) instead of (0, -d5, 0); from {4}, (0, -d5, 0) is d5 z5
     wrong = T.copy()
@@ -174,9 +174,13 @@ def test_the_printed_misprint_used_as_printed():
 
 def test_an_offset_along_the_wrong_axis_or_with_the_wrong_sign():
     T = homogeneous(rot("y", 0.4) @ rot("z", 1.0), [600.0, 50.0, 260.0])
-    assert judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 2], T, 100.0).passed
-    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 0], T, 100.0), "wrong_axis", "x5")
-    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] + 100 * T[:3, 2], T, 100.0), "offset_sign", "beyond")
+    torch = homogeneous(rot("y", 0.5), [20.0, 0.0, 150.0])  # ex04 q1: the flange T holds a torch, the task gives T E
+    args = (T @ torch, 100.0, torch)
+    assert judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 2], *args).passed
+    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 0], *args), "wrong_axis", "x5")
+    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] + 100 * T[:3, 2], *args), "offset_sign", "beyond")
+    Tt = T @ torch  # lecture 04's w = p - d5 z5 applied to the tool's pose
+    assert_named(judge("ex04_mk3_fk", "q1", Tt[:3, 3] - 100 * Tt[:3, 2], *args), "lecture_mechanism", "E⁻¹")
     E = homogeneous(rot("x", 0.3), [0.1, 0.0, 0.05])  # ex06 q1: the hand holds a tool E, the task gives T E
     TE = T @ E
     assert judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 0], TE, 0.3, E).passed
