@@ -155,8 +155,12 @@ def test_link_matrices_multiplied_in_the_wrong_order():
     links = []
     for (alpha, a, theta, d, sigma), qi in zip(table, q, strict=True):
         links.append(right("ex02_dh_frames", "q2", alpha, a, theta + (0 if sigma else qi), d + (qi if sigma else 0)))
-    assert judge("ex03_puma_fk", "q1", links[0] @ links[1] @ links[2], table, q).passed
-    assert_named(judge("ex03_puma_fk", "q1", links[2] @ links[1] @ links[0], table, q), "order", "reverse")
+    assert judge("ex03_puma_fk", "q1", links[0] @ links[1] @ links[2], table, q, 0).passed
+    assert_named(judge("ex03_puma_fk", "q1", links[2] @ links[1] @ links[0], table, q, 0), "order", "reverse")
+    # in frame {1}: the last two link matrices only; the whole product is the base frame's pose, named so
+    assert judge("ex03_puma_fk", "q1", links[1] @ links[2], table, q, 1).passed
+    assert_named(judge("ex03_puma_fk", "q1", links[2] @ links[1], table, q, 1), "order", "reverse")
+    assert_named(judge("ex03_puma_fk", "q1", links[0] @ links[1] @ links[2], table, q, 1), "base_frame", "{k}")
 
 
 def test_the_printed_misprint_used_as_printed():

@@ -20,7 +20,7 @@ ex02 q1    L02 §5 cells 17, 20, entries read off                  2/2 ★
 ex02 q2    L02 §5 cell 17, the four motions                       2/2 ★
 ex02 q3    L02 §6 cells 27-29, the worked table                   0/6
 ex02 q4    L02 §8 cells 39-40, α and a moved up                   0/2
-ex03 q1    L03 §4-5, the product of link matrices                 3/3 ★
+ex03 q1    L03 §4-5, the product of link matrices from the base   0/3
 ex03 q2    L03 cell 17, the table displayed                       0/6
 ex04 q1    L04 cell 18, w = p - d5 z5 on the tool's pose          0/2
 ex04 q2    L04 cell 2, the table multiplied (no tool)             0/3
