@@ -1,5 +1,8 @@
 """Exercise 3 (``solutions/ex03_puma_fk.ipynb``): forward kinematics of any DH chain, and the PUMA-560's table.
 
+Question 1 asks the pose of a chain's last frame in one of its own frames {k} (ᵏTₙ, k >= 1 in every graded case),
+so that lecture 03's product from the base (⁰Tₙ, issue 22) does not answer it.
+
 The modelling question: derive the PUMA-560's table from its picture, with the base on the floor,
 the tool beyond the wrist and the joint zero of the controller (arm straight up) fixed by the
 question, so the lecture's table does not answer it; graded by the poses the chain reaches.
@@ -47,6 +50,16 @@ def _all_revolute(table: Any, q: Any) -> np.ndarray:
     return ref.table_fk(t, q)
 
 
+def _from_k(fn: Any) -> Any:
+    """``fn(table, q)`` applied to the rows after frame {k}: ᵏTₙ = ᵏT_(k+1) ... ⁿ⁻¹Tₙ."""
+    return lambda table, q, k: fn(np.asarray(table, dtype=float)[int(k) :], np.asarray(q, dtype=float)[int(k) :])
+
+
+def _chain_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """Cases (table, q, k): random chains of 2 to 6 joints, k from 1 to n - 1 (never the base)."""
+    return [(t, q, int(rng.integers(1, len(q)))) for t, q in ref.random_tables(rng, n)]
+
+
 PLANAR = np.array([[0.0, 0.0, 0.0, 0.0, 0], [0.0, 1.0, 0.0, 0.0, 0], [0.0, 0.7, 0.0, 0.0, 0]])
 SLIDER = np.array([[0.0, 0.0, 0.3, 0.5, 0], [-H, 0.2, 0.0, 0.1, 1], [H, 0.0, -0.4, 0.0, 0]])
 
@@ -58,33 +71,39 @@ EXERCISE = Exercise(
             "q1",
             "chain_fk",
             3,
-            "^0T_n of any modified-DH table",
-            public=((PLANAR, np.radians([30.0, 45.0, -60.0])), (SLIDER, np.array([0.4, 0.25, -1.0]))),
-            hidden=lambda rng: ref.random_tables(rng, 5),
-            reference=ref.table_fk,
+            "^kT_n of any modified-DH table",
+            public=((PLANAR, np.radians([30.0, 45.0, -60.0]), 1), (SLIDER, np.array([0.4, 0.25, -1.0]), 1)),
+            hidden=lambda rng: _chain_cases(rng, 5),
+            reference=_from_k(ref.table_fk),
             forbidden=keys.KEY_CHAIN,
             mistakes=(
+                matches(
+                    "base_frame",
+                    "this is ⁰Tₙ, the last frame in the base frame: the question asks it in frame {k}, the product "
+                    "of the link matrices after frame k only (ᵏTₙ = ᵏT_(k+1) ... ⁿ⁻¹Tₙ)",
+                    lambda table, q, k: ref.table_fk(table, q),
+                ),
                 matches(
                     "standard_dh",
                     "your product is the standard (distal) DH chain: each link matrix must be "
                     "Craig's Rot(X, α_(i-1)) Trans(X, a_(i-1)) Rot(Z, θ_i) Trans(Z, d_i) (lecture 02 §5)",
-                    ref.standard_table_fk,
+                    _from_k(ref.standard_table_fk),
                 ),
                 matches(
                     "order",
                     "your link matrices are multiplied in the reverse order: ⁰Tₙ = ⁰T₁ ¹T₂ ... (each "
                     "frame is described in the one before it, lecture 03 introduction)",
-                    ref.reversed_table_fk,
+                    _from_k(ref.reversed_table_fk),
                 ),
                 matches(
                     "degrees",
                     "your result is what the table gives in degrees: its angles and q are radians",
-                    _in_degrees,
+                    _from_k(_in_degrees),
                 ),
                 matches(
                     "joint_type",
                     "a prismatic row (σ = 1) is treated as revolute: its joint value adds to d, not to θ",
-                    _all_revolute,
+                    _from_k(_all_revolute),
                 ),
             ),
             hint="Test your function on lecture 02's planar arm, whose pose you know by hand, and on a one-row "

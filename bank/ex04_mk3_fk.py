@@ -38,12 +38,59 @@ def rail_table(c: float, d1: float, a1: float, a2: float, a3: float, d5: float) 
     )
 
 
-def _flange(axis: int, sign: float) -> Any:
-    return lambda T, d5: np.asarray(T, dtype=float)[:3, 3] + sign * d5 * np.asarray(T, dtype=float)[:3, axis]
+def _tool(R: Any, p: Any) -> np.ndarray:
+    E = np.eye(4)
+    E[:3, :3], E[:3, 3] = R, p
+    return E
+
+
+def _inv(T: Any) -> np.ndarray:
+    T = np.asarray(T, dtype=float)
+    return _tool(T[:3, :3].T, -T[:3, :3].T @ T[:3, 3])
+
+
+#: The public tools: a torch bent 30° about y5, its tip 150 mm out; a gripper turned about x5, offset sideways.
+E_TORCH = _tool([[np.cos(np.pi / 6), 0.0, np.sin(np.pi / 6)], [0.0, 1.0, 0.0], [-np.sin(np.pi / 6), 0.0,
+                 np.cos(np.pi / 6)]], [0.0, 0.0, 150.0])  # fmt: skip
+E_GRIP = _tool([[1.0, 0.0, 0.0], [0.0, np.cos(0.5), np.sin(0.5)], [0.0, -np.sin(0.5), np.cos(0.5)]], [40.0, 0.0, 120.0])
+
+
+def _tools(rng: np.random.Generator, n: int) -> list[np.ndarray]:
+    """``n`` tools: turned 0.3 to 1.2 rad about a random axis, the tool point 80 to 200 mm out, up to 60 mm aside."""
+    offsets = np.column_stack([rng.uniform(-60.0, 60.0, (n, 2)), rng.uniform(80.0, 200.0, n)])
+    return [_tool(R, p) for R, p in zip(ref.random_rotations(rng, n, 0.3, 1.2), offsets, strict=True)]
+
+
+def _flange(axis: int, sign: float, flange: str = "right") -> Any:
+    """The point d5 along (sign) axis ``axis`` of the flange frame, the flange found from the tool's pose: T E⁻¹
+    (right), or the mistakes: the tool taken for the flange, E⁻¹ on the left, E for E⁻¹."""
+
+    def point(T: Any, d5: float, E: Any) -> np.ndarray:
+        T, E = np.asarray(T, dtype=float), np.asarray(E, dtype=float)
+        F = {"right": T @ _inv(E), "tool": T, "left": _inv(E) @ T, "E": T @ E}[flange]
+        return F[:3, 3] + sign * d5 * F[:3, axis]
+
+    return point
 
 
 def _wrist_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
-    return [(ref.mk3_fk(q, *L), L[-1]) for q, *L in ref.mk3_cases(rng, n)]
+    return [(ref.mk3_fk(q, *L) @ E, L[-1], E) for (q, *L), E in zip(ref.mk3_cases(rng, n), _tools(rng, n), strict=True)]
+
+
+def mk3_tool_fk(q: Any, d1: float, a1: float, a2: float, a3: float, d5: float, E: Any) -> np.ndarray:
+    """^0T_tool = ^0T_5 E of the MK3 holding the tool E (question 2's reference)."""
+    return ref.mk3_fk(q, d1, a1, a2, a3, d5) @ np.asarray(E, dtype=float)
+
+
+def _with_tool(fk: Any, side: str = "right") -> Any:
+    """A flange pose ``fk(q, *L)`` made the tool's: times E on the right (or, the mistake, on the left)."""
+
+    def tool_fk(q: Any, *args: Any) -> np.ndarray:
+        *L, E = args
+        T, E = fk(q, *L), np.asarray(E, dtype=float)
+        return T @ E if side == "right" else E @ T
+
+    return tool_fk
 
 
 def _twists_in_degrees(table: np.ndarray) -> np.ndarray:
@@ -61,11 +108,31 @@ EXERCISE = Exercise(
             "q1",
             "mk3_wrist_point",
             2,
-            "the wrist point behind the flange",
-            public=((ref.mk3_fk(np.zeros(5)), 100.0), (ref.mk3_fk([0.3, 0.8, -0.5, 0.2, 1.0]), 100.0)),
+            "the wrist point behind the flange of an MK3 holding a tool",
+            public=(
+                (ref.mk3_fk(np.zeros(5)) @ E_TORCH, 100.0, E_TORCH),
+                (ref.mk3_fk([0.3, 0.8, -0.5, 0.2, 1.0]) @ E_GRIP, 100.0, E_GRIP),
+            ),
             hidden=lambda rng: _wrist_cases(rng, 4),
             reference=_flange(2, -1.0),
             mistakes=(
+                matches(
+                    "lecture_mechanism",
+                    "you went back d5 from the tool's frame as lecture 04 does from the flange's: first find the "
+                    "flange's pose from the tool's, T E⁻¹",
+                    _flange(2, -1.0, "tool"),
+                ),
+                matches(
+                    "order",
+                    "your flange pose is E⁻¹ T: the tool is described in the flange's frame, so the flange's pose "
+                    "is T E⁻¹ (E⁻¹ on the right)",
+                    _flange(2, -1.0, "left"),
+                ),
+                matches(
+                    "inverse",
+                    "your flange pose is T E: undoing the tool means multiplying by E⁻¹, not E",
+                    _flange(2, -1.0, "E"),
+                ),
                 matches(
                     "wrong_axis",
                     "you moved along x5: the flange is d5 beyond the wrist along the tool axis z5",
@@ -89,38 +156,49 @@ EXERCISE = Exercise(
             "q2",
             "mk3_fk",
             3,
-            "^0T_5 for any lengths",
+            "^0T_tool for any lengths and tool",
             public=(
-                (np.zeros(5), 360.0, 135.0, 250.0, 215.0, 100.0),
-                (np.array([0.0, np.pi / 2, -np.pi / 2, 0.0, 0.0]), 360.0, 135.0, 250.0, 215.0, 100.0),
+                (np.zeros(5), 360.0, 135.0, 250.0, 215.0, 100.0, E_TORCH),
+                (np.array([0.0, np.pi / 2, -np.pi / 2, 0.0, 0.0]), 360.0, 135.0, 250.0, 215.0, 100.0, E_GRIP),
             ),
-            hidden=lambda rng: ref.mk3_cases(rng, 5),
-            reference=ref.mk3_fk,
+            hidden=lambda rng: [(*c, E) for c, E in zip(ref.mk3_cases(rng, 5), _tools(rng, 5), strict=True)],
+            reference=mk3_tool_fk,
             forbidden=(*keys.KEY_CHAIN, "puma_course_bank._reference.chains:mk3_fk"),
             mistakes=(
+                matches(
+                    "lecture_mechanism",
+                    "this is the flange's pose ⁰T₅ of lecture 04: the question asks for the tool's, ⁰T₅ E",
+                    lambda q, *args: ref.mk3_fk(q, *args[:-1]),
+                ),
+                matches(
+                    "order",
+                    "your tool is multiplied on the left (E ⁰T₅): E is the tool's pose in the flange's frame, so it "
+                    "comes last, ⁰T₅ E",
+                    _with_tool(ref.mk3_fk, "left"),
+                ),
                 matches(
                     "printed_formula",
                     "your ⁴T₅ is the misprinted one: its -d5 sits in the wrong row (lecture 04's "
                     "Errata shows four ways to decide)",
-                    ref.mk3_printed_fk,
+                    _with_tool(ref.mk3_printed_fk),
                 ),
                 matches(
                     "standard_dh",
                     "this is the MK3's table evaluated with the standard (distal) DH link matrix; "
                     "the table is Craig's modified DH (lecture 02 §5)",
-                    lambda q, *L: ref.standard_table_fk(ref.mk3_table(*L), q),
+                    _with_tool(lambda q, *L: ref.standard_table_fk(ref.mk3_table(*L), q)),
                 ),
                 matches(
                     "order",
                     "your link matrices are multiplied in the reverse order",
-                    lambda q, *L: ref.reversed_table_fk(ref.mk3_table(*L), q),
+                    _with_tool(lambda q, *L: ref.reversed_table_fk(ref.mk3_table(*L), q)),
                 ),
                 degrees_in(0),
                 matches(
                     "degrees",
                     "your twists α are in degrees (90 where the table means π/2): np.cos and np.sin take "
                     "radians, so write the twists as np.pi / 2",
-                    lambda q, *L: ref.table_fk(_twists_in_degrees(ref.mk3_table(*L)), q),
+                    _with_tool(lambda q, *L: ref.table_fk(_twists_in_degrees(ref.mk3_table(*L)), q)),
                 ),
             ),
             hint="Check q = 0 and the ready pose against the flange positions you work out by hand (lecture 04 §4); "

@@ -1,10 +1,11 @@
 """Exercise 5 (``solutions/ex05_porter_fk.ipynb``): Porter's chain, the direct problem.
 
 Question 1 is a variant of lecture 05's chain (the hand pitches about y4 through p5), so that copying the
-lecture's product does not answer it. The modelling question: Porter writes his chain without Denavit-Hartenberg
-tables; the student
-gives it one (joint axes along y and x included, the slide third), ending in a tool frame whose z
-axis is the hand's turning axis. Graded by the poses the table's chain reaches.
+lecture's product does not answer it; question 2 asks the joint points of that variant and the tip of a pen the
+hand holds along its x axis (lecture 05 cell 29's points alone do not answer it). The modelling question: Porter
+writes his chain without Denavit-Hartenberg tables; the student gives it one (joint axes along y and x included,
+the slide third), ending in a tool frame whose z axis is the hand's turning axis. Graded by the poses the
+table's chain reaches.
 """
 
 from __future__ import annotations
@@ -105,20 +106,26 @@ EXERCISE = Exercise(
             "q2",
             "porter_points",
             2,
-            "the joint points p0 ... p5",
-            public=((PUBLIC_Q, *PUBLIC_L), (PUBLIC_Q2, *PUBLIC_L2)),
-            hidden=lambda rng: ref.porter_configs(rng, 4),
-            reference=ref.porter_points,
+            "the joint points p0 ... p5 and the tip of the pitching hand's pen",
+            public=((PUBLIC_Q, *PUBLIC_L, 0.2), (PUBLIC_Q2, *PUBLIC_L2, 0.35)),
+            hidden=lambda rng: [(*c, float(rng.uniform(0.1, 0.5))) for c in ref.porter_configs(rng, 4)],
+            reference=ref.porter_pen_points,
             forbidden=keys.KEY_PORTER_FK,
             mistakes=(
                 matches(
+                    "lecture_mechanism",
+                    "your pen tip is the one of lecture 05's hand, which turns about x4 and so never moves its x "
+                    "axis; this hand pitches about y4 (question 1): the pen turns with it",
+                    lambda q, l1, l3, l4, t: ref.porter_pen_points(q, l1, l3, l4, t, hand="lecture"),
+                ),
+                matches(
                     "degrees",
                     "your points are what the chain gives for angles in degrees: q holds radians",
-                    _degrees(ref.porter_points),
+                    _degrees(ref.porter_pen_points),
                 ),
             ),
-            hint="Return a (6, 3) array, p0 first; the distances between neighbouring points are the rods' lengths "
-            "(and q2), whatever the angles.",
+            hint="Return a (7, 3) array, p0 first and the pen tip last; the distances between neighbouring points are "
+            "the rods' lengths (and q2), then t, whatever the angles.",
         ),
         Question(
             "q3",

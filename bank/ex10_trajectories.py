@@ -1,6 +1,7 @@
 """Exercise 10 (``solutions/ex10_trajectories.ipynb``): following a Cartesian path without jumps.
 
-The distance between configurations, the nearest solution, then the modelling question: a pen held
+A controller's weighted distance between configurations (lecture 10 §2's D with a weight per joint, so that
+copying the lecture's D does not answer it), the solutions sorted by it, then the modelling question: a pen held
 by the PUMA-560 must follow a line or a circle; the joint path must start where the arm stands and
 never jump (graded on hidden paths through a wrist flip, by the largest joint step and the pose error).
 """
@@ -17,7 +18,6 @@ from puma_course.grading.judge.judges import path_judge, solution_set_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys
-from ._formulas import plain_distance
 from ._reference import motion as ref
 
 Q_A = np.array([3.0, 0.5, -1.0, 0.2, 0.4, -3.0])
@@ -25,6 +25,18 @@ Q_B = np.array([-3.0, 0.4, -0.9, 0.3, 0.4, 3.1])
 #: The eight solutions of lecture 09's example pose.
 SOLUTIONS = ref.puma_ik_expected(ref.puma_fk(np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0])))["solutions"]
 UNWRAPPED = "you did not wrap the angle differences: 179° and -179° are 2° apart, not 358° (lecture 10 §2)"
+UNWEIGHTED = (
+    "this is lecture 10's unweighted distance D: multiply each squared (wrapped) difference by its joint's weight"
+)
+#: The weights of the public cases: a controller that would rather move the wrist than the base.
+W_BASE = np.array([8.0, 4.0, 2.0, 0.5, 0.5, 0.25])
+W_WRIST = np.array([0.25, 0.5, 0.5, 2.0, 4.0, 8.0])
+
+
+def weighted_plain(q: Any, q_ref: Any, weights: Any) -> float:
+    """sqrt(Σ w_i (q_i - q_ref_i)²) without wrapping the differences (the mistake)."""
+    d = np.asarray(q, dtype=float) - np.asarray(q_ref, dtype=float)
+    return float(np.sqrt(np.sum(np.asarray(weights, dtype=float) * d * d)))
 
 
 def quintic_motion(
@@ -62,19 +74,34 @@ def _quintic_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     return out
 
 
-def _pairs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, np.ndarray]]:
+def _weights(rng: np.random.Generator) -> np.ndarray:
+    """Six weights between 1/8 and 8 (log-uniform), never all alike."""
+    return np.asarray(2.0 ** rng.uniform(-3.0, 3.0, 6))
+
+
+def _pairs(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
     out = []
     for _ in range(n):
         q = rng.uniform(-np.pi, np.pi, 6)
-        out.append((q, ref.wrap_near_pi(q + rng.normal(0.0, 0.3, 6))))
+        out.append((q, ref.wrap_near_pi(q + rng.normal(0.0, 0.3, 6)), _weights(rng)))
     return out
 
 
-def _solution_cases(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, np.ndarray]]:
-    out = []
-    for q in rng.uniform(-np.pi, np.pi, (n, 6)):
-        sols = ref.puma_ik_expected(ref.puma_fk(q))["solutions"]
-        out.append((sols, ref.wrap_near_pi(sols[int(rng.integers(len(sols)))] + rng.normal(0.0, 0.2, 6))))
+def _orders_differ(S: np.ndarray, q: np.ndarray, w: np.ndarray) -> bool:
+    """True when the weighted order differs from lecture 10's unweighted one and from the unwrapped one."""
+    e = ref.sorted_expected(S, q, w)
+    return all(not np.allclose(rows, e["solutions"]) for key, _, rows in e["wrong_orders"] if key != "solution_order")
+
+
+def _solution_cases(rng: np.random.Generator, n: int) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Cases (solutions, q_prev, weights) whose weighted order is neither the unweighted nor the unwrapped one."""
+    out: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+    while len(out) < n:
+        sols = ref.puma_ik_expected(ref.puma_fk(rng.uniform(-np.pi, np.pi, 6)))["solutions"]
+        q = ref.wrap_near_pi(sols[int(rng.integers(len(sols)))] + rng.normal(0.0, 0.6, 6))
+        w = _weights(rng)
+        if _orders_differ(sols, q, w):
+            out.append((sols, q, w))
     return out
 
 
@@ -84,29 +111,32 @@ EXERCISE = Exercise(
     (
         Question(
             "q1",
-            "wrapped_distance",
+            "weighted_distance",
             2,
-            "the distance between two configurations",
-            public=((Q_A, Q_B), (np.zeros(6), np.full(6, 0.5))),
+            "a controller's weighted distance between two configurations",
+            public=((Q_A, Q_B, W_BASE), (np.zeros(6), np.full(6, 0.5), W_WRIST)),
             hidden=lambda rng: _pairs(rng, 5),
             reference=ref.joint_distance,
             forbidden=keys.KEY_NEAREST,
-            mistakes=(matches("unwrapped_distance", UNWRAPPED, plain_distance),),
+            mistakes=(
+                matches("unwrapped_distance", UNWRAPPED, weighted_plain),
+                matches("lecture_mechanism", UNWEIGHTED, lambda q, r, w: ref.joint_distance(q, r)),
+            ),
             hint="Two configurations that differ by a whole turn in one joint are the same arm: their distance is 0.",
         ),
         Question(
             "q2",
             "sort_solutions",
             2,
-            "the solutions sorted by their distance to the previous configuration",
+            "the solutions sorted by their weighted distance to the previous configuration",
             public=(
-                (SOLUTIONS, np.array([-2.1, -2.3, 2.9, 3.1, 0.9, -0.1])),
-                (SOLUTIONS, np.array([0.6, -0.8, 0.3, 0.6, 1.1, -0.4])),
+                (SOLUTIONS, np.array([-2.1, -2.3, 2.9, 3.1, 0.9, -0.1]), W_BASE),
+                (SOLUTIONS, np.array([0.6, -0.8, 0.3, 0.6, 1.1, -0.4]), W_WRIST),
             ),  # fmt: skip
             hidden=lambda rng: _solution_cases(rng, 4),
             reference=ref.sorted_expected,
             judge_with=solution_set_judge(),
-            answer=lambda S, q: ref.sorted_expected(S, q)["solutions"],
+            answer=lambda S, q, w: ref.sorted_expected(S, q, w)["solutions"],
             forbidden=keys.KEY_NEAREST,
             hint="Use your q1 on every row; the first row of your answer is the solution a controller keeps.",
         ),

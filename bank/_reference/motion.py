@@ -103,9 +103,13 @@ def puma_fk(q: Any, a2: float = 0.4318, a3: float = 0.0203, d3: float = 0.15005,
     return Puma560(a2, a3, d3, d4).fk(np.asarray(q, dtype=float))
 
 
-def joint_distance(q: Any, q_ref: Any) -> float:
-    """The course's distance between two configurations of revolute joints (angle differences wrapped)."""
-    return float(_joint_distance(q, q_ref))
+def joint_distance(q: Any, q_ref: Any, weights: Any = None) -> float:
+    """The course's distance between two configurations of revolute joints (angle differences wrapped); with
+    ``weights``, a controller's weighted distance sqrt(Σ w_i wrap(q_i - q_ref_i)²) (exercise 10, question 1)."""
+    if weights is None:
+        return float(_joint_distance(q, q_ref))
+    d = np.asarray(transforms.wrap_angle(np.asarray(q, dtype=float) - np.asarray(q_ref, dtype=float)))
+    return float(np.sqrt(np.sum(np.asarray(weights, dtype=float) * d * d)))
 
 
 def puma_cases(rng: np.random.Generator, n: int, near_singular: bool = True) -> list[tuple[Any, ...]]:
@@ -462,16 +466,22 @@ def wrap_near_pi(q: Any) -> np.ndarray:
     return np.asarray(transforms.wrap_angle(np.asarray(q, dtype=float)))
 
 
-def sorted_expected(solutions: Any, q_prev: Any) -> dict[str, Any]:
-    """The PUMA-560 solutions of one pose, nearest ``q_prev`` first, for the set judge (ordered); the orders of
-    the usual mistakes: not wrapping the angle differences, or not sorting at all."""
+def sorted_expected(solutions: Any, q_prev: Any, weights: Any = None) -> dict[str, Any]:
+    """The PUMA-560 solutions of one pose, nearest ``q_prev`` first by the weighted wrapped distance (all weights
+    1 without ``weights``), for the set judge (ordered); the orders of the usual mistakes: not wrapping the angle
+    differences, leaving out the weights, or not sorting at all."""
     S, q = np.asarray(solutions, dtype=float), np.asarray(q_prev, dtype=float)
+    w = np.ones(S.shape[-1]) if weights is None else np.asarray(weights, dtype=float)
     arm = Puma560()
     d = np.asarray(transforms.wrap_angle(S - q))
-    plain = S[np.argsort(np.sum((S - q) ** 2, axis=1), kind="stable")]
+    plain = S[np.argsort(np.sum(w * (S - q) ** 2, axis=1), kind="stable")]
     wrong = [("unwrapped_distance", "sorted without wrapping the angle differences: 179° and -179° are 2° apart, "
-              "not 358° (lecture 10 §2)", plain), ("solution_order", "these are the solutions as given, not sorted "
-              "by their distance to q_prev", S)]  # fmt: skip
-    return {"T": arm.fk(S[0]), "solutions": S[np.argsort(np.sum(d * d, axis=1), kind="stable")],
+              "not 358° (lecture 10 §2)", plain)]  # fmt: skip
+    if weights is not None:
+        unweighted = S[np.argsort(np.sum(d * d, axis=1), kind="stable")]
+        message = "sorted by lecture 10's unweighted distance: multiply each squared difference by its joint's weight"
+        wrong.append(("lecture_mechanism", message, unweighted))
+    wrong.append(("solution_order", "these are the solutions as given, not sorted by their distance to q_prev", S))
+    return {"T": arm.fk(S[0]), "solutions": S[np.argsort(np.sum(w * d * d, axis=1), kind="stable")],
             "labels": tuple(f"solution {i + 1}" for i in range(len(S))), "fk": arm.fk, "revolute": arm.revolute,
             "scale": 1.0, "ordered": True, "wrong_orders": wrong}  # fmt: skip

@@ -26,6 +26,14 @@ def porter_points(q: Any, l1: float, l3: float, l4: float) -> np.ndarray:
     return Porter(l1, l3, l4).points(q)
 
 
+def porter_pen_points(q: Any, l1: float, l3: float, l4: float, t: float, hand: str = "pitch") -> np.ndarray:
+    """The joint points p0 ... p5 and the tip p6 = p5 + t x5 of a pen along the hand's x axis (ex05 q2): (7, 3).
+
+    ``hand="pitch"`` is ex05 q1's pitching hand; ``hand="lecture"`` lecture 05's chain (the mistake)."""
+    F = porter_pitch_fk(q, l1, l3, l4) if hand == "pitch" else porter_fk(q, l1, l3, l4)
+    return np.vstack([porter_points(q, l1, l3, l4), F[:3, 3] + t * F[:3, 0]])
+
+
 def _porter_factors(q: Any, l1: float, l3: float, l4: float, printed: bool = False) -> list[np.ndarray]:
     a1, a2, q2, a3, a4, a5 = (float(v) for v in np.asarray(q, dtype=float))
     T = transforms

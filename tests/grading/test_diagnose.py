@@ -155,12 +155,16 @@ def test_link_matrices_multiplied_in_the_wrong_order():
     links = []
     for (alpha, a, theta, d, sigma), qi in zip(table, q, strict=True):
         links.append(right("ex02_dh_frames", "q2", alpha, a, theta + (0 if sigma else qi), d + (qi if sigma else 0)))
-    assert judge("ex03_puma_fk", "q1", links[0] @ links[1] @ links[2], table, q).passed
-    assert_named(judge("ex03_puma_fk", "q1", links[2] @ links[1] @ links[0], table, q), "order", "reverse")
+    assert judge("ex03_puma_fk", "q1", links[0] @ links[1] @ links[2], table, q, 0).passed
+    assert_named(judge("ex03_puma_fk", "q1", links[2] @ links[1] @ links[0], table, q, 0), "order", "reverse")
+    # in frame {1}: the last two link matrices only; the whole product is the base frame's pose, named so
+    assert judge("ex03_puma_fk", "q1", links[1] @ links[2], table, q, 1).passed
+    assert_named(judge("ex03_puma_fk", "q1", links[2] @ links[1], table, q, 1), "order", "reverse")
+    assert_named(judge("ex03_puma_fk", "q1", links[0] @ links[1] @ links[2], table, q, 1), "base_frame", "{k}")
 
 
 def test_the_printed_misprint_used_as_printed():
-    q, L = np.array([0.3, 0.8, -0.5, 0.2, 1.0]), (360.0, 135.0, 250.0, 215.0, 100.0)
+    q, L = np.array([0.3, 0.8, -0.5, 0.2, 1.0]), (360.0, 135.0, 250.0, 215.0, 100.0, np.eye(4))  # no tool: E = I
     T = right("ex04_mk3_fk", "q2", q, *L)
     # the printed 4T5: its offset (0, 0, -d5) instead of (0, -d5, 0); from {4}, (0, -d5, 0) is d5 z5
     wrong = T.copy()
@@ -174,9 +178,13 @@ def test_the_printed_misprint_used_as_printed():
 
 def test_an_offset_along_the_wrong_axis_or_with_the_wrong_sign():
     T = homogeneous(rot("y", 0.4) @ rot("z", 1.0), [600.0, 50.0, 260.0])
-    assert judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 2], T, 100.0).passed
-    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 0], T, 100.0), "wrong_axis", "x5")
-    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] + 100 * T[:3, 2], T, 100.0), "offset_sign", "beyond")
+    torch = homogeneous(rot("y", 0.5), [20.0, 0.0, 150.0])  # ex04 q1: the flange T holds a torch, the task gives T E
+    args = (T @ torch, 100.0, torch)
+    assert judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 2], *args).passed
+    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] - 100 * T[:3, 0], *args), "wrong_axis", "x5")
+    assert_named(judge("ex04_mk3_fk", "q1", T[:3, 3] + 100 * T[:3, 2], *args), "offset_sign", "beyond")
+    Tt = T @ torch  # lecture 04's w = p - d5 z5 applied to the tool's pose
+    assert_named(judge("ex04_mk3_fk", "q1", Tt[:3, 3] - 100 * Tt[:3, 2], *args), "lecture_mechanism", "E⁻¹")
     E = homogeneous(rot("x", 0.3), [0.1, 0.0, 0.05])  # ex06 q1: the hand holds a tool E, the task gives T E
     TE = T @ E
     assert judge("ex06_porter_explicit", "q1", T[:3, 3] - 0.3 * T[:3, 0], TE, 0.3, E).passed
@@ -428,17 +436,24 @@ def test_the_nearest_solution_and_unwrapped_distances():
     told = nearest_of(farther, expected, (T, q_ref, *L))
     assert_named(told, "not_nearest", "not the nearest")
     assert "not wrapped" not in (told.reason or "")  # never the heuristic "nearest if not wrapped" (issue 22)
-    q, r = EXERCISES["ex10_trajectories"].question("q1").public[0]
-    assert_named(judge("ex10_trajectories", "q1", np.linalg.norm(q - r), q, r), "unwrapped_distance")
+    q, r, w = EXERCISES["ex10_trajectories"].question("q1").public[0]
+    assert_named(judge("ex10_trajectories", "q1", np.sqrt(np.sum(w * (q - r) ** 2)), q, r, w), "unwrapped_distance")
+    d = np.angle(np.exp(1j * (q - r)))  # lecture 10's D, the weights left out (worked out here, not by the bank)
+    assert judge("ex10_trajectories", "q1", np.sqrt(np.sum(w * d * d)), q, r, w).passed
+    assert_named(judge("ex10_trajectories", "q1", np.sqrt(np.sum(d * d)), q, r, w), "lecture_mechanism", "weight")
 
 
 def test_solutions_sorted_in_another_order():
     name = "ex10_trajectories"
-    S, q_prev = EXERCISES[name].question("q2").public[0]
-    good = right(name, "q2", S, q_prev)
-    assert judge(name, "q2", good, S, q_prev).passed
-    assert_named(judge(name, "q2", good[::-1], S, q_prev), "solution_order", "another order")
-    assert_named(judge(name, "q2", np.vstack([good, good[:1]]), S, q_prev), "duplicates")
+    S, q_prev, w = EXERCISES[name].question("q2").public[0]
+    good = right(name, "q2", S, q_prev, w)
+    d = np.angle(np.exp(1j * (S - q_prev)))
+    assert np.allclose(good, S[np.argsort(np.sum(w * d * d, axis=1), kind="stable")])  # by hand: weighted, wrapped
+    assert judge(name, "q2", good, S, q_prev, w).passed
+    assert_named(judge(name, "q2", good[::-1], S, q_prev, w), "solution_order", "another order")
+    assert_named(judge(name, "q2", np.vstack([good, good[:1]]), S, q_prev, w), "duplicates")
+    unweighted = S[np.argsort(np.sum(d * d, axis=1), kind="stable")]
+    assert_named(judge(name, "q2", unweighted, S, q_prev, w), "lecture_mechanism", "unweighted")
 
 
 def test_a_robot_in_a_cell_solved_as_if_at_the_origin_or_without_its_tool():

@@ -20,14 +20,14 @@ ex02 q1    L02 §5 cells 17, 20, entries read off                  2/2 ★
 ex02 q2    L02 §5 cell 17, the four motions                       2/2 ★
 ex02 q3    L02 §6 cells 27-29, the worked table                   0/6
 ex02 q4    L02 §8 cells 39-40, α and a moved up                   0/2
-ex03 q1    L03 §4-5, the product of link matrices                 3/3 ★
+ex03 q1    L03 §4-5, the product of link matrices from the base   0/3
 ex03 q2    L03 cell 17, the table displayed                       0/6
-ex04 q1    L04 cell 18, w = p - d5 z5                             2/2 ★
-ex04 q2    L04 cell 2, the table multiplied                       3/3 ★
+ex04 q1    L04 cell 18, w = p - d5 z5 on the tool's pose          0/2
+ex04 q2    L04 cell 2, the table multiplied (no tool)             0/3
 ex04 q3    L04 cell 2, the table printed                          0/5
 ex04 q4    L04 §8, Craig's nearest pose                           0/3
 ex05 q1    L05 cells 7, 9, the nine motions (two fixtures)        0/3
-ex05 q2    L05 cell 29, the first 1, 3, 5, 7, 9 factors           2/2 ★
+ex05 q2    L05 cell 29, the first 1, 3, 5, 7, 9 factors, a pen     0/2
 ex05 q3    none (NO_LECTURE_CELL: Porter has no DH table)         --
 ex06 q1    L06 cell 5, p4 = p5 - l4 x5                            0/2
 ex06 q2    L06 cells 5-11, Ver.1                                  0/5
@@ -43,8 +43,8 @@ ex09 q2    L09 cells 7-16                                         0/4
 ex09 q3    L09 cell 34                                            0/2
 ex09 q4    L09 cell 41                                            0/2
 ex09 q5    L09 cells 7-16 on the cell's pose                      0/4
-ex10 q1    L10 §2 cell 4, D(q, q')                                2/2 ★
-ex10 q2    L10 §2 cell 4, sorted by D                             2/2 ★
+ex10 q1    L10 §2 cell 4, D(q, q') (the weights left out)         0/2
+ex10 q2    L10 §2 cell 4, sorted by D (unweighted)                0/2
 ex10 q3    L10 §2 cells 4-5, nearest at every step                0/6
 ex10 q4    L10 §5, the quintic, unwrapped                         0.33/2
 =========  =====================================================  ===========

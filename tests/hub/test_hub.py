@@ -41,10 +41,10 @@ LECTURE = "notebooks/03_puma560_forward_kinematics.ipynb"
 EXERCISE = "exercises/ex03_puma_fk.ipynb"
 LECTURE_NOTE = "Instructor's note, week 5: the wrist axes 4, 5 and 6 meet in one point."
 EXERCISE_NOTE = "Hint added in week 5: start from T = np.eye(4) and multiply on the right."
-ANSWER = """def chain_fk(table, q):
-    # the answer of {user}: one link matrix per row, multiplied on the right
+ANSWER = """def chain_fk(table, q, k=0):
+    # the answer of {user}: one link matrix per row after frame k, multiplied on the right
     T = np.eye(4)
-    for (alpha, a, theta, d, sigma), qi in zip(np.asarray(table, dtype=float), np.asarray(q, dtype=float)):
+    for (alpha, a, theta, d, sigma), qi in zip(np.asarray(table, dtype=float)[k:], np.asarray(q, dtype=float)[k:]):
         T = T @ (mdh(alpha, a, theta, d + qi) if sigma > 0.5 else mdh(alpha, a, theta + qi, d))
     return T"""
 
