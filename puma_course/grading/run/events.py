@@ -200,7 +200,10 @@ def apply(
         result.status = "crashed"
         result.notes.append(forged)
         for q in exercise.questions:  # a written event cannot be told from the worker's: none is trusted
-            result.scores[q.qid], result.question_notes[q.qid] = 0.0, ["not graded: the results channel was written to"]
+            # the reasons stay (what was judged, bounded as ever), the count of passing cases does not
+            notes = result.question_notes[q.qid][1:]
+            result.scores[q.qid] = 0.0
+            result.question_notes[q.qid] = ["not graded: the results channel was written to", *notes]
         result.mistakes.clear()
     elif child.timed_out:
         result.status = "timeout"
