@@ -1,7 +1,7 @@
 """The plan of a notebook's grading: every call to make (public and hidden cases) with its expected value.
 
 Computed in the grader's process before any worker runs (:func:`make_plan`); the worker receives the
-calls without ``expected`` or ``call_args`` (:func:`~.runner._job`), and the grader judges what comes back
+calls without ``expected`` or ``call_args`` (:func:`~.run.notebook_run._job`), and the grader judges what comes back
 against them (:mod:`.events`).
 """
 

@@ -249,3 +249,39 @@ def test_a_students_total_time_limit_spans_its_notebooks(tmp_path):
     assert [r.status for r in results] == ["timeout"] * 3
     assert "total time for all of this student's notebooks" in results[0].notes[-1]
     assert "not run" in results[1].notes[0] and "not run" in results[2].notes[0]
+
+
+#: A cell that finds the worker's result pipe and writes to it; ``{line}`` is what it writes.
+_WRITE_TO_PIPE = (
+    "import os\nfor fd in range(3, 64):\n    try:\n"
+    "        if os.readlink(f'/proc/self/fd/{{fd}}').startswith('pipe:'):\n"
+    "            os.write(fd, {line!r})\n    except OSError:\n        pass"
+)
+
+
+@pytest.mark.parametrize(
+    "line",
+    [
+        # a forged right answer, before the worker's own event for that case
+        b'{"kind": "call", "qid": "q1", "case": 0, "value": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n',
+        b"[[[[",  # a partial line (what a flood interrupted by the worker's clock leaves): the next event is lost
+        b'{"kind": "report", "total": 56}\n',  # a kind the worker never sends
+    ],
+)
+def test_a_notebook_that_writes_to_the_result_pipe_is_crashed_and_not_graded(tmp_path, line):
+    nb = nbformat.read(ROOT / "solutions" / "ex01_rotations.ipynb", as_version=4)
+    nb.cells.append(nbformat.v4.new_code_cell(_WRITE_TO_PIPE.format(line=line)))
+    sub = tmp_path / "ex01_rotations.ipynb"
+    nbformat.write(nb, sub)
+    r = grade_notebook(sub, EX, "s", seed=1, sandbox="none")
+    assert r.status == "crashed" and r.score == 0, (r.status, r.notes)
+    assert any("wrote to the grader's results channel" in n for n in r.notes), r.notes
+
+
+def test_child_counts_the_lines_the_worker_never_sends():
+    code = (
+        'import sys\nsys.stdout.write(\'{"kind": "ready"}\\nnot json\\n[1]\\n{"kind": "x"}\\n'
+        '{"kind": "call", "qid": "q1", "case": 0}\\n{"kind": "done"}\\n\')'
+    )
+    out = child_mod.run([sys.executable, "-c", code], b"", cwd=None, env=dict(os.environ), timeout=20)
+    assert out.done and out.foreign == 3 and [e["kind"] for e in out.events] == ["ready", "call", "done"]

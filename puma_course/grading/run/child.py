@@ -11,8 +11,10 @@ Linux a pidfd wakes the loop the moment the process exits), so there is no fixed
 * at the end it kills the whole session (``killpg``), so children the student's code started in
   that session end with it (under bubblewrap the whole PID namespace ends with the worker).
 
-Lines that are not JSON objects are skipped; what the events mean is for the caller to decide
-(the student's code can write to this pipe too).
+Lines that are not JSON objects of a kind the worker sends are skipped and counted
+(:attr:`ChildResult.foreign`): the worker writes only whole event lines, so any other line is the
+student's code writing to this pipe (which it can find among its descriptors); what the events
+mean is for the caller to decide.
 """
 
 from __future__ import annotations
@@ -47,6 +49,13 @@ class ChildResult:
     #: the first bytes the process wrote to its stderr (the worker silences it before any student
     #: code runs, so this is bubblewrap's or Python's own complaint when the worker could not start)
     stderr: bytes = b""
+    #: lines the worker never writes (not a JSON object of an event kind it sends): the student's code
+    #: wrote to the result pipe, so the events cannot be trusted (:func:`.events.apply` fails the notebook)
+    foreign: int = 0
+
+
+#: The kinds of event the worker sends (:mod:`.worker`).
+KINDS = frozenset({"ready", "malformed", "cell", "call", "done"})
 
 
 class _Lines:
@@ -72,8 +81,10 @@ class _Lines:
             try:
                 event = json.loads(line)
             except (ValueError, RecursionError):
-                continue
-            if isinstance(event, dict):
+                event = None
+            if not isinstance(event, dict) or event.get("kind") not in KINDS:
+                self.result.foreign += 1
+            else:
                 self.result.events.append(event)
                 if event.get("kind") == "done":
                     self.result.done = True

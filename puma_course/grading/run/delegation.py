@@ -40,7 +40,8 @@ import pwd
 import re
 from pathlib import Path
 
-from .limits import ROOT, Run, _rmdir, _v2_mount, _write
+from .cgroupfs import _rmdir, _v2_mount, _write
+from .limits import ROOT, Run
 
 __all__ = ["parent_name", "delegate", "undelegate", "find_delegated", "V1_CONTROLLERS", "V2_CONTROLLERS"]
 

@@ -21,7 +21,7 @@ from .child import ChildResult
 from .limits import WALL_FACTOR
 from .worker import NOT_ATTEMPTED
 
-__all__ = ["apply", "malformed_note", "call_verdict", "cell_note", "JUDGING_SECONDS"]
+__all__ = ["apply", "tampered", "malformed_note", "call_verdict", "cell_note", "JUDGING_SECONDS"]
 
 #: The time the grader spends judging one notebook's answers, at most; cases after it are not judged.
 #: (Each answer is bounded before it is judged, so an honest notebook's judging takes milliseconds.)
@@ -129,6 +129,24 @@ def cell_note(event: dict[str, Any], limits: str) -> str | None:
     return None
 
 
+def tampered(child: ChildResult) -> str | None:
+    """The note when the notebook's code wrote to the grader's result pipe, None when only the worker did.
+
+    The worker writes whole event lines of its own kinds, one call event per (question, case) and one
+    "ready": a line that is not such an event (:attr:`.child.ChildResult.foreign`, a flood's partial
+    lines among them) or a second event where there is one is the notebook's doing.
+    """
+    keys = [(e.get("qid"), e.get("case")) for e in child.events if e.get("kind") == "call"]
+    ready = sum(1 for e in child.events if e.get("kind") == "ready")
+    extra = child.foreign + len(keys) - len(set(keys)) + max(ready - 1, 0)
+    if not extra:
+        return None
+    return (
+        f"the notebook wrote to the grader's results channel ({extra} line{'s' if extra != 1 else ''} the grader"
+        " did not send): its results were flooded or forged, so none was graded"
+    )
+
+
 def apply(
     result: NotebookResult,
     exercise: Exercise,
@@ -177,7 +195,17 @@ def apply(
                 result.mistakes.setdefault(qid, []).append(v.mistake)
     for q in exercise.questions:
         result.scores[q.qid], result.question_notes[q.qid] = score_question(q.points, outcomes[q.qid])
-    if child.timed_out:
+    forged = tampered(child)
+    if forged:
+        result.status = "crashed"
+        result.notes.append(forged)
+        for q in exercise.questions:  # a written event cannot be told from the worker's: none is trusted
+            # the reasons stay (what was judged, bounded as ever), the count of passing cases does not
+            notes = result.question_notes[q.qid][1:]
+            result.scores[q.qid] = 0.0
+            result.question_notes[q.qid] = ["not graded: the results channel was written to", *notes]
+        result.mistakes.clear()
+    elif child.timed_out:
         result.status = "timeout"
         result.notes.append(stop_note)
     elif child.overflow:

@@ -35,7 +35,6 @@ the group's peak memory and CPU time).
 from __future__ import annotations
 
 import contextlib
-import errno
 import os
 import secrets
 import signal
@@ -43,6 +42,8 @@ import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from .cgroupfs import _int, _key, _own_groups, _rmdir, _v2_mount, _write
 
 __all__ = [
     "MEMORY",
@@ -270,42 +271,6 @@ def _gib(n: int) -> str:
     return f"{n / (1 << 30):g} GiB" if n >= 1 << 30 else f"{n / (1 << 20):g} MiB"
 
 
-def _int(path: Path) -> int:
-    try:
-        return int(path.read_text().split()[0])
-    except (OSError, ValueError, IndexError):
-        return 0
-
-
-def _key(path: Path, key: str) -> int:
-    try:
-        for line in path.read_text().splitlines():
-            parts = line.split()
-            if len(parts) == 2 and parts[0] == key:
-                return int(parts[1])
-    except (OSError, ValueError):
-        pass
-    return 0
-
-
-def _rmdir(folder: Path) -> None:
-    for _ in range(100):  # a killed process leaves its group a moment after it is reaped
-        try:
-            folder.rmdir()
-            return
-        except FileNotFoundError:
-            return
-        except OSError as exc:
-            if exc.errno != errno.EBUSY:
-                return
-            time.sleep(0.02)
-
-
-def _write(path: Path, value: str) -> None:
-    with open(path, "w", encoding="ascii") as fh:
-        fh.write(value)
-
-
 def _set_limits(group: Group, memory: int, processes: int, cpus: float) -> None:
     f = group.folders
     quota = max(1000, int(cpus * _PERIOD_US))
@@ -325,28 +290,6 @@ def _set_limits(group: Group, memory: int, processes: int, cpus: float) -> None:
         _write(folder / "pids.max", str(processes))
         _write(folder / "cpu.weight", "100")
         _write(folder / "cpu.max", f"{quota} {_PERIOD_US}")
-
-
-def _own_groups(proc_cgroup: str) -> dict[str, str]:
-    """The grader's own group by controller ("" for v2's unified line), from ``/proc/self/cgroup``."""
-    out: dict[str, str] = {}
-    try:
-        text = Path(proc_cgroup).read_text()
-    except OSError:
-        return out
-    for line in text.splitlines():
-        parts = line.split(":", 2)
-        if len(parts) == 3:
-            for controller in parts[1].split(","):
-                out[controller] = parts[2]
-    return out
-
-
-def _v2_mount(root: Path) -> Path | None:
-    for candidate in (root, root / "unified"):
-        if (candidate / "cgroup.controllers").exists():
-            return candidate
-    return None
 
 
 def _try_v2(root: Path, own: dict[str, str], name: str) -> Run | str:
