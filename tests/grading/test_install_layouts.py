@@ -140,7 +140,7 @@ def test_every_install_grades_honest_blank_and_snoop_students_under_bubblewrap(t
     with open(out, newline="", encoding="utf-8") as fh:
         rows = {r["student"]: r for r in csv.DictReader(fh)}
     assert {s: rows[s]["sandbox"] for s in rows} == {"honest": "bwrap", "blank": "bwrap", "snoop": "bwrap"}
-    assert float(rows["honest"]["score"]) == float(rows["honest"]["max_score"]) == 13.0, json.dumps(rows["honest"])
+    assert float(rows["honest"]["score"]) == float(rows["honest"]["max_score"]) == 15.0, json.dumps(rows["honest"])
     assert float(rows["blank"]["score"]) == 0.0 and rows["blank"]["status"] == "ok", json.dumps(rows["blank"])
     assert float(rows["snoop"]["score"]) == 0.0, json.dumps(rows["snoop"])
 

@@ -28,11 +28,11 @@ def _result(student, scores, mistakes=None, status="ok", notes=None):
 def results():
     stub = {"q3": ["0/7 cases pass", "public case 1: not attempted yet (NotImplementedError)"]}
     return [
-        _result("ann", {"q1": 2, "q2": 3, "q3": 3, "q4": 2, "q5": 3}),
-        _result("bob", {"q1": 0, "q2": 1, "q3": 0, "q4": 2, "q5": 3},
+        _result("ann", {"q1": 2, "q2": 3, "q3": 3, "q4": 2, "q5": 3, "q6": 2}),
+        _result("bob", {"q1": 0, "q2": 1, "q3": 0, "q4": 2, "q5": 3, "q6": 2},
                 {"q1": ["transposed"] * 9, "q2": ["unnormalised"]},
                 notes={"q1": ["0/9 cases pass", "case 1: you returned the transpose"], "q3": stub["q3"]}),
-        _result("cat", {"q1": 0, "q2": 0, "q3": 0, "q4": 0, "q5": 0}, {"q1": ["transposed", "degrees"]},
+        _result("cat", {"q1": 0, "q2": 0, "q3": 0, "q4": 0, "q5": 0, "q6": 2}, {"q1": ["transposed", "degrees"]},
                 notes={"q1": ["0/9 cases pass", "case 1: you returned the transpose"]}),
         NotebookResult.blank("dan", EX, "missing", "no file"),
     ]  # fmt: skip

@@ -103,7 +103,7 @@ def format_check_report(result: NotebookResult, exercise: Exercise) -> str:
     >>> ex = EXERCISES["ex01_rotations"]
     >>> r = NotebookResult("me", ex.name, "missing", ex.max_score, scores={q.qid: 0.0 for q in ex.questions})
     >>> print(format_check_report(r, ex).splitlines()[0])
-    ex01_rotations: 0 / 13 on the public cases (status missing)
+    ex01_rotations: 0 / 15 on the public cases (status missing)
     """
     lines = [f"{exercise.name}: {result.score:g} / {result.max_score:g} on the public cases (status {result.status})"]
     lines += [f"  {note}" for note in result.notes]

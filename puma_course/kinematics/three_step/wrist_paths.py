@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._validate import MAX_MAGNITUDE, as_array, as_choice, as_count
+from ..._validate import MAX_MAGNITUDE, as_array, as_choice, as_count, describe
 from ...euler import zyz_from_rotation
 from ...transforms import wrap_angle
 from .procedure import ThreeStepSolution, motion
@@ -70,8 +70,10 @@ def wrist_goal(result: ThreeStepSolution, start: Any) -> np.ndarray:
     array([   0.  , -149.47,   45.  ])
     """
     r = _check(result)
-    a = as_array(start, "start", (3,), what="three finite wrist angles (φ, ϑ, ψ) in radians",
-                 max_magnitude=MAX_MAGNITUDE)  # fmt: skip
+    try:
+        a = as_array(start, "start", (3,), max_magnitude=MAX_MAGNITUDE)
+    except ValueError as err:  # one message for every bad start, naming what a start is
+        raise ValueError(f"start: expected three finite wrist angles (φ, ϑ, ψ) in radians, got {describe(start)}") from err
     relative = forearm_frames(r.joints).T @ np.asarray(r.target)
     first = zyz_from_rotation(relative, psi=a[2])
     second = wrap_angle(first * np.array([1.0, -1.0, 1.0]) + np.array([math.pi, 0.0, math.pi]))
