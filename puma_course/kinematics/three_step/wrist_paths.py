@@ -73,7 +73,8 @@ def wrist_goal(result: ThreeStepSolution, start: Any) -> np.ndarray:
     try:
         a = as_array(start, "start", (3,), max_magnitude=MAX_MAGNITUDE)
     except ValueError as err:  # one message for every bad start, naming what a start is
-        raise ValueError(f"start: expected three finite wrist angles (φ, ϑ, ψ) in radians, got {describe(start)}") from err
+        said = describe(start)
+        raise ValueError(f"start: expected three finite wrist angles (φ, ϑ, ψ) in radians, got {said}") from err
     relative = forearm_frames(r.joints).T @ np.asarray(r.target)
     first = zyz_from_rotation(relative, psi=a[2])
     second = wrap_angle(first * np.array([1.0, -1.0, 1.0]) + np.array([math.pi, 0.0, math.pi]))
