@@ -8,6 +8,8 @@ import numpy as np
 from puma_course import ThreeStepArm
 from puma_course.kinematics.three_step import motion
 from puma_course.viz import three_step as tsp
+from puma_course.viz.animation import jshtml
+from puma_course.viz.style import use_course_style
 from tests.support import jshtml_png_sizes
 
 L1, L2 = 1.5, 1.0
@@ -22,7 +24,10 @@ def test_plot_steps_and_animation_smoke():
     assert [ax.get_title() for ax in fig.axes] == list(tsp.PHASE_TITLES)
     plt.close(fig)
     anim = tsp.animate(sol, steps_per_phase=3, dpi=40, figsize=(4.0, 3.0))
-    html = anim.to_jshtml()
+    # as the lectures show it (jshtml), and under the course style, whose savefig.dpi (110) a bare to_jshtml()
+    # would use: another test in the same worker may have switched the style on
+    use_course_style()
+    html = jshtml(anim).data
     sizes = jshtml_png_sizes(html)
     assert len(sizes) == 10  # 3 * 3 + 1
     assert sizes[0] == (160, 120)  # 4 x 3 inches at 40 dpi: the dpi was kept
