@@ -13,7 +13,9 @@ import pytest
 
 from puma_course import MK3, DHChain, Link, Porter, Puma560, ThreeStepArm
 from puma_course.viz import arms as A
+from puma_course.viz.animation import jshtml
 from puma_course.viz.frames import new_axes
+from puma_course.viz.style import use_course_style
 from tests.support import jshtml_png_sizes, random_q
 
 ARM = Puma560()
@@ -193,7 +195,8 @@ def test_animate_robot_draws_each_pose_and_keeps_the_dpi():
         return []
 
     anim = A.animate_robot(arm, Q, extra=extra, triads="none", dpi=30, figsize=(4.0, 2.0))
-    sizes = jshtml_png_sizes(anim.to_jshtml())
+    use_course_style()  # its savefig.dpi (110) must not leak into the frames shown through jshtml
+    sizes = jshtml_png_sizes(jshtml(anim).data)
     assert sizes == [(120, 60)] * 4
     for t in range(4):
         np.testing.assert_array_equal(seen[t], arm.points(Q[t]))
