@@ -13,6 +13,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import nbformat
+import numpy as np
 import pytest
 
 from puma_course.viz.labels import overlapping_labels
@@ -33,7 +34,7 @@ def _figure(name: str, first_line: str):
     last = next(i for i, src in enumerate(code) if first_line in src)
     shown = []
     space = {"__name__": "__lecture__"}
-    show, cwd = plt.show, os.getcwd()
+    show, cwd, printing = plt.show, os.getcwd(), np.get_printoptions()
     plt.show = lambda *a, **k: shown.append(plt.gcf())  # type: ignore[assignment]
     try:
         os.chdir(NOTEBOOKS)
@@ -42,9 +43,10 @@ def _figure(name: str, first_line: str):
                 continue  # widgets and animations: nothing the figure needs
             exec(compile("\n".join(ln for ln in src.splitlines() if not ln.lstrip().startswith("%")), name, "exec"),
                  space)  # fmt: skip
-    finally:
+    finally:  # the lectures set numpy's print options: a doctest later in this worker must not see them
         plt.show = show  # type: ignore[assignment]
         os.chdir(cwd)
+        np.set_printoptions(**printing)
     return shown[-1]
 
 
