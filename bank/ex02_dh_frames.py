@@ -71,9 +71,7 @@ def _parameter_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     wrong sign is right there and nowhere else; at α = π the same holds, but rounding decides whether the reference
     reads π or -π, and a sign flip or degrees could no longer be told exactly); the other twists are ±π/2 or random,
     never near 0 or π. One d is positive and the others negative, so that |d| is right on one hidden case only."""
-    twists = [0.0] + [
-        float(rng.choice([H, -H])) if k % 2 else _away_from_zero(rng, 0.3, 2.8) for k in range(1, n)
-    ]
+    twists = [0.0] + [float(rng.choice([H, -H])) if k % 2 else _away_from_zero(rng, 0.3, 2.8) for k in range(1, n)]
     ds = [float(rng.uniform(0.1, 1.0))] + [-float(rng.uniform(0.1, 1.0)) for _ in range(1, n)]
     order = rng.permutation(n)
     return [
@@ -243,8 +241,8 @@ EXERCISE = Exercise(
             answer=modified_from_standard,
             forbidden=keys.KEY_TABLES,
             hint="Write both products for a two-joint chain and group the factors (lecture 02 §8): which joint's "
-            "factors does Rot(X, α_1) Trans(X, a_1) follow in each? Check with your q2: both chains must give the "
-            "same ⁰T_n at q = 0 and at one other q.",
+            "factors does Rot(X, α_1) Trans(X, a_1) follow in each? Check with the chain cell under question 3: both "
+            "tables must give the same ⁰T_n at q = 0 and at one other q.",
         ),
     ),
     allowed=(),
