@@ -24,8 +24,6 @@ from puma_course.grading.judge.diagnose import (
 )
 from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.model import Exercise, Question
-from puma_course.transforms import homogeneous as pose
-from puma_course.transforms import rotx, rotz
 
 from . import _keys as keys
 from ._formulas import (
@@ -54,7 +52,7 @@ def rrp_table(h: float, d2: float) -> np.ndarray:
 def _world_pose(rng: np.random.Generator) -> np.ndarray:
     """A pose ⁰T_{i-1} of frame {i-1} in the world: a turn of at least 0.2 rad about a random axis, an offset."""
     (R,) = ref.random_rotations(rng, 1)
-    return pose(R, rng.uniform(-1.0, 1.0, 3))
+    return ref.pose(R, rng.uniform(-1.0, 1.0, 3))
 
 
 def _poses(T_prev: np.ndarray, alpha: float, a: float, theta: float, d: float) -> tuple[np.ndarray, np.ndarray]:
@@ -123,8 +121,8 @@ EXERCISE = Exercise(
             2,
             "the four parameters of a link, from the world poses of its two frames",
             public=(
-                _poses(pose(rotz(H), [0.5, 0.0, 0.3]), H, 0.4, -1.0, 0.15),
-                _poses(pose(rotx(0.6) @ rotz(-0.4), [0.2, -0.3, 0.8]), -H, 0.25, 0.5, -0.3),
+                _poses(ref.world_pose([("z", H)], [0.5, 0.0, 0.3]), H, 0.4, -1.0, 0.15),
+                _poses(ref.world_pose([("x", 0.6), ("z", -0.4)], [0.2, -0.3, 0.8]), -H, 0.25, 0.5, -0.3),
             ),
             hidden=lambda rng: _parameter_cases(rng, 5),
             reference=link_parameters_between,

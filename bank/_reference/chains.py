@@ -68,6 +68,14 @@ def mdh(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
     return dh.mdh(alpha_prev, a_prev, theta, d)
 
 
+def world_pose(turns: Any, p: Any) -> np.ndarray:
+    """The pose [[R, p], [0, 1]], R the product of elementary turns ``[(axis, angle), ...]`` (a frame's world pose)."""
+    R = np.eye(3)
+    for axis, angle in turns:
+        R = R @ elementary_rotation(axis, angle)
+    return pose(R, p)
+
+
 def mdh_inverse(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
     """ⁱT_{i-1}, the inverse of Craig's link matrix: the four motions undone, last first (ex02 q2's reference).
 
