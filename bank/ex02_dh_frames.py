@@ -161,14 +161,15 @@ EXERCISE = Exercise(
                 degrees_out([0, 2]),
                 sign_flip(("α_(i-1)", "a_(i-1)", "θ_i", "d_i")),
             ),
-            hint="Lecture 02 §5 reads the four numbers off one matrix: find which matrix, from the two poses you "
-            "are given. Check your numbers: Craig's link matrix built from them must carry ⁰T_(i-1) onto ⁰T_i.",
+            hint="Lecture 02 §5 reads the four numbers off a matrix you are not given: which matrix describes {i} "
+            "as seen from {i-1}? Test on a case you can draw, with ⁰T_(i-1) the identity; then move both frames "
+            "together by the same pose: the four numbers must not change.",
         ),
         Question(
             "q2",
             "link_matrix_inverse",
             2,
-            "the inverse link matrix ⁱT_(i-1), from the four motions",
+            "the inverse link matrix ⁱT_(i-1)",
             public=((H, 0.4, -1.0, 0.15), (-H, 0.3, 0.5, -0.2), (0.7, -0.25, 2.0, 0.35)),
             hidden=lambda rng: _inverse_cases(rng, 5),
             reference=ref.mdh_inverse,
