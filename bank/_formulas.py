@@ -33,6 +33,48 @@ def standard_reading(T: Any) -> np.ndarray:
     return np.array([alpha, math.cos(theta) * T[0, 3] + math.sin(theta) * T[1, 3], theta, T[2, 3]])
 
 
+def _rigid_inverse(T: np.ndarray) -> np.ndarray:
+    R, p = T[:3, :3], T[:3, 3]
+    return homogeneous(R.T, -R.T @ p)
+
+
+def _between(T_prev: Any, T: Any, how: str) -> np.ndarray:
+    """A matrix formed from the world poses ⁰T_{i-1}, ⁰T_i: the link matrix (``"link"``) or a mistaken one."""
+    A, B = np.asarray(T_prev, dtype=float), np.asarray(T, dtype=float)
+    if how == "link":  # ⁱ⁻¹T_i = (⁰T_{i-1})⁻¹ ⁰T_i
+        return _rigid_inverse(A) @ B
+    if how == "inverse":  # ⁱT_{i-1} = (⁰T_i)⁻¹ ⁰T_{i-1}
+        return _rigid_inverse(B) @ A
+    if how == "order":  # ⁰T_i (⁰T_{i-1})⁻¹: the inverse on the wrong side
+        return B @ _rigid_inverse(A)
+    raise ValueError(f"how: expected 'link', 'inverse' or 'order', got {how!r}")
+
+
+def link_parameters_between(T_prev: Any, T: Any) -> np.ndarray:
+    """[α_{i-1}, a_{i-1}, θ_i, d_i] of the link from the world poses ⁰T_{i-1} and ⁰T_i (ex02 q1's reference)."""
+    return link_parameters(_between(T_prev, T, "link"))
+
+
+def parameters_of_pose(T_prev: Any, T: Any) -> np.ndarray:
+    """The mistake ``base_frame``: the entries read off the world pose ⁰T_i itself, ⁰T_{i-1} ignored."""
+    return link_parameters(T)
+
+
+def parameters_of_inverse(T_prev: Any, T: Any) -> np.ndarray:
+    """The mistake ``inverse``: the entries read off ⁱT_{i-1} = (⁰T_i)⁻¹ ⁰T_{i-1}."""
+    return link_parameters(_between(T_prev, T, "inverse"))
+
+
+def parameters_in_order(T_prev: Any, T: Any) -> np.ndarray:
+    """The mistake ``order``: the entries read off ⁰T_i (⁰T_{i-1})⁻¹."""
+    return link_parameters(_between(T_prev, T, "order"))
+
+
+def standard_reading_between(T_prev: Any, T: Any) -> np.ndarray:
+    """The mistake ``standard_dh``: the link matrix formed right, read where a standard-DH matrix shows the numbers."""
+    return standard_reading(_between(T_prev, T, "link"))
+
+
 def porter_wrist_point(T: Any, l4: float) -> np.ndarray:
     """The wrist point p4 = p5 - l4 x5 of an end-effector pose (the formula itself)."""
     T = np.asarray(T, dtype=float)

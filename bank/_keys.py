@@ -16,7 +16,12 @@ KEY_AXIS_ANGLE = (f"{_T}:axis_angle",)
 KEY_EULER = tuple(f"puma_course.euler:{name}" for name in ("zyz_from_rotation", "rpy_from_rotation"))
 KEY_INVERSE = (f"{_T}:inverse_transform",)
 KEY_MDH = (f"{_DH}:mdh", f"{_DH}:DHChain.link_matrices", f"{_BANK}:mdh")
-KEY_LINK_PARAMETERS = ("puma_course_bank._formulas:link_parameters",)
+KEY_LINK_PARAMETERS = (
+    "puma_course_bank._formulas:link_parameters",
+    "puma_course_bank._formulas:link_parameters_between",
+    f"{_T}:inverse_transform",
+)
+KEY_MDH_INVERSE = (*KEY_MDH, f"{_T}:inverse_transform", f"{_BANK}:mdh_inverse")
 KEY_CHAIN = (
     f"{_DH}:DHChain.fk",
     f"{_DH}:DHChain.frames",

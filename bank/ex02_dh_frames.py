@@ -1,6 +1,7 @@
 """Exercise 2 (``solutions/ex02_dh_frames.ipynb``): attaching frames, Craig's modified DH convention.
 
-From reading the four parameters off a link matrix, to building it, to the modelling question:
+From reading the four parameters of a link off the world poses of its two frames, and the inverse link
+matrix ⁱT_{i-1} (the one Craig premultiplies by in inverse kinematics), to the modelling question:
 the DH table of an arm the lectures did not treat (an RRP arm with a shoulder offset, the first
 three joints of the Stanford arm), graded by the poses its chain reaches; then a standard-DH table (a
 book's, a library's) rewritten in Craig's convention, the direction lecture 02 §8 does not print.
@@ -14,28 +15,33 @@ import numpy as np
 
 from puma_course.grading.judge.compare import compare_angles_at
 from puma_course.grading.judge.diagnose import (
-    INVERSE,
     SIGN_FLIP,
-    TRANSPOSED,
     degrees_in,
     degrees_out,
     matches,
+    matches_entries,
     sign_flip,
 )
 from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.model import Exercise, Question
 
 from . import _keys as keys
-from ._formulas import link_parameters, modified_from_standard, standard_reading
-from ._reference import chains as ref
-
-STANDARD = (
-    "this is the standard (distal) DH link matrix Rot(Z, θ) Trans(Z, d) Trans(X, a) Rot(X, α): the four motions "
-    "in the reverse order. Craig's modified DH starts with the twist about X_(i-1) (lecture 02 §3 and §5)"
+from ._formulas import (
+    link_parameters_between,
+    modified_from_standard,
+    parameters_in_order,
+    parameters_of_inverse,
+    parameters_of_pose,
+    standard_reading_between,
 )
+from ._reference import chains as ref
 
 #: A valid table of the RRP arm (frame {1} with x1 along x0 at q = 0): rows α_{i-1}, a_{i-1}, θ_i, d_i, σ_i.
 H = np.pi / 2
+
+#: ex02 q1's mistaken readings are recognised from α, a and θ (entries 0-2, the angles modulo 2π): d read off a
+#: matrix that is not a link matrix depends on which entries it was read from.
+ENTRIES = ([0, 1, 2], [0, 2])
 
 
 def rrp_table(h: float, d2: float) -> np.ndarray:
@@ -43,13 +49,67 @@ def rrp_table(h: float, d2: float) -> np.ndarray:
     return np.array([[0.0, 0.0, 0.0, h, 0], [H, 0.0, H, -d2, 0], [H, 0.0, 0.0, 0.0, 1]])
 
 
+def _world_pose(rng: np.random.Generator) -> np.ndarray:
+    """A pose ⁰T_{i-1} of frame {i-1} in the world: a turn of at least 0.2 rad about a random axis, an offset."""
+    (R,) = ref.random_rotations(rng, 1)
+    return ref.pose(R, rng.uniform(-1.0, 1.0, 3))
+
+
+def _poses(T_prev: np.ndarray, alpha: float, a: float, theta: float, d: float) -> tuple[np.ndarray, np.ndarray]:
+    """The arguments of q1: ⁰T_{i-1} and ⁰T_i = ⁰T_{i-1} ⁱ⁻¹T_i."""
+    return T_prev, T_prev @ ref.mdh(alpha, a, theta, d)
+
+
+def _away_from_zero(rng: np.random.Generator, lo: float, hi: float) -> float:
+    return float(rng.choice([-1.0, 1.0]) * rng.uniform(lo, hi))
+
+
 def _parameter_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
-    alpha = rng.choice([np.pi / 2, -np.pi / 2, 0.0, np.pi, *rng.uniform(-3.0, 3.0, 2)], n)
+    """``n`` pairs of world poses. Exactly one link has no twist (α = 0, where -α is the same twist, so an α with the
+    wrong sign is right there and nowhere else; at α = π the same holds, but rounding decides whether the reference
+    reads π or -π, and a sign flip or degrees could no longer be told exactly); the other twists are ±π/2 or random,
+    never near 0 or π. One d is positive and the others negative, so that |d| is right on one hidden case only."""
+    twists = [0.0] + [float(rng.choice([H, -H])) if k % 2 else _away_from_zero(rng, 0.3, 2.8) for k in range(1, n)]
+    ds = [float(rng.uniform(0.1, 1.0))] + [-float(rng.uniform(0.1, 1.0)) for _ in range(1, n)]
+    order = rng.permutation(n)
     return [
-        (ref.mdh(al, *(float(v) for v in (rng.uniform(-1, 1), rng.uniform(-np.pi, np.pi), rng.uniform(-1, 1)))),)
-        for al in alpha
+        _poses(
+            _world_pose(rng),
+            twists[k],
+            _away_from_zero(rng, 0.1, 1.0),
+            _away_from_zero(rng, 0.2, np.pi - 0.2),
+            ds[int(order[k])],
+        )
+        for k in range(n)
     ]
 
+
+def _inverse_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """``n`` links none of whose four numbers is near 0 or π: at α = 0 or θ = 0 the motions negated in their own
+    order are the translation -p, and at a zero number several mistakes give the same matrix."""
+    return [
+        (
+            float(rng.choice([H, -H])) if k % 2 else _away_from_zero(rng, 0.3, 2.8),
+            _away_from_zero(rng, 0.1, 1.0),
+            _away_from_zero(rng, 0.3, np.pi - 0.3),
+            _away_from_zero(rng, 0.1, 1.0),
+        )
+        for k in range(n)
+    ]
+
+
+INVERSE_Q2 = (
+    "this is the link matrix ⁱ⁻¹T_i itself, the four motions as lecture 02 §5 multiplies them: the question asks for "
+    "the matrix that takes {i} back to {i-1}"
+)
+NEGATED_Q2 = (
+    "each motion is undone, but in the order the frames moved: undoing a walk of four steps starts with the last "
+    "step (this is also the inverse of the standard-DH link matrix)"
+)
+REVERSED_Q2 = (
+    "the motions are in the reverse order, but each still goes forward: undoing a step moves by its negative "
+    "(this is also the standard-DH link matrix of the same four numbers)"
+)
 
 EXERCISE = Exercise(
     "ex02_dh_frames",
@@ -59,52 +119,94 @@ EXERCISE = Exercise(
             "q1",
             "dh_parameters",
             2,
-            "the four parameters of a link matrix",
-            public=((ref.mdh(np.pi / 2, 0.4, -1.0, 0.15),), (ref.mdh(-np.pi / 2, 0.0, 0.5, -0.3),)),
+            "the four parameters of a link, from the world poses of its two frames",
+            public=(
+                _poses(ref.world_pose([("z", H)], [0.5, 0.0, 0.3]), H, 0.4, -1.0, 0.15),
+                _poses(ref.world_pose([("x", 0.6), ("z", -0.4)], [0.2, -0.3, 0.8]), -H, 0.25, 0.5, -0.3),
+            ),
             hidden=lambda rng: _parameter_cases(rng, 5),
-            reference=link_parameters,
+            reference=link_parameters_between,
             compare=compare_angles_at([0, 2]),
             forbidden=keys.KEY_LINK_PARAMETERS,
             mistakes=(
-                degrees_out([0, 2]),
-                matches(
+                matches_entries(
+                    "base_frame",
+                    "you read the numbers off ⁰T_i, the pose of {i} in the world: the four parameters describe "
+                    "{i} as seen from {i-1}, and ⁰T_{i-1} is not the identity",
+                    parameters_of_pose,
+                    *ENTRIES,
+                ),
+                matches_entries(
+                    "inverse",
+                    "these are the numbers of the link matrix the other way round, {i-1} seen from {i}: the "
+                    "parameters describe {i} as seen from {i-1}",
+                    parameters_of_inverse,
+                    *ENTRIES,
+                ),
+                matches_entries(
+                    "order",
+                    "these are the numbers of ⁰T_i (⁰T_{i-1})⁻¹: a product of poses is read from the left, "
+                    "the frame it starts from first (lecture 01 §5)",
+                    parameters_in_order,
+                    *ENTRIES,
+                ),
+                matches_entries(
                     "standard_dh",
                     "these are the numbers a standard-DH link matrix shows in those places "
                     "(θ in its first column, α in its third row); Craig's matrix places them differently "
                     "(lecture 02 §3 and §5)",
-                    standard_reading,
+                    standard_reading_between,
+                    *ENTRIES,
                 ),
+                degrees_out([0, 2]),
                 sign_flip(("α_(i-1)", "a_(i-1)", "θ_i", "d_i")),
             ),
-            hint="Read each parameter where the matrix shows it (lecture 02 §5, the origin and the z axis of {i} "
-            "written in {i-1}); check your four numbers by rebuilding the matrix from them.",
+            hint="Lecture 02 §5 reads the four numbers off a matrix you are not given: which matrix describes {i} "
+            "as seen from {i-1}? Test on a case you can draw, with ⁰T_(i-1) the identity; then move both frames "
+            "together by the same pose: the four numbers must not change.",
         ),
         Question(
             "q2",
-            "link_matrix",
+            "link_matrix_inverse",
             2,
-            "Craig's modified DH link matrix from its four motions",
-            public=((0.0, 0.0, 0.3, 0.0), (-np.pi / 2, 0.0, 0.5, 0.2), (np.pi / 2, 0.4, -1.0, 0.15)),
-            hidden=lambda rng: [
-                (
-                    float(al),
-                    *(float(v) for v in rng.uniform(-1, 1, 1)),
-                    float(rng.uniform(-np.pi, np.pi)),
-                    float(rng.uniform(-1, 1)),
-                )
-                for al in rng.choice([-np.pi / 2, 0.0, np.pi / 2, 0.7], 5)
-            ],
-            reference=ref.mdh,
-            forbidden=keys.KEY_MDH,
+            "the inverse link matrix ⁱT_(i-1)",
+            public=((H, 0.4, -1.0, 0.15), (-H, 0.3, 0.5, -0.2), (0.7, -0.25, 2.0, 0.35)),
+            hidden=lambda rng: _inverse_cases(rng, 5),
+            reference=ref.mdh_inverse,
+            forbidden=keys.KEY_MDH_INVERSE,
             mistakes=(
-                matches("standard_dh", STANDARD, lambda al, a, th, d: ref.standard_link(th, d, a, al)),
-                INVERSE,
-                TRANSPOSED,
+                matches("inverse", INVERSE_Q2, ref.mdh),
+                matches("order", NEGATED_Q2, ref.mdh_negated),
+                matches("standard_dh", REVERSED_Q2, ref.mdh_reversed),
+                matches(
+                    "transposed",
+                    "you returned the inverse transposed as a whole 4×4: only its rotation block is a transpose "
+                    "(lecture 01 §4)",
+                    ref.mdh_inverse_transposed,
+                ),
+                matches(
+                    "transposed",
+                    "you returned the link matrix transposed as a whole 4×4: its rotation block Rᵀ is right, but "
+                    "the translation of an inverse does not come from a transpose (lecture 01 §4)",
+                    ref.mdh_transposed,
+                ),
+                matches(
+                    "translation",
+                    "the rotation part is right, the translation is -p (p the origin of {i} in {i-1}): the origin of "
+                    "{i-1} is -p written in {i-1}'s axes, and the answer needs it in {i}'s axes",
+                    ref.mdh_inverse_minus_p,
+                ),
+                matches(
+                    "translation",
+                    "the rotation part is right, the translation is p, the origin of {i} in {i-1}: the answer needs "
+                    "the origin of {i-1}, written in {i}'s axes",
+                    ref.mdh_inverse_plus_p,
+                ),
                 degrees_in(0, 2),
                 SIGN_FLIP,
             ),
-            hint="Build the four elementary 4x4 motions and multiply them in the order the frames move (lecture 02 "
-            "§5: about the moving axes); your q1 must read the four numbers back from your matrix.",
+            hint="Check your matrix: multiplied by Craig's link matrix of lecture 02 §5, on either side, it must "
+            "give the identity; try a link with a single non-zero number first.",
         ),
         Question(
             "q3",
@@ -138,8 +240,8 @@ EXERCISE = Exercise(
             answer=modified_from_standard,
             forbidden=keys.KEY_TABLES,
             hint="Write both products for a two-joint chain and group the factors (lecture 02 §8): which joint's "
-            "factors does Rot(X, α_1) Trans(X, a_1) follow in each? Check with your q2: both chains must give the "
-            "same ⁰T_n at q = 0 and at one other q.",
+            "factors does Rot(X, α_1) Trans(X, a_1) follow in each? Check with the chain cell under question 3: both "
+            "tables must give the same ⁰T_n at q = 0 and at one other q.",
         ),
     ),
     allowed=(),

@@ -68,6 +68,61 @@ def mdh(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
     return dh.mdh(alpha_prev, a_prev, theta, d)
 
 
+def world_pose(turns: Any, p: Any) -> np.ndarray:
+    """The pose [[R, p], [0, 1]], R the product of elementary turns ``[(axis, angle), ...]`` (a frame's world pose)."""
+    R = np.eye(3)
+    for axis, angle in turns:
+        R = R @ elementary_rotation(axis, angle)
+    return pose(R, p)
+
+
+def mdh_inverse(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
+    """ⁱT_{i-1}, the inverse of Craig's link matrix: the four motions undone, last first (ex02 q2's reference).
+
+    >>> bool(np.allclose(mdh_inverse(0.3, 0.4, -1.0, 0.2) @ mdh(0.3, 0.4, -1.0, 0.2), np.eye(4)))
+    True
+    """
+    return transforms.compose_moving(
+        tz(-d), transforms.trotz(-theta), transforms.transx(-a_prev), transforms.trotx(-alpha_prev)
+    )
+
+
+def mdh_negated(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
+    """The four motions negated but kept in their order, Rot(X, -α) Trans(X, -a) Rot(Z, -θ) Trans(Z, -d) (a mistake
+    of ex02 q2; it is also the standard-DH link matrix inverted)."""
+    return dh.mdh(-alpha_prev, -a_prev, -theta, -d)
+
+
+def mdh_reversed(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
+    """The four motions reversed but not negated, Trans(Z, d) Rot(Z, θ) Trans(X, a) Rot(X, α) (a mistake of ex02 q2;
+    it is also the standard-DH link matrix of the same four numbers)."""
+    return transforms.compose_moving(
+        tz(d), transforms.trotz(theta), transforms.transx(a_prev), transforms.trotx(alpha_prev)
+    )
+
+
+def mdh_inverse_transposed(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
+    """ⁱT_{i-1} transposed as a whole 4×4 (a mistake of ex02 q2)."""
+    return mdh_inverse(alpha_prev, a_prev, theta, d).T
+
+
+def mdh_transposed(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
+    """Craig's link matrix transposed as a whole 4×4 (a mistake of ex02 q2: Rᵀ is right, the translation is not)."""
+    return dh.mdh(alpha_prev, a_prev, theta, d).T
+
+
+def mdh_inverse_minus_p(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
+    """[[Rᵀ, -p], [0, 1]] of the link matrix [[R, p], [0, 1]] (a mistake of ex02 q2)."""
+    T = dh.mdh(alpha_prev, a_prev, theta, d)
+    return pose(T[:3, :3].T, -T[:3, 3])
+
+
+def mdh_inverse_plus_p(alpha_prev: float, a_prev: float, theta: float, d: float) -> np.ndarray:
+    """[[Rᵀ, p], [0, 1]] of the link matrix [[R, p], [0, 1]] (a mistake of ex02 q2)."""
+    T = dh.mdh(alpha_prev, a_prev, theta, d)
+    return pose(T[:3, :3].T, T[:3, 3])
+
+
 def standard_link(theta: float, d: float, a: float, alpha: float) -> np.ndarray:
     """The standard (distal) DH link matrix Rot(Z, θ) Trans(Z, d) Trans(X, a) Rot(X, α) (not the course's)."""
     return transforms.compose_moving(transforms.trotz(theta), tz(d), transforms.transx(a), transforms.trotx(alpha))

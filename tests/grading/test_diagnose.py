@@ -76,9 +76,11 @@ def test_degrees_where_radians_were_expected():
     # an angle returned in degrees
     R = rot("z", 1.0)
     assert_named(judge("ex01_rotations", "q3", [0, 0, 1, np.degrees(1.0)], R), "degrees", "radians")
-    params = np.array([np.pi / 2, 0.4, -1.0, 0.15])
-    T = right("ex02_dh_frames", "q2", *params)
-    assert_named(judge("ex02_dh_frames", "q1", [90.0, 0.4, np.degrees(-1.0), 0.15], T), "degrees")
+    T_prev = homogeneous(rot("z", 0.5), [0.1, 0.2, 0.3])
+    T = T_prev @ link(np.pi / 2, 0.4, -1.0, 0.15)
+    assert_named(judge("ex02_dh_frames", "q1", [90.0, 0.4, np.degrees(-1.0), 0.15], T_prev, T), "degrees")
+    wrong = link(np.radians(0.7), 0.4, np.radians(-1.0), 0.15)  # q2: the angles taken as degrees
+    assert_named(judge("ex02_dh_frames", "q2", np.linalg.inv(wrong), 0.7, 0.4, -1.0, 0.15), "degrees", "radians")
 
 
 def test_an_axis_not_normalised():
@@ -96,8 +98,10 @@ def test_a_row_or_a_column_with_the_wrong_sign():
     wrong = rot("z", 1.2)
     wrong[:, 0] *= -1.0
     assert_named(judge("ex01_rotations", "q1", wrong, "z", 1.2), "sign_flip", "column 1")
-    T = right("ex02_dh_frames", "q2", 0.7, 0.4, -1.0, 0.15)
-    assert_named(judge("ex02_dh_frames", "q1", [0.7, 0.4, -1.0, -0.15], T), "sign_flip", "d_i")
+    T_prev = homogeneous(rot("x", 1.1), [0.0, -0.5, 0.3])
+    T = T_prev @ link(0.7, 0.4, -1.0, 0.15)
+    assert_named(judge("ex02_dh_frames", "q1", [0.7, 0.4, -1.0, -0.15], T_prev, T), "sign_flip", "d_i")
+    assert judge("ex02_dh_frames", "q1", [0.7, 0.4, -1.0, 0.15], T_prev, T).passed
 
 
 def test_an_angle_off_by_a_whole_turn():
@@ -138,15 +142,68 @@ def test_the_pan_tilt_camera_head_frame_fixed_axes_and_degrees():
     assert_named(judge("ex01_rotations", "q5", deg, pan, tilt), "degrees", "degrees")
 
 
+def link(alpha, a, theta, d):
+    """Craig's link matrix, multiplied out by hand (lecture 02 §5)."""
+    ca, sa, ct, st = np.cos(alpha), np.sin(alpha), np.cos(theta), np.sin(theta)
+    return np.array(
+        [[ct, -st, 0.0, a], [st * ca, ct * ca, -sa, -sa * d], [st * sa, ct * sa, ca, ca * d], [0.0, 0.0, 0.0, 1.0]]
+    )
+
+
 def test_the_standard_dh_link_matrix_instead_of_the_modified_one():
+    # q2: the four motions reversed but not undone are the standard-DH matrix of the same numbers
     params = (np.pi / 2, 0.4, -1.0, 0.15)
-    assert_named(judge("ex02_dh_frames", "q2", sdh(-1.0, 0.15, 0.4, np.pi / 2), *params), "standard_dh", "Craig")
-    # reading the four numbers where a standard-DH matrix shows them (θ from column 1, α from row 3, d = p_z)
-    T = right("ex02_dh_frames", "q2", 0.7, 0.3, 0.5, 0.2)
-    theta, alpha = np.arctan2(T[1, 0], T[0, 0]), np.arctan2(T[2, 1], T[2, 2])
-    a, d = np.cos(theta) * T[0, 3] + np.sin(theta) * T[1, 3], T[2, 3]
+    assert_named(judge("ex02_dh_frames", "q2", sdh(-1.0, 0.15, 0.4, np.pi / 2), *params), "standard_dh", "standard")
+    # q1: the four numbers read where a standard-DH matrix shows them (θ from column 1, α from row 3, d = p_z)
+    T_prev = homogeneous(rot("y", -0.8), [0.5, 0.0, 1.0])
+    L = link(0.7, 0.3, 0.5, 0.2)
+    theta, alpha = np.arctan2(L[1, 0], L[0, 0]), np.arctan2(L[2, 1], L[2, 2])
+    a, d = np.cos(theta) * L[0, 3] + np.sin(theta) * L[1, 3], L[2, 3]
     assert np.allclose(sdh(0.5, 0.2, 0.3, 0.7)[[0, 1, 2], 3], [0.3 * np.cos(0.5), 0.3 * np.sin(0.5), 0.2])
-    assert_named(judge("ex02_dh_frames", "q1", [alpha, a, theta, d], T), "standard_dh", "standard-DH")
+    verdict = judge("ex02_dh_frames", "q1", [alpha, a, theta, d], T_prev, T_prev @ L)
+    assert_named(verdict, "standard_dh", "standard-DH")
+
+
+def test_the_parameters_read_off_the_wrong_matrix():
+    """ex02 q1 gives the world poses ⁰T_(i-1), ⁰T_i: the numbers read off ⁰T_i itself, off ⁱT_(i-1) or off
+    ⁰T_i (⁰T_(i-1))⁻¹ are named, whatever d was read as (d of a matrix that is not a link matrix is ambiguous)."""
+    T_prev = homogeneous(rot("x", 0.9) @ rot("z", -0.4), [0.3, -0.2, 0.7])
+    L = link(-np.pi / 2, 0.25, 0.5, -0.3)
+    T = T_prev @ L
+
+    def lecture_reading(M):
+        alpha = np.arctan2(-M[1, 2], M[2, 2])
+        return [alpha, M[0, 3], np.arctan2(-M[0, 1], M[0, 0]), -np.sin(alpha) * M[1, 3] + np.cos(alpha) * M[2, 3]]
+
+    assert judge("ex02_dh_frames", "q1", lecture_reading(np.linalg.inv(T_prev) @ T), T_prev, T).passed
+    for M, key, word in (
+        (T, "base_frame", "⁰T_i"),
+        (np.linalg.inv(T) @ T_prev, "inverse", "other way round"),
+        (T @ np.linalg.inv(T_prev), "order", "(⁰T_{i-1})⁻¹"),
+    ):
+        got = lecture_reading(M)
+        assert_named(judge("ex02_dh_frames", "q1", got, T_prev, T), key, word)
+        got[3] = M[2, 3]  # d read off another entry: the same mistake
+        assert_named(judge("ex02_dh_frames", "q1", got, T_prev, T), key, word)
+
+
+def test_the_inverse_link_matrix_s_mistakes():
+    """ex02 q2 asks for ⁱT_(i-1): each way of getting the four motions' undoing wrong is named as what it is."""
+    params = (0.7, 0.4, -1.2, 0.3)
+    al, a, th, d = params
+    F = link(*params)
+    R, p = F[:3, :3], F[:3, 3]
+    inv = homogeneous(R.T, -R.T @ p)
+    assert judge("ex02_dh_frames", "q2", inv, *params).passed
+    assert_named(judge("ex02_dh_frames", "q2", F, *params), "inverse", "ⁱ⁻¹T_i itself")
+    assert_named(judge("ex02_dh_frames", "q2", link(-al, -a, -th, -d), *params), "order", "last step")
+    assert_named(judge("ex02_dh_frames", "q2", inv.T, *params), "transposed", "inverse transposed")
+    assert_named(judge("ex02_dh_frames", "q2", F.T, *params), "transposed", "link matrix transposed")
+    assert_named(judge("ex02_dh_frames", "q2", homogeneous(R.T, -p), *params), "translation", "-p")
+    assert_named(judge("ex02_dh_frames", "q2", homogeneous(R.T, p), *params), "translation", "is p")
+    # a translation that is neither -p nor p: what differs is said, no mistake named
+    verdict = judge("ex02_dh_frames", "q2", homogeneous(R.T, -R @ p), *params)
+    assert not verdict.passed and verdict.mistake is None, verdict
 
 
 def test_link_matrices_multiplied_in_the_wrong_order():
@@ -154,7 +211,7 @@ def test_link_matrices_multiplied_in_the_wrong_order():
     q = np.array([0.4, 0.25, -1.0])
     links = []
     for (alpha, a, theta, d, sigma), qi in zip(table, q, strict=True):
-        links.append(right("ex02_dh_frames", "q2", alpha, a, theta + (0 if sigma else qi), d + (qi if sigma else 0)))
+        links.append(link(alpha, a, theta + (0 if sigma else qi), d + (qi if sigma else 0)))
     assert judge("ex03_puma_fk", "q1", links[0] @ links[1] @ links[2], table, q, 0).passed
     assert_named(judge("ex03_puma_fk", "q1", links[2] @ links[1] @ links[0], table, q, 0), "order", "reverse")
     # in frame {1}: the last two link matrices only; the whole product is the base frame's pose, named so
@@ -171,7 +228,7 @@ def test_the_printed_misprint_used_as_printed():
     wrong[:3, 3] = (
         T[:3, 3]
         - 100.0 * T[:3, 2]
-        + T[:3, :3] @ (np.linalg.inv(right("ex02_dh_frames", "q2", np.pi / 2, 0, 1.0, 0)[:3, :3]) @ [0, 0, -100.0])
+        + T[:3, :3] @ (right("ex02_dh_frames", "q2", np.pi / 2, 0, 1.0, 0)[:3, :3] @ [0, 0, -100.0])
     )
     assert_named(judge("ex04_mk3_fk", "q2", wrong, q, *L), "printed_formula", "misprinted")
 

@@ -16,8 +16,8 @@ ex01 q3    L01 §3 cell 14, trace and antisymmetric part           3/3 ★
 ex01 q4    L01 §4 cell 16, [[Rᵀ, -Rᵀp], [0, 1]]                   2/2 ★
 ex01 q5    L01 §5 cell 25, Rz Tz(h) Ry                            0/3
 ex01 q6    L01 §7, roll-pitch-yaw                                 0/2
-ex02 q1    L02 §5 cells 17, 20, entries read off                  2/2 ★
-ex02 q2    L02 §5 cell 17, the four motions                       2/2 ★
+ex02 q1    L02 §5 cells 17, 20, entries read off ⁰T_i             0/2
+ex02 q2    L02 §5 cell 17, the four motions (not undone)          0/2
 ex02 q3    L02 §6 cells 27-29, the worked table                   0/6
 ex02 q4    L02 §8 cells 39-40, α and a moved up                   0/2
 ex03 q1    L03 §4-5, the product of link matrices from the base   0/3

@@ -47,6 +47,7 @@ __all__ = [
     "unit_axis_out",
     "negated",
     "TRANSLATION",
+    "matches_entries",
 ]
 
 #: Every mistake key the graders emit, with the title an instructor reads in the class summary.
@@ -358,3 +359,40 @@ DUPLICATES = Mistake("duplicates", _duplicates)
 
 # the mistakes of angles and axes (degrees for radians, a whole turn, an axis not of length 1), in their own file
 from .angle_mistakes import DEGREES_OUT, angle_2pi, degrees_in, degrees_out, unit_axis_out  # noqa: E402
+
+
+def matches_entries(
+    key: str, message: str, wrong: Callable[..., Any], entries: Sequence[int], angles: Sequence[int] = ()
+) -> Mistake:
+    """Like :func:`matches`, on the ``entries`` of a flat answer only (``angles`` among them equal modulo 2π).
+
+    For an answer some of whose entries the mistaken formula does not fix: the parameters read off a matrix
+    that is not a link matrix, whose d depends on which entries the student read it from.
+
+    >>> m = matches_entries("inverse", "swapped", lambda x: np.array([x, -1.0, 5.0]), [0, 1], angles=[0])
+    >>> m.check(np.array([0.5 + 2 * np.pi, -1.0, 7.0]), np.array([0.5, 1.0, 5.0]), (0.5,), None)
+    'swapped'
+    >>> m.check(np.array([0.5, 1.0, 7.0]), np.array([0.5, 1.0, 5.0]), (0.5,), None) is None
+    True
+    """
+    idx, ang = [int(i) for i in entries], [int(i) for i in angles]
+
+    def same(a: np.ndarray, b: np.ndarray) -> bool:
+        a, b = a.reshape(-1), b.reshape(-1)
+        if a.size != b.size or not idx or max(idx) >= b.size:
+            return False
+        diff = a[idx] - b[idx]
+        turn = np.array([i in ang for i in idx])
+        diff[turn] = np.angle(np.exp(1j * diff[turn]))
+        scale = max(1.0, float(np.max(np.abs(b[idx]))))
+        return bool(np.max(np.abs(diff)) <= 1e-6 * scale)
+
+    def check(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference: Any) -> str | None:
+        bad = _floats(wrong(*args))
+        if bad is None:
+            return None
+        if isinstance(expected, np.ndarray) and same(np.asarray(expected, dtype=float), bad):
+            return None  # the mistake gives the right entries here: nothing to say
+        return message if same(got, bad) else None
+
+    return Mistake(key, made(check, matches_entries, key, message, wrong, tuple(idx), tuple(ang), attr="check"))
