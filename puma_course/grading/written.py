@@ -43,6 +43,8 @@ __all__ = [
     "prompt_source",
     "written_summary",
     "read_answers",
+    "Release",
+    "release_of",
 ]
 
 ANSWER_TAG, PROMPT_TAG = "written:", "written-prompt:"
@@ -227,13 +229,63 @@ def _images(cell: dict[str, Any], answer: Answer) -> None:
         answer.images.append((str(name), IMAGE_TYPES[kind], raw))
 
 
-def read_answers(data: bytes, exercise: str) -> dict[str, Answer]:
+@dataclass(frozen=True)
+class Release:
+    """The cells of an exercise as released: their ids and their texts (to tell the student's own cells)."""
+
+    ids: frozenset[str]
+    sources: frozenset[str]
+
+    def holds(self, cell: dict[str, Any]) -> bool:
+        """True when ``cell`` is one of the release's (by its id, or by its text when it has one)."""
+        ident, source = cell.get("id"), _source(cell).strip()
+        return isinstance(ident, str) and ident in self.ids or bool(source) and source in self.sources
+
+
+def release_of(exercise: str) -> Release | None:
+    """The released cells of ``exercise``, read from the loaded course's ``exercises/`` (None when absent)."""
+    len(EXERCISES)  # loads the bank of the course found from here, when none is loaded yet
+    course = EXERCISES.course
+    if course is None:
+        return None
+    try:
+        nb = json.loads((course / "exercises" / f"{exercise}.ipynb").read_text(encoding="utf-8"))
+        cells = [c for c in nb["cells"] if isinstance(c, dict)]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    ids = frozenset(str(c["id"]) for c in cells if isinstance(c.get("id"), str))
+    return Release(ids, frozenset(t for t in (_source(c).strip() for c in cells) if t))
+
+
+def _added_below(cells: list[dict[str, Any]], start: int, release: Release) -> list[int]:
+    """The cells the student added below the answer cell at ``start``: Markdown (or raw) cells, up to the
+    first code cell, cell tagged ``written…`` or cell of the release."""
+    out = []
+    for i in range(start + 1, len(cells)):
+        cell = cells[i]
+        written = any(t.startswith((ANSWER_TAG, PROMPT_TAG)) for t in _tags(cell))
+        if cell.get("cell_type") not in ("markdown", "raw") or written or release.holds(cell):
+            break
+        out.append(i)
+    return out
+
+
+_UNSET: Any = object()
+
+
+def read_answers(data: bytes, exercise: str, release: Release | None = _UNSET) -> dict[str, Answer]:
     """The written answers in a handed-in notebook (its bytes), by question id.
 
     The answer is the Markdown cell tagged ``written:qN``; when the tag was lost, the cell just below the
-    prompt ``written-prompt:qN``. The released placeholder counts as no answer. Nothing is run or trusted:
-    the JSON is read as data, and a notebook that is not one gives empty answers with a note.
+    prompt ``written-prompt:qN``. A student who went on writing in new Markdown cells below it is read on:
+    the cells they added, up to the first code cell, cell tagged ``written…`` or cell of the ``release``
+    (default: :func:`release_of` the exercise; its cells are known by id, or by text), are part of the
+    answer, and a note says so. Without the release these cells cannot be told from the exercise's own, and
+    a note says how many were left unread. The released placeholder counts as no answer. Nothing is run or
+    trusted: the JSON is read as data, and a notebook that is not one gives empty answers with a note.
     """
+    if release is _UNSET:
+        release = release_of(exercise)
     questions = written_questions(exercise)
     out = {w.qid: Answer() for w in questions}
     try:
@@ -264,4 +316,26 @@ def read_answers(data: bytes, exercise: str) -> dict[str, Answer]:
                 answer.notes.append(f"the answer cell is a {str(cell.get('cell_type'))[:20]} cell, not Markdown")
             answer.text = "\n\n".join(t for t in (answer.text, text) if t)
             _images(cell, answer)
+            _read_on(cells, i, release, answer)
     return out
+
+
+def _read_on(cells: list[dict[str, Any]], start: int, release: Release | None, answer: Answer) -> None:
+    """Add to ``answer`` what the student wrote in cells of their own below the answer cell at ``start``."""
+    if release is None:
+        below = _added_below(cells, start, Release(frozenset(), frozenset()))
+        if any(_source(cells[i]).strip() for i in below):
+            answer.notes.append(
+                f"{len(below)} Markdown cell(s) below the answer cell were not read: without the released exercise "
+                "they cannot be told from its own cells"
+            )
+        return
+    added = [i for i in _added_below(cells, start, release) if _source(cells[i]).strip() or cells[i].get("attachments")]
+    if not added:
+        return
+    for i in added:
+        answer.text = "\n\n".join(t for t in (answer.text, _source(cells[i]).replace(PLACEHOLDER, "").strip()) if t)
+        _images(cells[i], answer)
+    answer.notes.append(
+        f"the answer goes on in {len(added)} cell(s) the student added below the answer cell: shown after it, in order"
+    )

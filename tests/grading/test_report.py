@@ -58,6 +58,18 @@ def test_the_text_line_names_question_function_points_verdict_reasons_and_hint()
     assert format_question(bonus, 3, ["1/1 cases pass"]).startswith("q4 porter_ik_limited (bonus): 3 / 3 points")
 
 
+def test_a_hint_follows_an_attempt_only():
+    """Shown beside "not attempted yet", a hint gives away the step the question asks for: it waits for a try."""
+    q = EX.question("q2")
+    assert q.hint
+    stub = ["0/6 cases pass", "public case 1: not attempted yet (NotImplementedError)"]
+    assert format_question(q, 0, stub) == f"q2 {q.function}: 0 / 3 points - not attempted yet"
+    assert format_question(q, 0, ["0/6 cases pass", "public case 1: raised ValueError: x"]).endswith(f"Hint: {q.hint}")
+    assert format_question(q, 1.5, ["3/6 cases pass", "hidden case 4: values differ"]).endswith(f"Hint: {q.hint}")
+    assert "Hint" not in format_question(q, 3, ["6/6 cases pass"])
+    assert "Hint" not in format_question(q, 0, stub, markdown=True)
+
+
 def test_the_feedback_table_rows_are_the_same_formatter_in_markdown():
     text = feedback_markdown("ann", [_result()], seed=7)
     for q in EX.questions:
@@ -67,7 +79,8 @@ def test_the_feedback_table_rows_are_the_same_formatter_in_markdown():
     assert r"returned a \| pipe" in text  # a '|' in a reason does not break the table
     assert "Total: **3 / 15** points." in text
     assert "seed" not in text and "7" not in text.split("Total")[1].split("##")[0]  # the seed is never shown
-    assert text.count("\n- q") == 5  # hints for q2, q3, q4, q5, q6, not for q1
+    assert text.count("\n- q") == 2  # hints for q2 (partly) and q4 (FAILED): none before an attempt (q3, q5, q6)
+    assert "\n- q2: " in text and "\n- q4: " in text
 
 
 def test_the_cli_report_is_the_same_formatter_indented():

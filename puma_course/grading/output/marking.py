@@ -5,7 +5,9 @@ same code, links never followed, nothing run) and writes into DIR, per written q
 
 * ``<exercise>-<qid>.md``: one Markdown document, the question and its rubric (each criterion with its
   points, what a full answer contains, the worked answer) above every student's answer, each under its own
-  heading, with the images the student attached (saved beside it in ``attachments/``). It renders with its
+  heading, with the images the student attached (saved beside it in ``attachments/``); an answer the student
+  went on writing in cells of their own below the answer cell is shown whole, with a note saying so
+  (:func:`~puma_course.grading.written.read_answers`). It renders with its
   formulas in JupyterLab (``puma-course lab``, then open it with the Markdown preview), offline. A student's
   text is shown inside a quote, with its HTML and links to images elsewhere made inert, so it cannot change
   the document around it or fetch anything;
@@ -30,7 +32,7 @@ from pathlib import Path
 
 from ..run.collect import collect
 from ..run.submissions import StudentFolder, read_student, scan
-from ..written import Answer, WrittenQuestion, read_answers, written_exercises, written_questions
+from ..written import Answer, WrittenQuestion, read_answers, release_of, written_exercises, written_questions
 from .report import replace_atomically
 from .text import csv_safe, file_stem, quoted
 
@@ -160,7 +162,8 @@ def collect_written(
     (folder / "attachments").mkdir(parents=True, exist_ok=True)
     result = Marking(folder, problems=problems)
     for name in names:
-        handed = [(student, read_answers(files[name], name)) for student, files in people if name in files]
+        release = release_of(name)  # the exercise's own cells, to tell the cells a student added below an answer
+        handed = [(student, read_answers(files[name], name, release)) for student, files in people if name in files]
         for w in written_questions(name):
             shown_rows, listed = [], []
             for student, answers in handed:

@@ -8,7 +8,9 @@ written questions, a rubric column the question does not have, a number that is 
 above the points of its criterion or question, ``points`` that differ from the sum of the filled rubric
 columns, or the same (student, question) marked twice: each is a ``ValueError`` naming the file, the row
 (as a spreadsheet numbers it, the header being row 1) and the column. A row with neither points nor rubric
-columns is "not marked yet": it counts nothing and its student's feedback says so.
+columns is "not marked yet": it counts nothing and its student's feedback says so. A file saved by a
+spreadsheet set to a decimal comma reads the same: the separator (comma, semicolon or tab) is read off the
+header row (:func:`separator`), and a number may have a decimal comma (``1,5``).
 
 Once grading is done the marks go into
 
@@ -37,7 +39,16 @@ from .marking import student_code
 from .report import feedback_paths, replace_atomically
 from .text import csv_safe, one_line
 
-__all__ = ["Mark", "Marks", "read_marks", "merge_csv", "merge_feedback", "written_by_student", "written_points"]
+__all__ = [
+    "Mark",
+    "Marks",
+    "read_marks",
+    "separator",
+    "merge_csv",
+    "merge_feedback",
+    "written_by_student",
+    "written_points",
+]
 
 
 @dataclass(frozen=True)
@@ -81,6 +92,37 @@ def _student(raw: str, known: Mapping[str, str], where: str) -> str:
     raise ValueError(f"{where}: expected a student of this run (or their code), got {raw!r}; students: {shown}")
 
 
+def _text(data: bytes) -> str:
+    """A marks file's text: UTF-8 (a byte-order mark dropped), or UTF-16 with its mark (Excel's "Unicode text")."""
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return data.decode("utf-16")
+    return data.decode("utf-8-sig")
+
+
+def separator(text: str) -> str:
+    r"""The separator of a marks file, read off its header row: ``,``, ``;`` or a tab.
+
+    A spreadsheet set to a decimal comma (Excel or LibreOffice in much of Europe) saves CSV with semicolons,
+    and "text" exports use tabs. The header's own separator is the one that splits it into the columns
+    ``student``, ``exercise`` and ``question`` (no column name holds any of the three); a header split by none
+    of them is read with commas, so the column check names what it found.
+
+    >>> separator("student;exercise;question;points\nann;ex02_dh_frames;q4;1,5\n")
+    ';'
+    >>> separator("student\texercise\tquestion\tpoints\n"), separator("student,exercise,question,points\n")
+    ('\t', ',')
+    """
+    first = text.split("\n", 1)[0]
+    for sep in (",", ";", "\t"):
+        try:
+            head = {h.strip() for h in next(csv.reader([first], delimiter=sep), [])}
+        except csv.Error:
+            continue
+        if {"student", "exercise", "question"} <= head:
+            return sep
+    return ","
+
+
 def read_marks(paths: Sequence[str | os.PathLike[str]], students: Collection[str], exercises: Collection[str]) -> Marks:
     """Read and check the marks files ``paths`` against the run's ``students`` and graded ``exercises``."""
     known = {s: s for s in students} | {student_code(s): s for s in students}
@@ -88,8 +130,8 @@ def read_marks(paths: Sequence[str | os.PathLike[str]], students: Collection[str
     out = Marks()
     for path in paths:
         try:
-            with open(path, newline="", encoding="utf-8-sig") as fh:
-                rows = list(csv.reader(fh))
+            text = _text(Path(path).read_bytes())
+            rows = list(csv.reader(io.StringIO(text, newline=""), delimiter=separator(text)))
         except (OSError, UnicodeDecodeError, csv.Error) as exc:
             raise ValueError(f"marks: expected a readable UTF-8 CSV file, got {str(path)!r} ({exc})") from None
         head = [h.strip() for h in rows[0]] if rows else []

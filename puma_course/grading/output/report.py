@@ -9,6 +9,8 @@ the same verdicts, scores and hints everywhere:
 * ``partly``: some cases passed (points in proportion);
 * ``not attempted yet``: no case passed and every failure is the released stub's ``NotImplementedError``;
 * ``FAILED``: anything else, with the first distinct reasons.
+
+A question's hint follows ``partly`` and ``FAILED`` only: after an attempt, never beside "not attempted yet".
 """
 
 from __future__ import annotations
@@ -62,15 +64,18 @@ def verdict(q: Question, earned: float, notes: Sequence[str]) -> str:
     return "FAILED"
 
 
-def _wants_hint(q: Question, earned: float) -> bool:
-    return bool(q.hint) and earned < q.points
+def _wants_hint(q: Question, earned: float, notes: Sequence[str]) -> bool:
+    """A hint follows an attempt that fell short (``partly`` or ``FAILED``), never "not attempted yet": shown
+    before the student has tried, a hint gives away the step the question asks them to find."""
+    return bool(q.hint) and verdict(q, earned, notes) in ("partly", "FAILED")
 
 
 def format_question(q: Question, earned: float, notes: Sequence[str], *, markdown: bool = False) -> str:
     """The result of one question as a text line (plus an indented ``Hint:`` line), or with ``markdown`` a table row.
 
     ``notes`` are the question's notes ("k/n cases pass", then reasons); a not-attempted question
-    shows its verdict only. The Markdown row has the columns question | points | result.
+    shows its verdict only, without the hint (a hint comes after an attempt that fell short). The
+    Markdown row has the columns question | points | result.
 
     >>> from puma_course.grading import EXERCISES
     >>> q = EXERCISES["ex01_rotations"].question("q4")
@@ -91,7 +96,7 @@ def format_question(q: Question, earned: float, notes: Sequence[str], *, markdow
     line = f"{q.qid} {q.function}{bonus}: {earned:g} / {q.points:g} points - {word}"
     if detail:
         line += f" ({detail})"
-    if _wants_hint(q, earned):
+    if _wants_hint(q, earned, notes):
         line += f"\n  Hint: {q.hint}"
     return line
 
@@ -158,7 +163,7 @@ def feedback_markdown(
             lines.append(format_question(q, r.scores[q.qid], r.question_notes.get(q.qid, []), markdown=True))
         if any(q.bonus for q in ex.questions):
             lines += ["", "Bonus points count in your score, not in the maximum."]
-        failing = [q for q in ex.questions if _wants_hint(q, r.scores[q.qid])]
+        failing = [q for q in ex.questions if _wants_hint(q, r.scores[q.qid], r.question_notes.get(q.qid, []))]
         if failing:
             lines += ["", "Hints:"] + [f"- {q.qid}: {q.hint}" for q in failing]
         lines.append("")

@@ -91,15 +91,17 @@ TICK = 0.05
 def _cpu_clock(spec: Any) -> Any:
     """A function giving the notebook group's CPU seconds, read from the descriptor the grader passed (None: none).
 
-    ``spec`` is ``{"fd": n, "format": "ns" | "stat"}`` (v1's ``cpuacct.usage``, v2's ``cpu.stat``).
+    ``spec`` is ``{"fd": n, "format": "ns" | "stat"}`` (v1's ``cpuacct.usage``, v2's ``cpu.stat``). The
+    counter is read with ``pread`` at offset 0, which leaves the descriptor's offset alone: a tick that comes
+    while another read is under way (between its seek and its read, with ``lseek`` then ``read``) cannot leave
+    that read at the end of the file, empty.
     """
     if not isinstance(spec, dict) or not isinstance(spec.get("fd"), int) or spec.get("format") not in ("ns", "stat"):
         return None
-    fd, fmt, lseek, read = spec["fd"], spec["format"], os.lseek, os.read
+    fd, fmt, pread = spec["fd"], spec["format"], os.pread
 
     def now() -> float:
-        lseek(fd, 0, 0)
-        data = read(fd, 4096)
+        data = pread(fd, 4096, 0)
         if fmt == "ns":
             return int(data.split()[0]) / 1e9
         for line in data.split(b"\n"):
@@ -112,6 +114,37 @@ def _cpu_clock(spec: Any) -> Any:
     except (OSError, ValueError, IndexError):
         return None
     return now
+
+
+def _ticker(cpu_now: Any, cpu0: float, limit: float, wall: float, wall0: float, monotonic: Any) -> Any:
+    """The SIGALRM handler of a call timed on CPU time: every :data:`TICK` s, is the call past its limit?
+
+    It raises :class:`CellTimeout` ("cpu") once the group has used more than ``limit`` CPU seconds since
+    ``cpu0``, or ("backstop") once more than ``wall`` seconds have passed since ``wall0``. A tick that comes
+    while another is still running returns at once (the running one decides), and a tick that cannot read
+    the counter decides nothing about CPU time (the next tick reads again; the backstop still holds): a late
+    tick must never surface as an error inside the student's function.
+    """
+    busy = [False]
+
+    def on_tick(signum: int, frame: Any) -> None:
+        if busy[0]:
+            return
+        busy[0] = True
+        try:
+            try:
+                used: float | None = cpu_now() - cpu0
+            except (OSError, ValueError, IndexError):
+                used = None
+            elapsed = monotonic() - wall0
+        finally:
+            busy[0] = False
+        if used is not None and used > limit:
+            raise CellTimeout("cpu")
+        if elapsed > wall:
+            raise CellTimeout("backstop")
+
+    return on_tick
 
 
 def _ready(job: dict[str, Any]) -> None:
@@ -182,15 +215,7 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
             signal.signal(signal.SIGALRM, on_alarm)
             setitimer(ITIMER_REAL, timeout)
         else:  # the notebook's CPU time, checked every TICK s, and the wall-clock backstop
-            cpu0, wall0 = cpu_now(), monotonic()
-
-            def on_tick(signum: int, frame: Any) -> None:
-                if cpu_now() - cpu0 > timeout:
-                    raise CellTimeout("cpu")
-                if monotonic() - wall0 > wall:
-                    raise CellTimeout("backstop")
-
-            signal.signal(signal.SIGALRM, on_tick)
+            signal.signal(signal.SIGALRM, _ticker(cpu_now, cpu_now(), timeout, wall, monotonic(), monotonic))
             setitimer(ITIMER_REAL, TICK, TICK)
         try:
             return fn(*args)

@@ -1,0 +1,190 @@
+"""The worker's CPU-time clock (puma_course/grading/run/worker): a late tick never fails a right answer.
+
+A call timed on CPU time is watched by a SIGALRM handler every 0.05 s that reads the control group's CPU
+counter. Signal handlers run between any two bytecodes of the main thread, the handler's own included, so a
+tick can come while the previous tick is reading the counter. With ``lseek`` then ``read`` on the shared
+descriptor, the inner tick's read moved the offset to the end of the file, the outer read came back empty
+and an ``IndexError`` surfaced inside the student's function (the slowish classmate of the hostile fixture
+``setsid_busy_children`` lost a case in CI). Checked here:
+
+* the counter reads right however a nested read interleaves with it (``pread`` at offset 0; this fails on
+  the old seek-then-read, which returns nothing to the outer read);
+* a tick that comes during another returns at once, without reading;
+* a tick that cannot read the counter decides nothing (no error, no timeout), while the wall-clock
+  backstop and the CPU limit still hold;
+* with real signals firing every 0.1 ms, thousands of reads in a row all give the counter.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from puma_course.grading.run import worker
+from puma_course.grading.run.worker import CellTimeout
+
+ROOT = Path(__file__).resolve().parents[2]
+COUNTERS = {"ns": b"123456789000\n", "stat": b"usage_usec 123456789\nuser_usec 100000000\nsystem_usec 23456789\n"}
+
+
+def _counter(tmp_path: Path, fmt: str) -> int:
+    path = tmp_path / ("cpuacct.usage" if fmt == "ns" else "cpu.stat")
+    path.write_bytes(COUNTERS[fmt])
+    return os.open(path, os.O_RDONLY)
+
+
+@pytest.mark.parametrize("fmt", ["ns", "stat"])
+def test_a_read_interrupted_by_another_read_still_gives_the_counter(tmp_path, monkeypatch, fmt):
+    """A tick that comes in the middle of a read (after its seek, before its read) reads the counter itself.
+
+    Both ``os.read`` and ``os.pread`` are wrapped so that the first call, once armed, reads the counter
+    again before doing its own read: exactly what a nested tick does. The outer read must still see the
+    whole counter.
+    """
+    fd = _counter(tmp_path, fmt)
+    state = {"armed": False, "nested": 0}
+    real_read, real_pread = os.read, os.pread
+
+    def interrupted(real):
+        def call(*args):
+            if state["armed"]:
+                state["armed"] = False
+                state["nested"] += 1
+                assert now() == pytest.approx(123.456789)  # the inner tick reads the counter whole
+            return real(*args)
+
+        return call
+
+    monkeypatch.setattr(os, "read", interrupted(real_read))
+    monkeypatch.setattr(os, "pread", interrupted(real_pread))
+    try:
+        now = worker._cpu_clock({"fd": fd, "format": fmt})
+        assert now is not None and now() == pytest.approx(123.456789)
+        state["armed"] = True
+        assert now() == pytest.approx(123.456789)  # the outer read, interrupted: was IndexError / OSError
+        assert state["nested"] == 1
+        assert now() == pytest.approx(123.456789)  # and the next read too
+    finally:
+        os.close(fd)
+
+
+def test_a_clock_that_cannot_be_read_at_the_start_is_no_clock(tmp_path):
+    empty = tmp_path / "cpu.stat"
+    empty.write_bytes(b"")
+    fd = os.open(empty, os.O_RDONLY)
+    try:
+        assert worker._cpu_clock({"fd": fd, "format": "stat"}) is None
+        assert worker._cpu_clock({"fd": fd, "format": "ns"}) is None
+        assert worker._cpu_clock({"fd": "3", "format": "ns"}) is None
+        assert worker._cpu_clock(None) is None
+    finally:
+        os.close(fd)
+
+
+class _Clock:
+    """A fake monotonic clock and CPU counter the test sets by hand."""
+
+    def __init__(self) -> None:
+        self.cpu, self.wall, self.reads = 0.0, 0.0, 0
+        self.fail: BaseException | None = None
+        self.during_read = None  # called inside a read: a tick arriving then
+
+    def cpu_now(self) -> float:
+        self.reads += 1
+        if self.during_read is not None:
+            inner, self.during_read = self.during_read, None
+            inner()
+        if self.fail is not None:
+            raise self.fail
+        return self.cpu
+
+    def monotonic(self) -> float:
+        return self.wall
+
+
+def _tick(clock: _Clock, limit: float = 1.0, wall: float = 3.0):
+    return worker._ticker(clock.cpu_now, 0.0, limit, wall, 0.0, clock.monotonic)
+
+
+def test_a_tick_decides_on_the_cpu_time_then_on_the_backstop():
+    clock = _Clock()
+    tick = _tick(clock)
+    clock.cpu, clock.wall = 0.9, 2.0
+    assert tick(14, None) is None
+    clock.cpu = 1.1
+    with pytest.raises(CellTimeout) as cpu:
+        tick(14, None)
+    assert cpu.value.args == ("cpu",)
+    clock.cpu, clock.wall = 0.2, 3.5  # waiting on something: little CPU, the wall clock ran out
+    with pytest.raises(CellTimeout) as backstop:
+        tick(14, None)
+    assert backstop.value.args == ("backstop",)
+
+
+def test_a_tick_during_another_returns_at_once():
+    clock = _Clock()
+    tick = _tick(clock)
+    clock.cpu = 5.0  # past the limit: the outer tick raises, the inner one must not
+    inner: list[object] = []
+    clock.during_read = lambda: inner.append(tick(14, None))
+    with pytest.raises(CellTimeout) as exc:
+        tick(14, None)
+    assert exc.value.args == ("cpu",)
+    assert inner == [None] and clock.reads == 1  # the inner tick read nothing and decided nothing
+    clock.cpu = 0.5
+    assert tick(14, None) is None and clock.reads == 2  # the guard is released, even after a raise
+
+
+@pytest.mark.parametrize("error", [IndexError("list index out of range"), OSError(9, "bad descriptor"), ValueError()])
+def test_a_tick_that_cannot_read_the_counter_decides_nothing(error):
+    clock = _Clock()
+    tick = _tick(clock)
+    clock.fail = error
+    assert tick(14, None) is None  # was: the error, raised inside the student's function
+    clock.wall = 3.5
+    with pytest.raises(CellTimeout) as exc:  # the backstop still holds
+        tick(14, None)
+    assert exc.value.args == ("backstop",)
+    clock.fail, clock.wall, clock.cpu = None, 0.0, 2.0
+    with pytest.raises(CellTimeout):  # and the next tick that reads decides again
+        tick(14, None)
+
+
+_STORM = """
+import os, signal, sys
+sys.path.insert(0, {folder!r})
+import worker
+fd = os.open({path!r}, os.O_RDONLY)
+now = worker._cpu_clock({{"fd": fd, "format": "stat"}})
+bad = []
+def tick(signum, frame):
+    try:
+        now()
+    except Exception as exc:
+        bad.append(repr(exc))
+signal.signal(signal.SIGALRM, tick)
+signal.setitimer(signal.ITIMER_REAL, 0.0001, 0.0001)
+for _ in range(20000):
+    try:
+        assert now() == 123.456789
+    except Exception as exc:
+        bad.append(repr(exc))
+signal.setitimer(signal.ITIMER_REAL, 0)
+print(len(bad), bad[:3])
+"""
+
+
+def test_reads_under_a_storm_of_real_ticks_all_give_the_counter(tmp_path):
+    """20 000 reads with a SIGALRM handler reading the same descriptor every 0.1 ms: none fails."""
+    path = tmp_path / "cpu.stat"
+    path.write_bytes(COUNTERS["stat"])
+    folder = str(ROOT / "puma_course" / "grading" / "run")  # the worker imports the standard library only
+    code = textwrap.dedent(_STORM).format(folder=folder, path=str(path))
+    done = subprocess.run([sys.executable, "-I", "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split()[0] == "0", done.stdout
