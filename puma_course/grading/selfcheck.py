@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from ..course import CourseNotFoundError
-from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, reconcile, score_question
+from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, key_words, reconcile, score_question
 from .output.report import format_question
 from .run.worker import NOT_ATTEMPTED, forbidden_codes, guarded_call
 
@@ -103,7 +103,7 @@ def public_outcomes(q: Question, answer: Callable[..., Any]) -> list[tuple[str, 
             reason = f"raised {type(exc).__name__}: {str(exc)[:200]}"
         else:
             if hit is not None:
-                reason = f"used the course package's answer ({hit.replace(':', '.')}) instead of your own code"
+                reason = key_words(hit)
             else:
                 try:
                     verdict = q.judge(got, expected, tuple(args))
