@@ -245,20 +245,20 @@ def _axis_rotation(axis: str, angle: float) -> np.ndarray:
     }[axis]
 
 
-def turned_back(axis: str, angle: float) -> np.ndarray:
+def turned_other_way(axis: str, angle: float) -> np.ndarray:
     """The mistake: the turn by -θ about the signed axis given (for "-x", R_x(+θ): the axis's sign ignored)."""
     sign = -1.0 if axis.startswith("-") else 1.0
     return _axis_rotation(axis[-1], -sign * float(angle))
 
 
-def turned_back_about_minus_y(axis: str, angle: float) -> np.ndarray:
-    """:func:`turned_back` on the axis "-y" only (there it is also R_y with its sines swapped, the sign handled)."""
-    return turned_back(axis, angle) if axis == "-y" else _NOWHERE
+def turned_other_way_about_minus_y(axis: str, angle: float) -> np.ndarray:
+    """:func:`turned_other_way` on the axis "-y" only (there it is also R_y with its sines swapped, the sign handled)."""
+    return turned_other_way(axis, angle) if axis == "-y" else _NOWHERE
 
 
-def turned_back_about_y(axis: str, angle: float) -> np.ndarray:
-    """:func:`turned_back` on the axis "y" only: R_y(-θ), R_y with its sines swapped."""
-    return turned_back(axis, angle) if axis == "y" else _NOWHERE
+def turned_other_way_about_y(axis: str, angle: float) -> np.ndarray:
+    """:func:`turned_other_way` on the axis "y" only: R_y(-θ), R_y with its sines swapped."""
+    return turned_other_way(axis, angle) if axis == "y" else _NOWHERE
 
 
 def _unit(w: Any) -> np.ndarray:

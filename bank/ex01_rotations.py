@@ -38,9 +38,9 @@ from ._formulas import (
     rpy_formula_all,
     turn_b_onto_a,
     turn_in_a_frame,
-    turned_back,
-    turned_back_about_minus_y,
-    turned_back_about_y,
+    turned_other_way,
+    turned_other_way_about_minus_y,
+    turned_other_way_about_y,
     xyz_angles_all,
     xyz_no_lock_all,
     xyz_other_branch_all,
@@ -119,7 +119,7 @@ EXERCISE = Exercise(
             "elementary_rotation",
             2,
             "rotation about a signed coordinate axis",
-            public=(("-y", 0.4), ("y", -1.2), ("-x", 2.0), ("z", np.pi / 2)),
+            public=(("-y", 0.4), ("y", -1.2), ("-z", 2.0), ("z", np.pi / 2)),
             hidden=_signed_axis_cases,
             reference=ref.signed_rotation,
             forbidden=keys.KEY_ROT,
@@ -129,19 +129,19 @@ EXERCISE = Exercise(
                     'this is the turn by +θ about y, not about -y: "-y" is the direction -e_y, so the turn is '
                     "R_y(-θ). Either the axis's sign was left out, or R_y's sines are swapped (a positive turn "
                     "about y carries z towards x, so R_y's top row ends in +sin θ)",
-                    turned_back_about_minus_y,
+                    turned_other_way_about_minus_y,
                 ),
                 matches(
                     "rotation_sense",
                     "this is R_y(-θ): R_y's sines are swapped (a positive turn about y carries z towards x, so "
                     "R_y's top row ends in +sin θ and its bottom row starts with -sin θ)",
-                    turned_back_about_y,
+                    turned_other_way_about_y,
                 ),
                 matches(
                     "rotation_sense",
                     'your matrix turns the wrong way (by -θ about the axis given): a turn about "-x" is a turn '
                     'about x by -θ, and about "x" a positive turn carries y towards z (about z, x towards y)',
-                    turned_back,
+                    turned_other_way,
                 ),
                 degrees_in(1),
                 SIGN_FLIP,

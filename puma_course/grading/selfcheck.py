@@ -122,8 +122,8 @@ def check(question: str, answer: Callable[..., Any]) -> None:
     memorises these cases will not earn the points.
 
     >>> check("ex01_rotations:q1", lambda axis, angle: np.eye(3))  # doctest: +ELLIPSIS
-    q1 elementary_rotation: 0 / 2 points - FAILED (0/3 cases pass; case 1 (elementary_rotation('x', 0.3)): ...)
-      Hint: Each column of R ...
+    q1 elementary_rotation: 0 / 2 points - FAILED (0/4 cases pass; case 1 (elementary_rotation('-y', 0.4)): ...)
+      Hint: Point your right thumb ...
     """
     ex, q = _find_question(question)
     if not callable(answer):

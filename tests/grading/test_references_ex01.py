@@ -63,11 +63,11 @@ def test_q1_refuses_an_unknown_axis_naming_the_argument():
 
 def test_q1_mistakes_are_the_turn_the_other_way():
     for axis in chains.SIGNED_AXES:
-        assert np.allclose(formulas.turned_back(axis, 0.7), chains.signed_rotation(axis, -0.7))
+        assert np.allclose(formulas.turned_other_way(axis, 0.7), chains.signed_rotation(axis, -0.7))
     # the axis's sign ignored gives R about the positive axis by +θ: the same matrix
-    assert np.allclose(formulas.turned_back("-x", 0.7), chains.signed_rotation("x", 0.7))
-    assert np.isnan(formulas.turned_back_about_y("-y", 0.7)).all()
-    assert np.isnan(formulas.turned_back_about_minus_y("y", 0.7)).all()
+    assert np.allclose(formulas.turned_other_way("-x", 0.7), chains.signed_rotation("x", 0.7))
+    assert np.isnan(formulas.turned_other_way_about_y("-y", 0.7)).all()
+    assert np.isnan(formulas.turned_other_way_about_minus_y("y", 0.7)).all()
 
 
 # ------------------------------------------------------------------ q2
