@@ -252,7 +252,7 @@ def turned_other_way(axis: str, angle: float) -> np.ndarray:
 
 
 def turned_other_way_about_minus_y(axis: str, angle: float) -> np.ndarray:
-    """:func:`turned_other_way` on the axis "-y" only (there it is also R_y with its sines swapped, the sign handled)."""
+    """:func:`turned_other_way` on the axis "-y" only (there it is also R_y with its sines swapped, sign handled)."""
     return turned_other_way(axis, angle) if axis == "-y" else _NOWHERE
 
 

@@ -81,7 +81,9 @@ def test_degrees_where_radians_were_expected():
     assert_named(judge("ex01_rotations", "q1", rot("y", -np.radians(1.2)), "-y", 1.2), "degrees", "degrees")
     # an angle returned in degrees: a quarter turn about z applied to R_x(0.5), by 1 rad
     R_a = rot("x", 0.5)
-    assert_named(judge("ex01_rotations", "q3", [0, 0, 1, np.degrees(1.0)], R_a, rot("z", 1.0) @ R_a), "degrees", "radians")
+    assert_named(
+        judge("ex01_rotations", "q3", [0, 0, 1, np.degrees(1.0)], R_a, rot("z", 1.0) @ R_a), "degrees", "radians"
+    )
     params = np.array([np.pi / 2, 0.4, -1.0, 0.15])
     T = right("ex02_dh_frames", "q2", *params)
     assert_named(judge("ex02_dh_frames", "q1", [90.0, 0.4, np.degrees(-1.0), 0.15], T), "degrees")
@@ -99,7 +101,9 @@ def test_an_axis_not_normalised():
     assert judge("ex01_rotations", "q2", rot("z", np.arccos(-0.6)), u2, v2).passed
     assert_named(judge("ex01_rotations", "q2", rot("z", np.arccos(-0.3)), u2, v2), "unnormalised", "arccos(u · v)")
     R_a = rot("y", 0.3)  # ex01 q3: axis e_x, angle 0.5: a student returning 2 sin(θ) k as the axis
-    assert_named(judge("ex01_rotations", "q3", [2 * np.sin(0.5), 0, 0, 0.5], R_a, rot("x", 0.5) @ R_a), "unnormalised", "length")
+    assert_named(
+        judge("ex01_rotations", "q3", [2 * np.sin(0.5), 0, 0, 0.5], R_a, rot("x", 0.5) @ R_a), "unnormalised", "length"
+    )
 
 
 def test_a_row_or_a_column_with_the_wrong_sign():
@@ -115,7 +119,9 @@ def test_a_row_or_a_column_with_the_wrong_sign():
 
 def test_an_angle_off_by_a_whole_turn():
     R_a = rot("z", 0.4)
-    assert_named(judge("ex01_rotations", "q3", [0, 1, 0, 2.0 + 2 * np.pi], R_a, rot("y", 2.0) @ R_a), "angle_2pi", "(0, π)")
+    assert_named(
+        judge("ex01_rotations", "q3", [0, 1, 0, 2.0 + 2 * np.pi], R_a, rot("y", 2.0) @ R_a), "angle_2pi", "(0, π)"
+    )
     v, w, axis = [1.0, 0, 0], [0, -1.0, 0], [0, 0, 1.0]
     assert_named(judge("ex07_porter_geometric", "q3", -np.pi / 2 + 2 * np.pi, v, w, axis), "angle_2pi")
 

@@ -26,7 +26,9 @@ E = {"x": EX, "y": EY, "z": EZ}
 def _rodrigues_by_hand(k: np.ndarray, t: float) -> np.ndarray:
     """v ↦ v cos θ + (k × v) sin θ + k (k · v)(1 - cos θ), applied to e_x, e_y, e_z (the columns)."""
     k = k / np.linalg.norm(k)
-    return np.column_stack([v * np.cos(t) + np.cross(k, v) * np.sin(t) + k * (k @ v) * (1 - np.cos(t)) for v in np.eye(3)])
+    return np.column_stack(
+        [v * np.cos(t) + np.cross(k, v) * np.sin(t) + k * (k @ v) * (1 - np.cos(t)) for v in np.eye(3)]
+    )
 
 
 # ------------------------------------------------------------------ q1

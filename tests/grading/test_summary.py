@@ -67,12 +67,13 @@ def test_written_next_to_the_grades_with_a_short_text(tmp_path, results):
     lines = text.splitlines()
     assert lines[0] == f"class summary: {path}"
     assert lines[1] == (
-        "  ex01_rotations q1 elementary_rotation: 1/3 passed; commonest mistake: a rotation turned the wrong way (by -θ for θ) (2)"
+        "  ex01_rotations q1 elementary_rotation: 1/3 passed; commonest mistake: "
+        "a rotation turned the wrong way (by -θ for θ) (2)"
     )
 
 
 def test_puma_course_grade_writes_and_prints_the_summary(tmp_path, capsys):
-    """A class of two: one hands in the solution, one transposes every rotation of question 1 (each turns the wrong way)."""
+    """A class of two: one hands in the solution, one transposes every rotation of question 1 (turned the wrong way)."""
     subs = tmp_path / "subs"
     for student in ("ann", "bob"):
         (subs / student).mkdir(parents=True)
@@ -91,10 +92,12 @@ def test_puma_course_grade_writes_and_prints_the_summary(tmp_path, capsys):
     printed = capsys.readouterr().out
     summary = tmp_path / "grades-summary.md"
     assert f"class summary: {summary}" in printed
-    assert "ex01_rotations q1 elementary_rotation: 1/2 passed; commonest mistake: a rotation turned the wrong way" in printed
+    assert (
+        "ex01_rotations q1 elementary_rotation: 1/2 passed; commonest mistake: a rotation turned the wrong way"
+        in printed
+    )
     text = summary.read_text(encoding="utf-8")
     assert (
         "| q1 `elementary_rotation` | 2 | 1 | 0 | 1 | 0 | 1.00 | a rotation turned the wrong way (by -θ for θ) "
-        "(`rotation_sense`): 1 |"
-        in text
+        "(`rotation_sense`): 1 |" in text
     )
