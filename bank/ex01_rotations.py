@@ -81,15 +81,15 @@ def _signed_axis_cases(rng: np.random.Generator) -> list[tuple[str, float]]:
 
 def _direction_pairs(rng: np.random.Generator) -> list[tuple[list[float], list[float]]]:
     """Seven pairs (u, v) of any lengths: six between 100° and 165° apart (an angle from arcsin |u × v|, never
-    above 90°, is wrong there), one parallel (the identity), in random order."""
+    above 90°, is wrong there), one pointing the same way (the identity), in random order."""
     out = []
     for phi in rng.uniform(np.radians(100), np.radians(165), 6):
         u = rng.normal(size=3)
         w = np.cross(u, rng.normal(size=3))
         v = np.cos(phi) * u / np.linalg.norm(u) + np.sin(phi) * w / np.linalg.norm(w)
         out.append((list(u * rng.uniform(0.5, 3)), list(v * rng.uniform(0.5, 3))))
-    u = rng.normal(size=3)
-    out.append((list(u), list(u * rng.uniform(0.3, 3))))
+    u = rng.normal(size=3)  # scaled by a power of two: u × v is exactly zero, as it is for the public parallel pair
+    out.append((list(u), list(u * float(rng.choice([0.25, 0.5, 2.0, 4.0])))))
     return [out[i] for i in rng.permutation(len(out))]
 
 
