@@ -269,3 +269,129 @@ def moved_up(table: Any) -> np.ndarray:
     out = t.copy()
     out[:-1, :2], out[-1, :2] = t[1:, :2], 0.0
     return out
+
+
+# ---------------------------------------------------------------- ex01 q1-q4: the mistaken answers, rebuilt
+# Each is the answer a named mistake gives, computed from the arguments: the feedback names the mistake only
+# when the student's value equals it (``matches``). The right answers are in ``_reference.chains``.
+_NOWHERE = np.full((3, 3), np.nan)  # equals nothing: the mistake does not apply to this case
+
+
+def _axis_rotation(axis: str, angle: float) -> np.ndarray:
+    """R_x, R_y or R_z (``axis`` "x", "y", "z") written out, numpy only."""
+    c, s = math.cos(angle), math.sin(angle)
+    return {
+        "x": np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]),
+        "y": np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]),
+        "z": np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]),
+    }[axis]
+
+
+def turned_other_way(axis: str, angle: float) -> np.ndarray:
+    """The mistake: the turn by -θ about the signed axis given (for "-x", R_x(+θ): the axis's sign ignored)."""
+    sign = -1.0 if axis.startswith("-") else 1.0
+    return _axis_rotation(axis[-1], -sign * float(angle))
+
+
+def turned_other_way_about_minus_y(axis: str, angle: float) -> np.ndarray:
+    """:func:`turned_other_way` on the axis "-y" only (there it is also R_y with its sines swapped, sign handled)."""
+    return turned_other_way(axis, angle) if axis == "-y" else _NOWHERE
+
+
+def turned_other_way_about_y(axis: str, angle: float) -> np.ndarray:
+    """:func:`turned_other_way` on the axis "y" only: R_y(-θ), R_y with its sines swapped."""
+    return turned_other_way(axis, angle) if axis == "y" else _NOWHERE
+
+
+def _unit(w: Any) -> np.ndarray:
+    w = np.asarray(w, dtype=float).reshape(3)
+    return w / np.linalg.norm(w)
+
+
+def _turn(axis: Any, angle: float, normalise: bool = True) -> np.ndarray:
+    """I + sin θ [a]x + (1 - cos θ) [a]x², the axis normalised or (the mistake) as given."""
+    a = _unit(axis) if normalise else np.asarray(axis, dtype=float)
+    S = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+    return np.eye(3) + math.sin(angle) * S + (1.0 - math.cos(angle)) * (S @ S)
+
+
+def _parallel(u: Any, v: Any) -> bool:
+    return bool(np.linalg.norm(np.cross(_unit(u), _unit(v))) < 1e-12)
+
+
+def carried_unnormalised_axis(u: Any, v: Any) -> np.ndarray:
+    """The mistake: the turn about u × v with the axis left at its length |u||v| sin θ (the angle right)."""
+    if _parallel(u, v):
+        return np.eye(3)
+    a = np.cross(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+    s, c = np.linalg.norm(np.cross(_unit(u), _unit(v))), float(_unit(u) @ _unit(v))
+    return _turn(a, math.atan2(s, c), normalise=False)
+
+
+def carried_unnormalised_angle(u: Any, v: Any) -> np.ndarray:
+    """The mistake: the angle arccos(u·v) of the vectors as given (clipped to [-1, 1]), the unit axis right."""
+    if _parallel(u, v):
+        return np.eye(3)
+    u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+    return _turn(np.cross(u, v), math.acos(min(1.0, max(-1.0, float(u @ v)))))
+
+
+def carried_back(u: Any, v: Any) -> np.ndarray:
+    """The mistake: the smallest turn carrying v onto u (the arguments swapped), the transpose of the answer."""
+    if _parallel(u, v):
+        return np.eye(3)
+    a, b = _unit(v), _unit(u)
+    axis = np.cross(a, b)
+    return _turn(axis, math.atan2(float(np.linalg.norm(axis)), float(a @ b)))
+
+
+def _axis_angle_of(K: np.ndarray) -> np.ndarray:
+    """[kx, ky, kz, θ] of a rotation with 0 < θ < π, from the antisymmetric part and the trace (numpy only)."""
+    w = np.array([K[2, 1] - K[1, 2], K[0, 2] - K[2, 0], K[1, 0] - K[0, 1]])
+    s, c = np.linalg.norm(w) / 2.0, (np.trace(K) - 1.0) / 2.0
+    return np.append(w / (2.0 * s), math.atan2(s, c))
+
+
+def turn_in_a_frame(R_a: Any, R_b: Any) -> np.ndarray:
+    """The mistake: the axis and angle of ᴬR_B = R_aᵀ R_b, whose axis is written in {A}'s coordinates."""
+    R_a, R_b = np.asarray(R_a, dtype=float), np.asarray(R_b, dtype=float)
+    return _axis_angle_of(R_a.T @ R_b)
+
+
+def turn_b_onto_a(R_a: Any, R_b: Any) -> np.ndarray:
+    """The mistake: the axis and angle of R_a R_bᵀ, the turn carrying {B} onto {A} (the axis reversed)."""
+    R_a, R_b = np.asarray(R_a, dtype=float), np.asarray(R_b, dtype=float)
+    return _axis_angle_of(R_a @ R_b.T)
+
+
+def _rigid_inverse(T: Any) -> np.ndarray:
+    T = np.asarray(T, dtype=float)
+    out = np.eye(4)
+    out[:3, :3], out[:3, 3] = T[:3, :3].T, -T[:3, :3].T @ T[:3, 3]
+    return out
+
+
+def pose_of_a_in_b(T_a: Any, T_b: Any) -> np.ndarray:
+    """The mistake: ᴮT_A = (⁰T_B)⁻¹ ⁰T_A, the frames swapped (the inverse of the answer)."""
+    return _rigid_inverse(T_b) @ np.asarray(T_a, dtype=float)
+
+
+def pose_other_order(T_a: Any, T_b: Any) -> np.ndarray:
+    """The mistake: ⁰T_B (⁰T_A)⁻¹, the product in the other order."""
+    return np.asarray(T_b, dtype=float) @ _rigid_inverse(T_a)
+
+
+def pose_minus_p(T_a: Any, T_b: Any) -> np.ndarray:
+    """The mistake: ⁰T_A inverted with the translation -p_A in place of -R_Aᵀ p_A, then times ⁰T_B."""
+    T_a = np.asarray(T_a, dtype=float)
+    inv = np.eye(4)
+    inv[:3, :3], inv[:3, 3] = T_a[:3, :3].T, -T_a[:3, 3]
+    return inv @ np.asarray(T_b, dtype=float)
+
+
+def pose_base_difference(T_a: Any, T_b: Any) -> np.ndarray:
+    """The mistake: the rotation R_aᵀ R_b right, the translation p_B - p_A left in the base frame's coordinates."""
+    T_a, T_b = np.asarray(T_a, dtype=float), np.asarray(T_b, dtype=float)
+    out = np.eye(4)
+    out[:3, :3], out[:3, 3] = T_a[:3, :3].T @ T_b[:3, :3], T_b[:3, 3] - T_a[:3, 3]
+    return out

@@ -15,6 +15,9 @@ KEY_RODRIGUES = (f"{_T}:rodrigues", f"{_T}:trot")
 KEY_AXIS_ANGLE = (f"{_T}:axis_angle",)
 KEY_EULER = tuple(f"puma_course.euler:{name}" for name in ("zyz_from_rotation", "rpy_from_rotation"))
 KEY_INVERSE = (f"{_T}:inverse_transform",)
+#: numpy's general inverse, for a question that asks for a rigid inverse without it (the tripwire catches the call;
+#: a name outside the package is never left out of the student side: ``Exercise.answer_keys`` keeps to the package)
+KEY_NUMPY_INV = ("numpy.linalg:inv",)
 KEY_MDH = (f"{_DH}:mdh", f"{_DH}:DHChain.link_matrices", f"{_BANK}:mdh")
 KEY_LINK_PARAMETERS = (
     "puma_course_bank._formulas:link_parameters",

@@ -14,7 +14,6 @@ import numpy as np
 from puma_course.grading.judge.compare import compare_angles
 from puma_course.grading.judge.diagnose import (
     SIGN_FLIP,
-    TRANSLATION,
     TRANSPOSED,
     angle_2pi,
     degrees_in,
@@ -29,8 +28,19 @@ from . import _keys as keys
 from ._formulas import (
     camera_fixed_axes,
     camera_head_frame,
-    rodrigues_unnormalised,
+    carried_back,
+    carried_unnormalised_angle,
+    carried_unnormalised_axis,
+    pose_base_difference,
+    pose_minus_p,
+    pose_of_a_in_b,
+    pose_other_order,
     rpy_formula_all,
+    turn_b_onto_a,
+    turn_in_a_frame,
+    turned_other_way,
+    turned_other_way_about_minus_y,
+    turned_other_way_about_y,
     xyz_angles_all,
     xyz_no_lock_all,
     xyz_other_branch_all,
@@ -61,6 +71,45 @@ def _xyz_cases(rng: np.random.Generator) -> list[tuple[np.ndarray]]:
     return out
 
 
+def _signed_axis_cases(rng: np.random.Generator) -> list[tuple[str, float]]:
+    """Six turns, five about a negative axis (two about -y) and one about a positive one, by 0.3 to 2.9 rad either
+    way: the three matrices looked up by name, the axis's sign dropped, are right on three cases of ten."""
+    axes = rng.permutation(["-x", "-y", "-z", "-y", "-x", "z"])
+    angles = rng.uniform(0.3, 2.9, 6) * rng.choice([-1.0, 1.0], 6)
+    return [(str(a), float(t)) for a, t in zip(axes, angles, strict=True)]
+
+
+def _direction_pairs(rng: np.random.Generator) -> list[tuple[list[float], list[float]]]:
+    """Seven pairs (u, v) of any lengths: six between 100° and 165° apart (an angle from arcsin |u × v|, never
+    above 90°, is wrong there), one pointing the same way (the identity), in random order."""
+    out = []
+    for phi in rng.uniform(np.radians(100), np.radians(165), 6):
+        u = rng.normal(size=3)
+        w = np.cross(u, rng.normal(size=3))
+        v = np.cos(phi) * u / np.linalg.norm(u) + np.sin(phi) * w / np.linalg.norm(w)
+        out.append((list(u * rng.uniform(0.5, 3)), list(v * rng.uniform(0.5, 3))))
+    u = rng.normal(size=3)  # scaled by a power of two: u × v is exactly zero, as it is for the public parallel pair
+    out.append((list(u), list(u * float(rng.choice([0.25, 0.5, 2.0, 4.0])))))
+    return [out[i] for i in rng.permutation(len(out))]
+
+
+#: The orientations of q3's second public case: R_a a turn about (1, 1, 0), and q3's first R_b = R_z(π/2) R_x(π/2).
+_Q3_A2 = ref.rodrigues([1.0, 1.0, 0.0], 0.7)
+_Q3_B1 = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+
+
+def _orientation_pairs(rng: np.random.Generator) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Five pairs (R_a, R_b = K R_a), R_a and K random turns by 0.2 to 3 rad."""
+    R_a, K = ref.random_rotations(rng, 5), ref.random_rotations(rng, 5)
+    return [(a, k @ a) for a, k in zip(R_a, K, strict=True)]
+
+
+def _pose_pairs(rng: np.random.Generator) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Four pairs (⁰T_A, ⁰T_B) of random rigid transforms."""
+    poses = ref.random_transforms(rng, 8)
+    return [(poses[2 * i][0], poses[2 * i + 1][0]) for i in range(4)]
+
+
 EXERCISE = Exercise(
     "ex01_rotations",
     "Rotations and Rodrigues' formula",
@@ -69,52 +118,98 @@ EXERCISE = Exercise(
             "q1",
             "elementary_rotation",
             2,
-            "rotation about a coordinate axis",
-            public=(("x", 0.3), ("y", -1.2), ("z", np.pi / 2)),
-            hidden=lambda rng: [(ax, float(t)) for ax, t in zip("xyzxyz", rng.uniform(-np.pi, np.pi, 6), strict=True)],
-            reference=ref.elementary_rotation,
+            "rotation about a signed coordinate axis",
+            public=(("-y", 0.4), ("y", -1.2), ("-z", 2.0), ("z", np.pi / 2)),
+            hidden=_signed_axis_cases,
+            reference=ref.signed_rotation,
             forbidden=keys.KEY_ROT,
-            mistakes=(TRANSPOSED, degrees_in(1), SIGN_FLIP),
-            hint="Each column of R is where the rotation sends e_x, e_y, e_z (lecture 01 §1): check your columns "
-            "with a quarter turn, whose images you can draw.",
+            mistakes=(
+                matches(
+                    "rotation_sense",
+                    'this is the turn by +θ about y, not about -y: "-y" is the direction -e_y, so the turn is '
+                    "R_y(-θ). Either the axis's sign was left out, or R_y's sines are swapped (a positive turn "
+                    "about y carries z towards x, so R_y's top row ends in +sin θ)",
+                    turned_other_way_about_minus_y,
+                ),
+                matches(
+                    "rotation_sense",
+                    "this is R_y(-θ): R_y's sines are swapped (a positive turn about y carries z towards x, so "
+                    "R_y's top row ends in +sin θ and its bottom row starts with -sin θ)",
+                    turned_other_way_about_y,
+                ),
+                matches(
+                    "rotation_sense",
+                    'your matrix turns the wrong way (by -θ about the axis given): a turn about "-x" is a turn '
+                    'about x by -θ, and about "x" a positive turn carries y towards z (about z, x towards y)',
+                    turned_other_way,
+                ),
+                degrees_in(1),
+                SIGN_FLIP,
+            ),
+            hint='Point your right thumb along the axis given ("-z" points down) and curl your fingers: that is a '
+            "positive turn. Check a quarter turn by hand: where must e_x, e_y, e_z go?",
         ),
         Question(
             "q2",
-            "rodrigues_formula",
+            "rotation_between",
             3,
-            "Rodrigues' formula K(a, θ)",
-            public=(([0.0, 0.0, 1.0], 0.4), ([1.0, 1.0, 0.0], 2.0), ([0.0, 3.0, 0.0], -0.7)),
-            hidden=lambda rng: [
-                (list(rng.normal(size=3) * rng.uniform(0.5, 3)), float(t)) for t in rng.uniform(-3, 3, 5)
-            ],
-            reference=ref.rodrigues,
+            "the smallest turn carrying one direction onto another",
+            public=(
+                ([2.0, 0.0, 0.0], [-1.0, 1.0, 0.0]),
+                ([0.0, 0.0, 3.0], [1.0, 0.0, 1.0]),
+                ([1.0, 2.0, -1.0], [0.5, 1.0, -0.5]),
+                ([0.0, 1.0, 1.0], [0.5, -1.0, -0.2]),
+            ),
+            hidden=_direction_pairs,
+            reference=ref.rotation_between,
             forbidden=keys.KEY_RODRIGUES,
             mistakes=(
                 matches(
                     "unnormalised",
-                    "the axis was not normalised: K(a, θ) needs the unit vector k = a/|a|",
-                    rodrigues_unnormalised,
+                    "the axis u × v was not normalised: its length is |u||v| sin θ, and K(k, θ) needs the unit "
+                    "vector k = (u × v) / |u × v|",
+                    carried_unnormalised_axis,
                 ),
-                TRANSPOSED,
-                degrees_in(1),
-                SIGN_FLIP,
+                matches(
+                    "unnormalised",
+                    "the angle came from arccos(u · v) of the vectors as given: u · v = |u||v| cos θ, so divide by "
+                    "both lengths first (or take atan2(|u × v|, u · v), which needs no division)",
+                    carried_unnormalised_angle,
+                ),
+                matches(
+                    "transposed",
+                    "this turn carries v onto u (its transpose carries u onto v): turn about u × v, not v × u",
+                    carried_back,
+                ),
             ),
-            hint="Two checks by hand (lecture 01 §2): the axis does not move, K k = k, and a turn about e_z must "
-            "be your rotation about z of question 1.",
+            hint="Check by hand: R u must point along v, and R (u × v) = u × v. Is your angle right when u and v are "
+            "more than a right angle apart?",
         ),
         Question(
             "q3",
-            "axis_angle_from_matrix",
+            "axis_angle_between",
             3,
-            "axis and angle of a rotation matrix",
+            "axis and angle of the turn from one orientation to another",
             public=(
-                (np.round(ref.elementary_rotation("x", 0.5), 15),),
-                (np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]]),),
+                (np.round(ref.elementary_rotation("x", np.pi / 2), 15), _Q3_B1),
+                (_Q3_A2, ref.rodrigues([0.0, 1.0, -1.0], 2.5) @ _Q3_A2),
             ),
-            hidden=lambda rng: [(R,) for R in ref.random_rotations(rng, 5)],
-            reference=ref.axis_angle,
+            hidden=_orientation_pairs,
+            reference=ref.axis_angle_between,
             forbidden=keys.KEY_AXIS_ANGLE,
             mistakes=(
+                matches(
+                    "frame_coordinates",
+                    "this is the axis and angle of R_aᵀ R_b, whose axis is written in {A}'s own coordinates: "
+                    "the question asks for the axis in the base frame, of the turn K with R_b = K R_a",
+                    turn_in_a_frame,
+                ),
+                matches(
+                    "rotation_sense",
+                    "this turn carries {B} onto {A} (the axis points the other way): K carries R_a onto R_b, "
+                    "K = R_b R_aᵀ",
+                    turn_b_onto_a,
+                ),
                 degrees_out([3]),
                 angle_2pi([3], "(0, π)"),
                 unit_axis_out(3),
@@ -123,23 +218,54 @@ EXERCISE = Exercise(
                     "(-k, -θ) is the same rotation as (k, θ), but the question asks for 0 < θ < π: flip both signs",
                 ),
             ),
-            hint="The trace gives cos θ and the antisymmetric part R - Rᵀ gives sin θ times the axis (lecture 01 §3); "
-            "return a unit axis and 0 < θ < π.",
+            hint="Solve R_b = K R_a for K first (lecture 01 §5: a turn about fixed axes multiplies on the left), "
+            "then read K's axis and angle (§3). Check: K R_a must give R_b.",
         ),
         Question(
             "q4",
-            "invert_transform",
+            "relative_pose",
             2,
-            "inverse of a homogeneous transform",
+            "the pose of one frame in another, both given in the base frame",
             public=(
-                (np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]),),
-                (np.array([[1.0, 0, 0, 0.5], [0, 0, -1, -1], [0, 1, 0, 0.25], [0, 0, 0, 1]]),),
+                (
+                    np.array([[0.0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]),
+                    np.array([[1.0, 0, 0, 0.5], [0, 0, -1, -1], [0, 1, 0, 0.25], [0, 0, 0, 1]]),
+                ),
+                (
+                    np.array([[0.0, 0, 1, -0.5], [0, 1, 0, 1], [-1, 0, 0, 0.75], [0, 0, 0, 1]]),
+                    np.array([[1.0, 0, 0, 0.5], [0, 0, -1, 2], [0, 1, 0, 1], [0, 0, 0, 1]]),
+                ),
             ),
-            hidden=lambda rng: ref.random_transforms(rng, 4),
-            reference=ref.inverse_transform,
-            forbidden=keys.KEY_INVERSE,
-            mistakes=(TRANSLATION, TRANSPOSED),
-            hint="Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §4).",
+            hidden=_pose_pairs,
+            reference=ref.relative_pose,
+            forbidden=(*keys.KEY_INVERSE, *keys.KEY_NUMPY_INV),
+            mistakes=(
+                matches(
+                    "inverse",
+                    "this is ᴮT_A, the pose of {A} in {B}: the question asks for {B} in {A}, (⁰T_A)⁻¹ ⁰T_B",
+                    pose_of_a_in_b,
+                ),
+                matches(
+                    "order",
+                    "this is ⁰T_B (⁰T_A)⁻¹, the product in the other order: go from {A} back to {0}, then from "
+                    "{0} to {B}",
+                    pose_other_order,
+                ),
+                matches(
+                    "translation",
+                    "⁰T_A was inverted with the translation -p_A: the origin of {0} seen from {A} is -R_Aᵀ p_A "
+                    "(lecture 01 §4)",
+                    pose_minus_p,
+                ),
+                matches(
+                    "frame_coordinates",
+                    "the translation is p_B - p_A, written in the base frame's coordinates: the question asks "
+                    "for it in {A}'s coordinates, R_Aᵀ (p_B - p_A)",
+                    pose_base_difference,
+                ),
+            ),
+            hint="Write the chain {A} → {0} → {B} as a product of two transforms, then invert the one that "
+            "needs it by hand; check that ⁰T_A times your answer gives ⁰T_B.",
         ),
         Question(
             "q5",

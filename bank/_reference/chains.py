@@ -24,6 +24,57 @@ def elementary_rotation(axis: str, angle: float) -> np.ndarray:
     return {"x": transforms.rotx, "y": transforms.roty, "z": transforms.rotz}[axis](angle)
 
 
+#: The axes ``signed_rotation`` accepts: a coordinate axis or its opposite.
+SIGNED_AXES = ("x", "-x", "y", "-y", "z", "-z")
+
+
+def signed_rotation(axis: str, angle: float) -> np.ndarray:
+    """Rotation by ``angle`` about a signed coordinate axis: ``"-y"`` is the direction -e_y, so it is R_y(-angle).
+
+    >>> signed_rotation("-z", np.pi / 2).round(12) @ [1, 0, 0]  # a quarter turn about -z carries x to -y
+    array([ 0., -1.,  0.])
+    """
+    if axis not in SIGNED_AXES:
+        raise ValueError(f"axis: expected one of {', '.join(SIGNED_AXES)}, got {axis!r}")
+    sign = -1.0 if axis.startswith("-") else 1.0
+    return elementary_rotation(axis[-1], sign * float(angle))
+
+
+def rotation_between(u: Any, v: Any) -> np.ndarray:
+    """The smallest rotation carrying the direction of ``u`` onto that of ``v`` (the identity when they are parallel).
+
+    Axis u × v, angle atan2(|u × v|, u·v) in [0, π). Refused (ValueError) when v points opposite to u: every axis
+    normal to u then gives a half turn, and none is smaller than the others.
+
+    >>> rotation_between([1, 0, 0], [0, 2, 0]).round(12) @ [1, 0, 0]
+    array([0., 1., 0.])
+    """
+    u, v = (np.asarray(w, dtype=float).reshape(3) for w in (u, v))
+    for name, w in (("u", u), ("v", v)):
+        if not np.all(np.isfinite(w)) or not np.any(w):
+            raise ValueError(f"{name}: expected a non-zero finite 3-vector, got {w.tolist()}")
+    u, v = u / np.linalg.norm(u), v / np.linalg.norm(v)
+    a = np.cross(u, v)
+    s, c = float(np.linalg.norm(a)), float(u @ v)
+    if s < 1e-12:
+        if c > 0:
+            return np.eye(3)
+        raise ValueError("v: points opposite to u, where no single smallest turn exists (every half turn about an "
+                         "axis normal to u carries u onto v)")  # fmt: skip
+    return transforms.rodrigues(a, float(np.arctan2(s, c)))
+
+
+def axis_angle_between(R_a: Any, R_b: Any) -> np.ndarray:
+    """``[kx, ky, kz, θ]`` of the turn K about an axis fixed in the base frame with R_b = K R_a (K = R_b R_aᵀ)."""
+    R_a, R_b = np.asarray(R_a, dtype=float), np.asarray(R_b, dtype=float)
+    return axis_angle(R_b @ R_a.T)
+
+
+def relative_pose(T_a: Any, T_b: Any) -> np.ndarray:
+    """ᴬT_B = (⁰T_A)⁻¹ ⁰T_B: the pose of frame {B} in frame {A}, both given in the base frame {0}."""
+    return transforms.inverse_transform(T_a) @ np.asarray(T_b, dtype=float)
+
+
 def rodrigues(axis: Any, angle: float) -> np.ndarray:
     """K(axis, angle), the axis normalised."""
     return transforms.rodrigues(axis, angle)

@@ -36,6 +36,7 @@ __all__ = [
     "NotebookResult",
     "Verdict",
     "score_question",
+    "key_words",
     "MAX_NOTES",
     "reconcile",
 ]
@@ -112,6 +113,20 @@ def reconcile(verdicts: Sequence[Verdict]) -> list[Verdict]:
             plain = v.plain or "your value differs from the right answer here (no single mistake explains every case)"
             out[i] = replace(v, reason=plain, mistake=None)
     return out
+
+
+def key_words(spec: str) -> str:
+    """What a case that called one of its question's ``forbidden`` names is told (``spec`` "" if unknown).
+
+    >>> key_words("puma_course.transforms:rotx")
+    "used the course package's answer (puma_course.transforms.rotx) instead of your own code"
+    >>> key_words("numpy.linalg:inv")
+    'called numpy.linalg.inv, which this question asks you to do without'
+    """
+    name = spec.replace(":", ".")
+    if spec and not spec.startswith("puma_course"):
+        return f"called {name}, which this question asks you to do without"
+    return f"used the course package's answer ({name or 'a function of the course package'}) instead of your own code"
 
 
 #: ``judge_with(got, expected, args)``: how a modelling question judges a value (see :attr:`Question.judge_with`).
@@ -214,8 +229,9 @@ class Exercise:
 
     @property
     def answer_keys(self) -> tuple[str, ...]:
-        """Every question's ``forbidden`` names, once each, sorted: what the student side leaves out unless allowed."""
-        return tuple(sorted({spec for q in self.questions for spec in q.forbidden}))
+        """Every question's ``forbidden`` names of the course package, once each, sorted: what the student side leaves
+        out unless allowed. A name of another library (``numpy.linalg:inv``) is only a tripwire: numpy stays whole."""
+        return tuple(sorted({spec for q in self.questions for spec in q.forbidden if spec.startswith("puma_course")}))
 
     @property
     def max_score(self) -> float:

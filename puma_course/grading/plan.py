@@ -63,7 +63,7 @@ def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> Plan
     >>> from puma_course.grading import EXERCISES
     >>> calls = make_plan(EXERCISES["ex01_rotations"], seed=1)
     >>> calls[0].qid, calls[0].function, calls[0].args, calls[0].expected.shape
-    ('q1', 'elementary_rotation', ['x', 0.3], (3, 3))
+    ('q1', 'elementary_rotation', ['-y', 0.4], (3, 3))
 
     ``expected`` is whatever the question's reference returns (an array for most questions; a
     question judged by equivalence may return what its judge needs) and ``call_args`` keeps the

@@ -14,7 +14,7 @@
 **Points are stored once**, in :attr:`Question.points <puma_course.grading.model.Question.points>`.
 A solution tags each answer cell ``question:qN`` and nothing more; the generator adds the
 ``points:N`` tag to that cell, a heading cell just above it (``**q2** · 3 points · write
-`rodrigues_formula` below``, tagged ``heading:q2``) and, after the notebook's first cell, a
+`rotation_between` below``, tagged ``heading:q2``) and, after the notebook's first cell, a
 summary of every question's points (tagged ``points-summary``). A solution that still carries a
 ``points:N`` tag, or a generated cell, is refused (ValueError): an edited tag would otherwise
 look as if it changed the grading.
@@ -127,7 +127,7 @@ def question_heading(q: Question) -> str:
 
     >>> from puma_course.grading import EXERCISES
     >>> question_heading(EXERCISES["ex01_rotations"].question("q2"))
-    '**q2** · 3 points · write `rodrigues_formula` below'
+    '**q2** · 3 points · write `rotation_between` below'
     """
     worth = f"bonus, {_points(q.points)} (in your score, not in the maximum)" if q.bonus else _points(q.points)
     return f"**{q.qid}** · {worth} · write `{q.function}` below"

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from ..course import CourseNotFoundError
-from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, reconcile, score_question
+from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, key_words, reconcile, score_question
 from .output.report import format_question
 from .run.worker import NOT_ATTEMPTED, forbidden_codes, guarded_call
 
@@ -103,7 +103,7 @@ def public_outcomes(q: Question, answer: Callable[..., Any]) -> list[tuple[str, 
             reason = f"raised {type(exc).__name__}: {str(exc)[:200]}"
         else:
             if hit is not None:
-                reason = f"used the course package's answer ({hit.replace(':', '.')}) instead of your own code"
+                reason = key_words(hit)
             else:
                 try:
                     verdict = q.judge(got, expected, tuple(args))
@@ -122,8 +122,8 @@ def check(question: str, answer: Callable[..., Any]) -> None:
     memorises these cases will not earn the points.
 
     >>> check("ex01_rotations:q1", lambda axis, angle: np.eye(3))  # doctest: +ELLIPSIS
-    q1 elementary_rotation: 0 / 2 points - FAILED (0/3 cases pass; case 1 (elementary_rotation('x', 0.3)): ...)
-      Hint: Each column of R ...
+    q1 elementary_rotation: 0 / 2 points - FAILED (0/4 cases pass; case 1 (elementary_rotation('-y', 0.4)): ...)
+      Hint: Point your right thumb ...
     """
     ex, q = _find_question(question)
     if not callable(answer):

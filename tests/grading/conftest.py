@@ -28,12 +28,13 @@ def make_notebook():
 
 
 def _right_rotation(axis, angle):
-    c, s = np.cos(angle), np.sin(angle)
+    t = -angle if axis.startswith("-") else angle  # a turn about -e is a turn about e the other way
+    c, s = np.cos(t), np.sin(t)
     return {
         "x": np.array([[1, 0, 0], [0, c, -s], [0, s, c]]),
         "y": np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
         "z": np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]),
-    }[axis]
+    }[axis[-1]]
 
 
 @pytest.fixture

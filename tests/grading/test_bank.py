@@ -76,7 +76,9 @@ def test_reference_answers_agree_with_hand_worked_values():
     ex1, ex8 = EXERCISES["ex01_rotations"], EXERCISES["ex08_three_step"]
     R = ex1.question("q1").reference("z", np.pi / 2)
     assert np.allclose(R @ [1, 0, 0], [0, 1, 0])
-    assert np.allclose(ex1.question("q3").reference(R), [0, 0, 1, np.pi / 2])
+    assert np.allclose(ex1.question("q1").reference("-z", np.pi / 2) @ [1, 0, 0], [0, -1, 0])
+    R_a = ex1.question("q1").reference("x", 0.3)  # q3: the quarter turn about the base's z, after any R_a
+    assert np.allclose(ex1.question("q3").reference(R_a, R @ R_a), [0, 0, 1, np.pi / 2])
     # the three-step exercise: w = (1/2, 1/2, 2) lies at 45 degrees; l3^2 = 4.5 (lecture 08 §4). Exercise 8's arm
     # reads its base angle from e_y: from the reading 0 (the arm along e_y) it turns by 45° - 90° = -45°
     w = np.array([0.5, 0.5, 2.0])

@@ -61,21 +61,29 @@ def skew(k):
 
 
 # ------------------------------------------------------------------------------------------ rotations (ex01)
-def test_a_transposed_rotation():
-    assert judge("ex01_rotations", "q1", rot("z", 0.7), "z", 0.7).passed
-    assert_named(judge("ex01_rotations", "q1", rot("z", 0.7).T, "z", 0.7), "transposed", "transpose")
-    R = rot("x", 0.4) @ rot("y", 1.1)
-    T = homogeneous(R, [1.0, 2.0, 3.0])
-    wrong = homogeneous(R, -R.T @ [1.0, 2.0, 3.0])  # the inverse's rotation block not transposed
-    assert_named(judge("ex01_rotations", "q4", wrong, T), "transposed", "Rᵀ")
+def test_a_turn_the_wrong_way_and_a_transposed_rotation():
+    # ex01 q1: about "-y" the transpose of the answer is R_y(+θ), the axis's sign left out (or R_y's sines swapped)
+    assert judge("ex01_rotations", "q1", rot("y", -0.7), "-y", 0.7).passed
+    assert_named(judge("ex01_rotations", "q1", rot("y", 0.7), "-y", 0.7), "rotation_sense", "not about -y", "sign")
+    assert_named(judge("ex01_rotations", "q1", rot("y", -0.7), "y", 0.7), "rotation_sense", "R_y's sines are swapped")
+    assert_named(judge("ex01_rotations", "q1", rot("z", 0.7).T, "z", 0.7), "rotation_sense", "wrong way")
+    assert_named(judge("ex01_rotations", "q1", rot("x", 0.7), "-x", 0.7), "rotation_sense", '"-x"')
+    # ex01 q2: the turn carrying v onto u is the transpose of the one asked for
+    u, v = np.array([0.0, 1.0, 1.0]), np.array([0.5, -1.0, -0.2])
+    R = right("ex01_rotations", "q2", u, v)
+    assert np.allclose(R @ u / np.linalg.norm(u), v / np.linalg.norm(v))
+    assert_named(judge("ex01_rotations", "q2", R.T, u, v), "transposed", "carries v onto u")
 
 
 def test_degrees_where_radians_were_expected():
     # an angle argument taken as degrees: np.cos(np.radians(angle))
     assert_named(judge("ex01_rotations", "q1", rot("y", np.radians(1.2)), "y", 1.2), "degrees", "degrees")
-    # an angle returned in degrees
-    R = rot("z", 1.0)
-    assert_named(judge("ex01_rotations", "q3", [0, 0, 1, np.degrees(1.0)], R), "degrees", "radians")
+    assert_named(judge("ex01_rotations", "q1", rot("y", -np.radians(1.2)), "-y", 1.2), "degrees", "degrees")
+    # an angle returned in degrees: a quarter turn about z applied to R_x(0.5), by 1 rad
+    R_a = rot("x", 0.5)
+    assert_named(
+        judge("ex01_rotations", "q3", [0, 0, 1, np.degrees(1.0)], R_a, rot("z", 1.0) @ R_a), "degrees", "radians"
+    )
     T_prev = homogeneous(rot("z", 0.5), [0.1, 0.2, 0.3])
     T = T_prev @ link(np.pi / 2, 0.4, -1.0, 0.15)
     assert_named(judge("ex02_dh_frames", "q1", [90.0, 0.4, np.degrees(-1.0), 0.15], T_prev, T), "degrees")
@@ -84,11 +92,20 @@ def test_degrees_where_radians_were_expected():
 
 
 def test_an_axis_not_normalised():
-    a, t = np.array([1.0, 1.0, 0.0]), 2.0
+    # ex01 q2: u = (2, 0, 0), v = (0, 3, 0): a quarter turn about e_z, but u × v = (0, 0, 6) used as it is
+    u, v, t = np.array([2.0, 0.0, 0.0]), np.array([0.0, 3.0, 0.0]), np.pi / 2
+    a = np.cross(u, v)
     raw = np.eye(3) + np.sin(t) * skew(a) + (1 - np.cos(t)) * skew(a) @ skew(a)
-    assert_named(judge("ex01_rotations", "q2", raw, a, t), "unnormalised", "a/|a|")
-    R = rot("x", 0.5)  # axis e_x, angle 0.5: a student returning 2 sin(θ) k as the axis
-    assert_named(judge("ex01_rotations", "q3", [2 * np.sin(0.5), 0, 0, 0.5], R), "unnormalised", "length")
+    assert judge("ex01_rotations", "q2", rot("z", t), u, v).passed
+    assert_named(judge("ex01_rotations", "q2", raw, u, v), "unnormalised", "(u × v) / |u × v|")
+    # the angle from arccos(u · v) of vectors of any length: (0.5, 0, 0) · (-0.6, 0.8, 0) = -0.3, where cos θ = -0.6
+    u2, v2 = np.array([0.5, 0.0, 0.0]), np.array([-0.6, 0.8, 0.0])
+    assert judge("ex01_rotations", "q2", rot("z", np.arccos(-0.6)), u2, v2).passed
+    assert_named(judge("ex01_rotations", "q2", rot("z", np.arccos(-0.3)), u2, v2), "unnormalised", "arccos(u · v)")
+    R_a = rot("y", 0.3)  # ex01 q3: axis e_x, angle 0.5: a student returning 2 sin(θ) k as the axis
+    assert_named(
+        judge("ex01_rotations", "q3", [2 * np.sin(0.5), 0, 0, 0.5], R_a, rot("x", 0.5) @ R_a), "unnormalised", "length"
+    )
 
 
 def test_a_row_or_a_column_with_the_wrong_sign():
@@ -105,16 +122,52 @@ def test_a_row_or_a_column_with_the_wrong_sign():
 
 
 def test_an_angle_off_by_a_whole_turn():
-    R = rot("y", 2.0)
-    assert_named(judge("ex01_rotations", "q3", [0, 1, 0, 2.0 + 2 * np.pi], R), "angle_2pi", "(0, π)")
+    R_a = rot("z", 0.4)
+    assert_named(
+        judge("ex01_rotations", "q3", [0, 1, 0, 2.0 + 2 * np.pi], R_a, rot("y", 2.0) @ R_a), "angle_2pi", "(0, π)"
+    )
     v, w, axis = [1.0, 0, 0], [0, -1.0, 0], [0, 0, 1.0]
     assert_named(judge("ex07_porter_geometric", "q3", -np.pi / 2 + 2 * np.pi, v, w, axis), "angle_2pi")
 
 
 def test_the_same_rotation_outside_the_range_and_the_inverses_translation():
-    assert_named(judge("ex01_rotations", "q3", [0, 0, -1, -1.0], rot("z", 1.0)), "range", "(-k, -θ)")
-    R, p = rot("z", 0.5), np.array([1.0, 2.0, 0.0])
-    assert_named(judge("ex01_rotations", "q4", homogeneous(R.T, -p), homogeneous(R, p)), "translation", "-Rᵀp")
+    R_a = rot("x", -0.8)
+    assert_named(judge("ex01_rotations", "q3", [0, 0, -1, -1.0], R_a, rot("z", 1.0) @ R_a), "range", "(-k, -θ)")
+    # ex01 q4: ⁰T_A inverted with -p_A, worked by hand: R_Aᵀ p_B - p_A = (3, -1, 3) - (1, 2, 3)
+    T_a = homogeneous(rot("z", np.pi / 2), [1.0, 2.0, 3.0])
+    T_b = homogeneous(np.eye(3), [1.0, 3.0, 3.0])
+    assert judge("ex01_rotations", "q4", homogeneous(rot("z", -np.pi / 2), [1.0, 0.0, 0.0]), T_a, T_b).passed
+    minus_p = homogeneous(rot("z", -np.pi / 2), [2.0, -3.0, 0.0])
+    assert_named(judge("ex01_rotations", "q4", minus_p, T_a, T_b), "translation", "-R_Aᵀ p_A")
+    # any other wrong translation is not "translation": the offset from {B} to {A}, and (p_B - p_A) in {0}
+    verdict = judge("ex01_rotations", "q4", homogeneous(rot("z", -np.pi / 2), [-1.0, 0.0, 0.0]), T_a, T_b)
+    assert not verdict.passed and verdict.mistake is None
+    base = homogeneous(rot("z", -np.pi / 2), [0.0, 1.0, 0.0])
+    assert_named(judge("ex01_rotations", "q4", base, T_a, T_b), "frame_coordinates", "base frame")
+
+
+def test_the_turn_between_orientations_read_in_the_wrong_frame_or_the_wrong_way():
+    # ex01 q3: R_a = R_x(90°), R_b = R_z(90°) R_a; R_aᵀ R_b turns about R_aᵀ e_z = e_y, R_a R_bᵀ about -e_z
+    R_a = np.round(rot("x", np.pi / 2), 15)
+    R_b = rot("z", np.pi / 2) @ R_a
+    assert judge("ex01_rotations", "q3", [0, 0, 1, np.pi / 2], R_a, R_b).passed
+    assert_named(judge("ex01_rotations", "q3", [0, 1, 0, np.pi / 2], R_a, R_b), "frame_coordinates", "{A}'s own")
+    assert_named(judge("ex01_rotations", "q3", [0, 0, -1, np.pi / 2], R_a, R_b), "rotation_sense", "{B} onto {A}")
+
+
+def test_the_pose_of_a_in_b_and_the_product_in_the_other_order():
+    T_a = homogeneous(rot("z", np.pi / 2), [1.0, 2.0, 3.0])
+    T_b = homogeneous(rot("x", 0.4), [0.5, -1.0, 2.0])
+    X = right("ex01_rotations", "q4", T_a, T_b)
+    assert np.allclose(T_a @ X, T_b)
+    inverse = homogeneous(X[:3, :3].T, -X[:3, :3].T @ X[:3, 3])
+    assert_named(judge("ex01_rotations", "q4", inverse, T_a, T_b), "inverse", "ᴮT_A")
+    a_inv = homogeneous(rot("z", -np.pi / 2), -rot("z", -np.pi / 2) @ [1.0, 2.0, 3.0])
+    assert_named(judge("ex01_rotations", "q4", T_b @ a_inv, T_a, T_b), "order", "other order")
+    # the inverse's rotation block left untransposed (R_A applied, not undone) is not named
+    wrong = homogeneous(rot("z", np.pi / 2) @ rot("x", 0.4), X[:3, 3])
+    verdict = judge("ex01_rotations", "q4", wrong, T_a, T_b)
+    assert not verdict.passed and verdict.mistake is None
 
 
 # ------------------------------------------------------------------------------------------ DH (ex02-ex04)

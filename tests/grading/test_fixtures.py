@@ -153,7 +153,7 @@ def test_feedback_explains_what_passed_and_failed(graded):
     fb = graded["feedback"]
     assert sorted(p.stem for p in fb.glob("*.md")) == sorted(EXPECTED)
     text = (fb / "missing_function.md").read_text(encoding="utf-8")
-    assert "no function named rodrigues_formula() was defined" in text
+    assert "no function named rotation_between() was defined" in text
     assert "7 / 15" in text  # q5 and q6 are not answered either (these submissions predate it)
     text = (fb / "answer_key.md").read_text(encoding="utf-8")
     assert "puma_course.rodrigues is not available in this exercise" in text

@@ -107,3 +107,34 @@ def test_the_tripwire_leaves_no_path_back_to_the_original():
         assert guarded_call(lambda x: 3 * x, (3,), codes) == (9, None)
     finally:
         del sys.modules[mod.__name__]
+
+
+def test_numpy_linalg_inv_is_caught_where_a_question_asks_to_do_without_and_numpy_stays_whole(tmp_path):
+    """ex01 q4 forbids numpy.linalg.inv: a call to it fails the case, saying so; other numpy (solve, norm) is fine."""
+    from puma_course.grading import EXERCISES
+
+    ex = EXERCISES["ex01_rotations"]
+    assert "numpy.linalg:inv" in ex.question("q4").forbidden and "numpy.linalg:inv" not in ex.answer_keys
+    answers = {
+        "np.linalg.inv": "def relative_pose(T_a, T_b):\n    return np.linalg.inv(T_a) @ T_b",
+        "imported inv": "from numpy.linalg import inv\ndef relative_pose(T_a, T_b):\n    return inv(T_a) @ T_b",
+        "solve": "def relative_pose(T_a, T_b):\n    return np.linalg.solve(T_a, T_b)",
+    }
+    scores = {}
+    for name, code in answers.items():
+        nb = tmp_path / name / "ex01_rotations.ipynb"
+        nb.parent.mkdir()
+        cells = [
+            nbformat.v4.new_code_cell("import numpy as np\nnp.linalg.norm([3.0, 4.0])"),
+            nbformat.v4.new_code_cell(code),
+        ]
+        nbformat.write(nbformat.v4.new_notebook(cells=cells), nb)
+        r = grade_notebook(nb, ex)
+        assert r.status == "ok", (name, r.notes)
+        scores[name] = (r.scores["q4"], " ".join(r.question_notes["q4"]))
+    for name in ("np.linalg.inv", "imported inv"):
+        assert (
+            scores[name][0] == 0
+            and "called numpy.linalg.inv, which this question asks you to do without" in scores[name][1]
+        ), scores[name]
+    assert scores["solve"][0] == 2, scores["solve"]

@@ -66,9 +66,9 @@ def _snoop(paths: list[str]) -> nbformat.NotebookNode:
         "def elementary_rotation(axis, angle):\n"
         "    if not SEEN:\n"
         "        raise NotImplementedError\n"
-        "    c, s = np.cos(angle), np.sin(angle)\n"
+        "    c, s = np.cos(-angle if axis[0] == '-' else angle), np.sin(-angle if axis[0] == '-' else angle)\n"
         "    return {'x': np.array([[1, 0, 0], [0, c, -s], [0, s, c]]), 'y': np.array([[c, 0, s], [0, 1, 0], "
-        "[-s, 0, c]]), 'z': np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis]\n"
+        "[-s, 0, c]]), 'z': np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis[-1]]\n"
     )
     for cell in nb.cells:
         if "question:q1" in cell.metadata.get("tags", []):

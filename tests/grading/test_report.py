@@ -47,7 +47,7 @@ def test_the_text_line_names_question_function_points_verdict_reasons_and_hint()
     q = EX.question("q2")
     text = format_question(q, 1.0, _result().question_notes["q2"])
     assert text.splitlines() == [
-        "q2 rodrigues_formula: 1 / 3 points - partly "
+        "q2 rotation_between: 1 / 3 points - partly "
         "(2/6 cases pass; hidden case 4: values differ from the reference by up to 0.5)",
         f"  Hint: {q.hint}",
     ]
@@ -75,7 +75,7 @@ def test_the_feedback_table_rows_are_the_same_formatter_in_markdown():
     for q in EX.questions:
         row = format_question(q, _result().scores[q.qid], _result().question_notes[q.qid], markdown=True)
         assert row in text
-    assert "| q3 `axis_angle_from_matrix` | 0 / 3 | not attempted yet |" in text
+    assert "| q3 `axis_angle_between` | 0 / 3 | not attempted yet |" in text
     assert r"returned a \| pipe" in text  # a '|' in a reason does not break the table
     assert "Total: **3 / 15** points." in text
     assert "seed" not in text and "7" not in text.split("Total")[1].split("##")[0]  # the seed is never shown
@@ -97,7 +97,7 @@ def test_the_cli_report_is_the_same_formatter_indented():
 
 def test_check_prints_through_the_same_formatter(capsys, right_rotation):
     check("ex01_rotations:q1", right_rotation)
-    assert capsys.readouterr().out == format_question(EX.question("q1"), 2, ["3/3 cases pass"]) + "\n"
+    assert capsys.readouterr().out == format_question(EX.question("q1"), 2, ["4/4 cases pass"]) + "\n"
 
 
 def test_csv_columns(tmp_path):

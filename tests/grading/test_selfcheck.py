@@ -38,7 +38,11 @@ def test_check_prints_one_clear_line(capsys, right_rotation):
 def test_check_flags_the_answer_key(capsys):
     from puma_course import rodrigues
 
-    check("ex01_rotations:q2", lambda axis, angle: rodrigues(axis, angle))
+    def with_the_key(u, v):
+        w = np.cross(u, v)
+        return rodrigues(w, np.arctan2(np.linalg.norm(w), np.dot(u, v)))
+
+    check("ex01_rotations:q2", with_the_key)
     out = capsys.readouterr().out
     assert "FAILED" in out and "rodrigues" in out
 
@@ -51,23 +55,23 @@ def test_check_rejects_unknown_names(right_rotation):
 
 
 def test_check_runs_every_public_case_and_scores_like_the_grader(capsys, right_rotation):
-    # q1 has three public cases, about x, y and z; this answer gets the z rotation wrong
+    # q1 has four public cases, about -y, y, -x and z; this answer gets the z rotation wrong
     def wrong_about_z(axis, angle):
         return right_rotation(axis, angle) if axis != "z" else right_rotation(axis, -angle)
 
     check("ex01_rotations:q1", wrong_about_z)
     out = capsys.readouterr().out
-    assert out.startswith("q1 elementary_rotation: 1.33 / 2 points - partly (2/3 cases pass; case 3 (")
+    assert out.startswith("q1 elementary_rotation: 1.5 / 2 points - partly (3/4 cases pass; case 4 (")
     assert "elementary_rotation('z', 1.571)" in out and "Hint:" in out
 
 
 def test_the_stub_counts_as_not_attempted_without_details(capsys):
-    def stub(axis, angle):
+    def stub(u, v):
         raise NotImplementedError("write your answer here")
 
     check("ex01_rotations:q2", stub)
     lines = capsys.readouterr().out.splitlines()
-    assert lines[0] == "q2 rodrigues_formula: 0 / 3 points - not attempted yet"
+    assert lines[0] == "q2 rotation_between: 0 / 3 points - not attempted yet"
     assert len(lines) == 1  # no hint before an attempt: it would give away the step the question asks for
 
 
@@ -82,9 +86,10 @@ def test_check_without_an_exercise_finds_a_unique_question_or_asks_for_one(capsy
 
 
 def test_check_names_a_recognised_mistake(capsys, right_rotation):
+    # the transpose of a turn about a coordinate axis is the turn the other way: named so, case by case
     check("ex01_rotations:q1", lambda axis, angle: right_rotation(axis, angle).T)
     out = capsys.readouterr().out
-    assert "FAILED" in out and "you returned the transpose" in out and "values differ" not in out
+    assert "FAILED" in out and "not about -y" in out and "values differ" not in out
 
 
 def test_check_judges_a_modelling_question_by_what_the_answer_does(capsys):

@@ -30,10 +30,10 @@ def results():
     return [
         _result("ann", {"q1": 2, "q2": 3, "q3": 3, "q4": 2, "q5": 3, "q6": 2}),
         _result("bob", {"q1": 0, "q2": 1, "q3": 0, "q4": 2, "q5": 3, "q6": 2},
-                {"q1": ["transposed"] * 9, "q2": ["unnormalised"]},
-                notes={"q1": ["0/9 cases pass", "case 1: you returned the transpose"], "q3": stub["q3"]}),
-        _result("cat", {"q1": 0, "q2": 0, "q3": 0, "q4": 0, "q5": 0, "q6": 2}, {"q1": ["transposed", "degrees"]},
-                notes={"q1": ["0/9 cases pass", "case 1: you returned the transpose"]}),
+                {"q1": ["rotation_sense"] * 9, "q2": ["unnormalised"]},
+                notes={"q1": ["0/9 cases pass", "case 1: your matrix turns the wrong way"], "q3": stub["q3"]}),
+        _result("cat", {"q1": 0, "q2": 0, "q3": 0, "q4": 0, "q5": 0, "q6": 2}, {"q1": ["rotation_sense", "degrees"]},
+                notes={"q1": ["0/9 cases pass", "case 1: your matrix turns the wrong way"]}),
         NotebookResult.blank("dan", EX, "missing", "no file"),
     ]  # fmt: skip
 
@@ -44,8 +44,8 @@ def test_counts_per_question(results):
     assert (s["q1"].passed, s["q1"].failed, s["q1"].partly) == (1, 2, 0)
     assert (s["q2"].passed, s["q2"].partly, s["q2"].failed) == (1, 1, 1)
     assert s["q3"].not_attempted == 1 and s["q3"].passed == 1
-    assert s["q1"].mistakes["transposed"] == 2  # counted once per student, not per case
-    assert s["q1"].common() == [("transposed", 2), ("degrees", 1)]
+    assert s["q1"].mistakes["rotation_sense"] == 2  # counted once per student, not per case
+    assert s["q1"].common() == [("rotation_sense", 2), ("degrees", 1)]
     assert s["q4"].mean == pytest.approx(4 / 3)
 
 
@@ -55,7 +55,7 @@ def test_the_markdown_names_every_question_and_the_mistakes_in_words(results):
     assert "Handed in by 3 of 4 student(s)." in text
     row = next(line for line in text.splitlines() if line.startswith("| q1 "))
     assert row.startswith("| q1 `elementary_rotation` | 2 | 1 | 0 | 2 | 0 | 0.67 |")
-    assert "a transposed rotation (Rᵀ for R) (`transposed`): 2" in row
+    assert "a rotation turned the wrong way (by -θ for θ) (`rotation_sense`): 2" in row
     for q in EX.questions:
         assert f"| {q.qid} `{q.function}`" in text
 
@@ -67,12 +67,13 @@ def test_written_next_to_the_grades_with_a_short_text(tmp_path, results):
     lines = text.splitlines()
     assert lines[0] == f"class summary: {path}"
     assert lines[1] == (
-        "  ex01_rotations q1 elementary_rotation: 1/3 passed; commonest mistake: a transposed rotation (Rᵀ for R) (2)"
+        "  ex01_rotations q1 elementary_rotation: 1/3 passed; commonest mistake: "
+        "a rotation turned the wrong way (by -θ for θ) (2)"
     )
 
 
 def test_puma_course_grade_writes_and_prints_the_summary(tmp_path, capsys):
-    """A class of two: one hands in the solution, one transposes every rotation of question 1."""
+    """A class of two: one hands in the solution, one transposes every rotation of question 1 (turned the wrong way)."""
     subs = tmp_path / "subs"
     for student in ("ann", "bob"):
         (subs / student).mkdir(parents=True)
@@ -91,9 +92,12 @@ def test_puma_course_grade_writes_and_prints_the_summary(tmp_path, capsys):
     printed = capsys.readouterr().out
     summary = tmp_path / "grades-summary.md"
     assert f"class summary: {summary}" in printed
-    assert "ex01_rotations q1 elementary_rotation: 1/2 passed; commonest mistake: a transposed rotation" in printed
+    assert (
+        "ex01_rotations q1 elementary_rotation: 1/2 passed; commonest mistake: a rotation turned the wrong way"
+        in printed
+    )
     text = summary.read_text(encoding="utf-8")
     assert (
-        "| q1 `elementary_rotation` | 2 | 1 | 0 | 1 | 0 | 1.00 | a transposed rotation (Rᵀ for R) (`transposed`): 1 |"
-        in text
+        "| q1 `elementary_rotation` | 2 | 1 | 0 | 1 | 0 | 1.00 | a rotation turned the wrong way (by -θ for θ) "
+        "(`rotation_sense`): 1 |" in text
     )

@@ -10,10 +10,10 @@ tripwires, the cell's code being a call to a key the question forbids):
 =========  =====================================================  ===========
 question   nearest lecture cell transcribed                       max earned
 =========  =====================================================  ===========
-ex01 q1    L01 §1 cell 4, R_x R_y R_z                             2/2 ★
-ex01 q2    L01 §2 cell 8, K(a, θ)                                 3/3 ★
-ex01 q3    L01 §3 cell 14, trace and antisymmetric part           3/3 ★
-ex01 q4    L01 §4 cell 16, [[Rᵀ, -Rᵀp], [0, 1]]                   2/2 ★
+ex01 q1    L01 §1 cell 4, R_x R_y R_z (by name; sign stripped)    0.60/2
+ex01 q2    L01 §2 cell 8, K(u, angle between u and v)             0.55/3
+ex01 q3    L01 §3 cell 14, of R_b; of R_aᵀ R_b                    0/3
+ex01 q4    L01 §4 cell 16, [[Rᵀ, -Rᵀp], [0, 1]] of ⁰T_A; of ⁰T_B  0/2
 ex01 q5    L01 §5 cell 25, Rz Tz(h) Ry                            0/3
 ex01 q6    L01 §7, roll-pitch-yaw                                 0/2
 ex02 q1    L02 §5 cells 17, 20, entries read off ⁰T_i             0/2

@@ -80,12 +80,12 @@ def format_question(q: Question, earned: float, notes: Sequence[str], *, markdow
     >>> from puma_course.grading import EXERCISES
     >>> q = EXERCISES["ex01_rotations"].question("q4")
     >>> print(format_question(q, 2, ["4/4 cases pass"]))
-    q4 invert_transform: 2 / 2 points - passed (4/4 cases pass)
-    >>> print(format_question(q, 0, ["0/4 cases pass", "public case 1: returned shape (3,)"]))
-    q4 invert_transform: 0 / 2 points - FAILED (0/4 cases pass; public case 1: returned shape (3,))
-      Hint: Check your answer by multiplying: T⁻¹ T must be the identity (lecture 01 §4).
+    q4 relative_pose: 2 / 2 points - passed (4/4 cases pass)
+    >>> print(format_question(q, 0, ["0/4 cases pass", "public case 1: returned shape (3,)"]))  # doctest: +ELLIPSIS
+    q4 relative_pose: 0 / 2 points - FAILED (0/4 cases pass; public case 1: returned shape (3,))
+      Hint: Write the chain {A} → {0} → {B} as a product of two transforms, ...
     >>> format_question(q, 2, ["4/4 cases pass"], markdown=True)
-    '| q4 `invert_transform` | 2 / 2 | passed: 4/4 cases pass |'
+    '| q4 `relative_pose` | 2 / 2 | passed: 4/4 cases pass |'
     """
     word = verdict(q, earned, notes)
     bonus = " (bonus)" if q.bonus else ""

@@ -14,7 +14,7 @@ import time
 from typing import Any
 
 from ..judge.bounds import check_answer
-from ..model import Exercise, NotebookResult, Question, Verdict, reconcile, score_question
+from ..model import Exercise, NotebookResult, Question, Verdict, key_words, reconcile, score_question
 from ..output.text import quoted
 from ..plan import Plan
 from .child import ChildResult
@@ -91,8 +91,7 @@ def call_verdict(
             )
         if error == "answer-key":
             spec = detail if detail in q.forbidden else ""
-            name = spec.replace(":", ".") if spec else "a function of the course package"
-            return Verdict(f"used the course package's answer ({name}) instead of your own code")
+            return Verdict(key_words(spec))
         return Verdict(reasons.get(_text(error), "the call failed"))
     if "value" not in event:
         return Verdict("no value came back")
