@@ -3,9 +3,9 @@
 Every auto-graded question has a fixture in ``tests/fixtures/answers/transcriptions.py`` (and ``variants.py``):
 the answer a student gets by transcribing the nearest lecture cell, adapted only to the question's signature.
 Each must earn less than a third of its question under every seed of the sweep, graded in-process as the
-grader judges (``tests/fixtures/answers/model.py``). The audit, maximum over seeds 0-9 (★: answered by the
-lecture, listed in ``ANSWERED_BY_LECTURE`` and expected to fail strictly; †: graded with the grader's
-tripwires, the cell's code being a call to a key the question forbids):
+grader judges (``tests/fixtures/answers/model.py``). The audit, maximum over seeds 0-9 (†: graded with the
+grader's tripwires, the cell's code being a call to a key the question forbids); no question is answered by its
+lecture (``ANSWERED_BY_LECTURE`` is empty, and a test keeps it so):
 
 =========  =====================================================  ===========
 question   nearest lecture cell transcribed                       max earned
@@ -89,6 +89,11 @@ def test_every_question_has_a_transcription_fixture():
     assert set(ANSWERED_BY_LECTURE) <= covered, "ANSWERED_BY_LECTURE names a question without a fixture"
     stale = (set(NO_LECTURE_CELL) | set(ANSWERED_BY_LECTURE)) - questions
     assert not stale, f"listed questions that no longer exist: {sorted(stale)}"
+
+
+def test_no_question_is_answered_by_its_lecture():
+    """Every question asks more than its lecture prints: the drills of ex01 q1-q4 and ex02 q1-q2 were changed."""
+    assert ANSWERED_BY_LECTURE == {}, f"questions a copied lecture cell answers: {sorted(ANSWERED_BY_LECTURE)}"
 
 
 if __name__ == "__main__":  # pragma: no cover - prints the audit's figures
