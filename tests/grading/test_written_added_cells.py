@@ -17,6 +17,7 @@ import nbformat
 import pytest
 
 from puma_course.cli import main
+from puma_course.grading.model import load_bank
 from puma_course.grading.written import ANSWER_TAG, PROMPT_TAG, Release, read_answers, release_of, written_questions
 from tests.support import ROOT
 
@@ -26,6 +27,13 @@ PNG = b"\x89PNG\r\n\x1a\n" + bytes(range(30))
 FIRST = "Frame {1}: $z_1$ up the column, origin at the shoulder."
 MORE = "Frame {2}: $z_2 = -y_0$, the tip raised; $x_2$ along the common normal."
 LAST = "So $d_2$ is the only variable of joint 2."
+
+
+@pytest.fixture(autouse=True)
+def _this_course():
+    """The release is read from the loaded course's ``exercises/``: load this repository's bank, whatever another
+    test run before in the same process loaded (a course copy without ``exercises/`` gives no release)."""
+    load_bank(ROOT)
 
 
 def _released() -> nbformat.NotebookNode:
