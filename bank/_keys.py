@@ -18,6 +18,11 @@ KEY_INVERSE = (f"{_T}:inverse_transform",)
 #: numpy's general inverse, for a question that asks for a rigid inverse without it (the tripwire catches the call;
 #: a name outside the package is never left out of the student side: ``Exercise.answer_keys`` keeps to the package)
 KEY_NUMPY_INV = ("numpy.linalg:inv",)
+#: numpy's general inverses and solvers: a question that asks for a rigid inverse (Rᵀ, -Rᵀp) or for motions undone
+#: forbids them all, since ``solve(T_a, T_b)`` or ``pinv(T)`` is ``inv`` by another name
+KEY_GENERAL_INVERSE = tuple(
+    f"numpy.linalg:{name}" for name in ("inv", "pinv", "solve", "lstsq", "tensorinv", "tensorsolve")
+)
 KEY_MDH = (f"{_DH}:mdh", f"{_DH}:DHChain.link_matrices", f"{_BANK}:mdh")
 KEY_LINK_PARAMETERS = (
     "puma_course_bank._formulas:link_parameters",
