@@ -138,7 +138,8 @@ def test_every_q1_and_q2_case_is_a_valid_craig_link_with_a_distance_a(seed):
     a > 0 and gives such a matrix."""
     for T_prev, T in EX.question("q1").cases(np.random.default_rng(seed)):
         T_prev, T = np.asarray(T_prev, dtype=float), np.asarray(T, dtype=float)
-        assert np.allclose(T_prev[3], [0.0, 0.0, 0.0, 1.0]) and np.allclose(T_prev[:3, :3].T @ T_prev[:3, :3], np.eye(3))
+        R = T_prev[:3, :3]
+        assert np.allclose(T_prev[3], [0.0, 0.0, 0.0, 1.0]) and np.allclose(R.T @ R, np.eye(3))
         assert _craig_link(np.linalg.inv(T_prev) @ T) > 0.05
     for alpha, a, theta, d in EX.question("q2").cases(np.random.default_rng(seed)):
         assert a > 0.05
