@@ -68,7 +68,10 @@ def _parameter_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     """``n`` pairs of world poses. Exactly one link has no twist (α = 0, where -α is the same twist, so an α with the
     wrong sign is right there and nowhere else; at α = π the same holds, but rounding decides whether the reference
     reads π or -π, and a sign flip or degrees could no longer be told exactly); the other twists are ±π/2 or random,
-    never near 0 or π. One d is positive and the others negative, so that |d| is right on one hidden case only."""
+    never near 0 or π. Every a is positive, away from 0: Craig's a_{i-1} is the distance between the two z axes
+    (lecture 02 §2), so two frames whose link matrix shows a < 0 are no valid pair, and an answer that reads a as
+    that distance is right. One d is positive and the others negative, so that |d| is right on one hidden case
+    only."""
     twists = [0.0] + [float(rng.choice([H, -H])) if k % 2 else _away_from_zero(rng, 0.3, 2.8) for k in range(1, n)]
     ds = [float(rng.uniform(0.1, 1.0))] + [-float(rng.uniform(0.1, 1.0)) for _ in range(1, n)]
     order = rng.permutation(n)
@@ -76,7 +79,7 @@ def _parameter_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
         _poses(
             _world_pose(rng),
             twists[k],
-            _away_from_zero(rng, 0.1, 1.0),
+            float(rng.uniform(0.1, 1.0)),
             _away_from_zero(rng, 0.2, np.pi - 0.2),
             ds[int(order[k])],
         )
@@ -86,11 +89,12 @@ def _parameter_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
 
 def _inverse_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     """``n`` links none of whose four numbers is near 0 or π: at α = 0 or θ = 0 the motions negated in their own
-    order are the translation -p, and at a zero number several mistakes give the same matrix."""
+    order are the translation -p, and at a zero number several mistakes give the same matrix. a is positive, a
+    distance as in q1 (Craig's a_{i-1} >= 0)."""
     return [
         (
             float(rng.choice([H, -H])) if k % 2 else _away_from_zero(rng, 0.3, 2.8),
-            _away_from_zero(rng, 0.1, 1.0),
+            float(rng.uniform(0.1, 1.0)),
             _away_from_zero(rng, 0.3, np.pi - 0.3),
             _away_from_zero(rng, 0.1, 1.0),
         )
@@ -170,10 +174,11 @@ EXERCISE = Exercise(
             "link_matrix_inverse",
             2,
             "the inverse link matrix ⁱT_(i-1)",
-            public=((H, 0.4, -1.0, 0.15), (-H, 0.3, 0.5, -0.2), (0.7, -0.25, 2.0, 0.35)),
+            public=((H, 0.4, -1.0, 0.15), (-H, 0.3, 0.5, -0.2), (0.7, 0.25, 2.0, 0.35)),
             hidden=lambda rng: _inverse_cases(rng, 5),
             reference=ref.mdh_inverse,
-            forbidden=keys.KEY_MDH_INVERSE,
+            # the four motions undone is the skill: numpy's general inverses and solvers would skip it
+            forbidden=(*keys.KEY_MDH_INVERSE, *keys.KEY_GENERAL_INVERSE),
             mistakes=(
                 matches("inverse", INVERSE_Q2, ref.mdh),
                 matches("order", NEGATED_Q2, ref.mdh_negated),

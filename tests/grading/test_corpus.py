@@ -44,5 +44,8 @@ def test_wrong_answers_fail_under_every_seed_and_are_named_fairly(answer):
         if answer.mistake is not None:
             named = [v.mistake for v in g.failing()]
             assert named and set(named) == {answer.mistake}, f"seed {seed}: named {named}, expected {answer.mistake}"
+        if answer.told is not None:
+            told = {v.reason for v in g.failing()}
+            assert told == {answer.told}, f"seed {seed}: told {told}, expected {answer.told!r}"
         wrongly = g.mistakes & set(answer.not_named)
         assert not wrongly, f"seed {seed}: named {wrongly}: {[v.reason for v in g.failing()][:2]}"

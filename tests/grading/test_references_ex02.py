@@ -118,3 +118,29 @@ def test_q1_s_mistaken_readings_read_the_matrices_their_messages_name():
         assert np.allclose(formulas.parameters_in_order(T_prev, T), formulas.link_parameters(conj))
         assert np.allclose(formulas.parameters_of_pose(T_prev, T), formulas.link_parameters(T))
         assert np.allclose(formulas.standard_reading_between(T_prev, T), formulas.standard_reading(L))
+
+
+def _craig_link(L: np.ndarray) -> float:
+    """a of L after checking that L is a link matrix of Craig's convention (lecture 02 §2-§3): a rigid pose whose
+    z_i is normal to x_{i-1} (x_{i-1} lies along the common normal) and whose origin is a x_{i-1} + d z_i."""
+    R, p = L[:3, :3], L[:3, 3]
+    assert np.allclose(L[3], [0.0, 0.0, 0.0, 1.0]) and np.allclose(R.T @ R, np.eye(3))
+    assert np.isclose(np.linalg.det(R), 1.0)
+    assert abs(R[0, 2]) < 1e-9  # z_i ⟂ x_{i-1}
+    assert np.allclose(np.cross(p - [p[0], 0.0, 0.0], R[:, 2]), 0.0)  # the rest of the step lies along z_i
+    return float(p[0])
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_every_q1_and_q2_case_is_a_valid_craig_link_with_a_distance_a(seed):
+    """Craig's a_{i-1} is the distance between the z axes (a >= 0): every case of q1 (public and hidden) is a pair of
+    frames whose link matrix, computed here with numpy's inverse, is a valid link with a > 0; every case of q2 has
+    a > 0 and gives such a matrix."""
+    for T_prev, T in EX.question("q1").cases(np.random.default_rng(seed)):
+        T_prev, T = np.asarray(T_prev, dtype=float), np.asarray(T, dtype=float)
+        R = T_prev[:3, :3]
+        assert np.allclose(T_prev[3], [0.0, 0.0, 0.0, 1.0]) and np.allclose(R.T @ R, np.eye(3))
+        assert _craig_link(np.linalg.inv(T_prev) @ T) > 0.05
+    for alpha, a, theta, d in EX.question("q2").cases(np.random.default_rng(seed)):
+        assert a > 0.05
+        assert np.isclose(_craig_link(link(alpha, a, theta, d)), a)

@@ -68,7 +68,7 @@ TITLES: dict[str, str] = {
     "only_at_zero": "a DH table that is right at q = 0 only",
     "joint_sign": "a joint axis pointing the wrong way",
     "joint_type": "revolute and prismatic joints mixed up",
-    "base_frame": "frame {0} is not the base frame the question fixes",
+    "base_frame": "the wrong base: poses measured from another frame than the one the question fixes",
     "tool_frame": "the last frame is not the tool frame the question fixes",
     "straight_start": "the straight start assumed instead of the given bent one",
     "branch": "the other elbow branch",
