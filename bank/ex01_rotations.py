@@ -238,7 +238,7 @@ EXERCISE = Exercise(
             ),
             hidden=_pose_pairs,
             reference=ref.relative_pose,
-            forbidden=(*keys.KEY_INVERSE, *keys.KEY_NUMPY_INV),
+            forbidden=(*keys.KEY_INVERSE, *keys.KEY_GENERAL_INVERSE),
             mistakes=(
                 matches(
                     "inverse",
