@@ -187,3 +187,38 @@ def test_the_self_check_hands_over_arguments_as_the_worker_does():
                 for g, w in zip(got, want, strict=True):
                     assert not isinstance(g, (list, tuple)), (ex.name, q.qid, g)
                     assert type(g) is type(w) and np.array_equal(np.asarray(g), np.asarray(w)), (ex.name, q.qid)
+
+
+PAIR_Q3 = """\
+import numpy as np
+
+def axis_angle_between(R_a, R_b):
+    K = R_b @ R_a.T
+    w = np.array([K[2, 1] - K[1, 2], K[0, 2] - K[2, 0], K[1, 0] - K[0, 1]])
+    theta = np.arctan2(np.linalg.norm(w) / 2, (np.trace(K) - 1) / 2)
+    return w / np.linalg.norm(w), theta  # a pair, as the lecture's tf.axis_angle returns
+"""
+
+
+def test_a_pair_returned_is_worded_alike_by_the_self_check_and_the_grader(tmp_path, capsys):
+    """ex01 q3 answered with a tuple (k, θ): both say the grader's words (the self-check said "did not return
+    numbers" and the grader "returned a `tuple`, which is not an array of numbers")."""
+    import nbformat
+
+    from puma_course.grading.run.runner import grade_notebook
+    from puma_course.grading.selfcheck import public_outcomes
+
+    words = "returned a `tuple`, which is not an array of numbers"
+    ns: dict = {}
+    exec(PAIR_Q3, ns)  # noqa: S102 - the test's own answer
+    q = EXERCISES["ex01_rotations"].question("q3")
+    reasons = [reason for _, reason in public_outcomes(q, ns["axis_angle_between"])]
+    assert reasons and all(reason == words for reason in reasons), reasons
+    check("ex01_rotations:q3", ns["axis_angle_between"])
+    assert words in capsys.readouterr().out
+
+    nb = tmp_path / "ex01_rotations.ipynb"
+    nbformat.write(nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(PAIR_Q3)]), nb)
+    graded = grade_notebook(nb, EXERCISES["ex01_rotations"], seed=3)
+    notes = " ".join(graded.question_notes["q3"])
+    assert graded.scores["q3"] == 0 and words in notes and "did not return numbers" not in notes, notes
