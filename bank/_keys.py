@@ -15,11 +15,10 @@ KEY_RODRIGUES = (f"{_T}:rodrigues", f"{_T}:trot")
 KEY_AXIS_ANGLE = (f"{_T}:axis_angle",)
 KEY_EULER = tuple(f"puma_course.euler:{name}" for name in ("zyz_from_rotation", "rpy_from_rotation"))
 KEY_INVERSE = (f"{_T}:inverse_transform",)
-#: numpy's general inverse, for a question that asks for a rigid inverse without it (the tripwire catches the call;
-#: a name outside the package is never left out of the student side: ``Exercise.answer_keys`` keeps to the package)
-KEY_NUMPY_INV = ("numpy.linalg:inv",)
 #: numpy's general inverses and solvers: a question that asks for a rigid inverse (Rᵀ, -Rᵀp) or for motions undone
-#: forbids them all, since ``solve(T_a, T_b)`` or ``pinv(T)`` is ``inv`` by another name
+#: forbids them all, since ``solve(T_a, T_b)`` or ``pinv(T)`` is ``inv`` by another name (the tripwire catches the
+#: call; a name outside the package is never left out of the student side: ``Exercise.answer_keys`` keeps to the
+#: package)
 KEY_GENERAL_INVERSE = tuple(
     f"numpy.linalg:{name}" for name in ("inv", "pinv", "solve", "lstsq", "tensorinv", "tensorsolve")
 )

@@ -139,8 +139,9 @@ EXERCISE = Exercise(
                 ),
                 matches(
                     "rotation_sense",
-                    'your matrix turns the wrong way (by -θ about the axis given): a turn about "-x" is a turn '
-                    'about x by -θ, and about "x" a positive turn carries y towards z (about z, x towards y)',
+                    'your matrix turns the wrong way (by -θ about the axis given): a turn about "-e" is a turn '
+                    "about e by -θ, and a positive turn about x carries y towards z (about y, z towards x; about z, "
+                    "x towards y)",
                     turned_other_way,
                 ),
                 degrees_in(1),
@@ -200,13 +201,14 @@ EXERCISE = Exercise(
             mistakes=(
                 matches(
                     "frame_coordinates",
-                    "this is the axis and angle of R_aᵀ R_b, whose axis is written in {A}'s own coordinates: "
-                    "the question asks for the axis in the base frame, of the turn K with R_b = K R_a",
+                    "this is the axis and angle of R_aᵀ R_b, whose axis is written in the tool's own coordinates "
+                    "(along the columns of R_a): the question asks for the axis in the base frame, of the turn K "
+                    "with R_b = K R_a",
                     turn_in_a_frame,
                 ),
                 matches(
                     "rotation_sense",
-                    "this turn carries {B} onto {A} (the axis points the other way): K carries R_a onto R_b, "
+                    "this turn carries R_b back onto R_a (the axis points the other way): K carries R_a onto R_b, "
                     "K = R_b R_aᵀ",
                     turn_b_onto_a,
                 ),
@@ -238,7 +240,7 @@ EXERCISE = Exercise(
             ),
             hidden=_pose_pairs,
             reference=ref.relative_pose,
-            forbidden=(*keys.KEY_INVERSE, *keys.KEY_NUMPY_INV),
+            forbidden=(*keys.KEY_INVERSE, *keys.KEY_GENERAL_INVERSE),
             mistakes=(
                 matches(
                     "inverse",

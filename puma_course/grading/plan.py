@@ -8,6 +8,7 @@ against them (:mod:`.events`).
 from __future__ import annotations
 
 import copy
+import json
 import zlib
 from dataclasses import dataclass
 from typing import Any
@@ -17,7 +18,7 @@ import numpy as np
 from .model import Exercise
 from .secret import Secret
 
-__all__ = ["Call", "Plan", "make_plan"]
+__all__ = ["Call", "Plan", "make_plan", "wire"]
 
 
 @dataclass(frozen=True)
@@ -52,6 +53,15 @@ def _jsonable(value: Any) -> Any:
     return value
 
 
+def wire(args: tuple[Any, ...] | list[Any]) -> list[Any]:
+    """A case's arguments as the worker reads them from its job line: JSON values (an array or tuple a list).
+
+    >>> wire(("-y", np.float64(0.4), np.eye(2), (1.0, 2.0)))
+    ['-y', 0.4, [[1.0, 0.0], [0.0, 1.0]], [1.0, 2.0]]
+    """
+    return list(json.loads(json.dumps([_jsonable(a) for a in args])))
+
+
 def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> Plan:
     """Every call to make (public + hidden cases) with its expected value, computed here.
 
@@ -79,5 +89,5 @@ def make_plan(exercise: Exercise, seed: int | Secret, student: str = "") -> Plan
             expected = q.reference(*copy.deepcopy(args))
             if not callable(expected):
                 expected = np.asarray(expected, dtype=float) if not isinstance(expected, dict) else expected
-            calls.append(Call(q.qid, case, q.function, [_jsonable(a) for a in args], expected, tuple(args)))
+            calls.append(Call(q.qid, case, q.function, wire(args), expected, tuple(args)))
     return calls

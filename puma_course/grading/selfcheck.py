@@ -15,13 +15,18 @@ from typing import Any
 import numpy as np
 
 from ..course import CourseNotFoundError
-from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, key_words, reconcile, score_question
+from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, reconcile, score_question
 from .output.report import format_question
-from .run.worker import NOT_ATTEMPTED, forbidden_codes, guarded_call
+from .plan import wire
+from .run.events import call_verdict
+from .run.worker import MAX_SIZE, as_numbers, describe, forbidden_codes, guarded_call, received, type_name
 
 __all__ = ["use_exercise", "check", "public_outcomes", "registry"]
 
 _current_exercise: list[str] = []
+
+#: No time limit here: the words for one are never needed.
+LIMITS = "10 s"
 
 
 def registry() -> Mapping[str, Exercise]:
@@ -84,8 +89,43 @@ def _short_repr(value: Any) -> str:
     return repr(value)
 
 
+def _event(answer: Callable[..., Any], args: tuple[Any, ...], codes: Any) -> dict[str, Any]:
+    """What the grader's worker reports for one call of ``answer`` (see :mod:`.run.worker`), made here.
+
+    The function receives the arguments as the worker hands them over (:func:`.plan.wire`, then
+    :func:`.run.worker.received`: every list an array of floats), and what it returns is turned into
+    numbers as the worker turns it (:func:`.run.worker.as_numbers`), so the grader's own wording
+    (:func:`.run.events.call_verdict`) applies to both.
+    """
+    event: dict[str, Any] = {"kind": "call"}
+    try:
+        value, hit = guarded_call(answer, received(wire(args), np.asarray, float), codes)
+    except NotImplementedError:
+        event["error"] = "not-attempted"
+    except Exception as exc:  # noqa: BLE001 - summarised for the student
+        event["error"] = "raised"
+        event["detail"], event["line"] = describe(exc)
+    else:
+        try:
+            arr = as_numbers(value, np.asarray, float)
+        except Exception as exc:  # noqa: BLE001 - a value that is not numbers
+            event["error"], event["detail"] = "not-numbers", type_name(value)
+            event["why"] = describe(exc)[0]
+        else:
+            if hit is not None:
+                event["error"], event["detail"] = "answer-key", hit
+            elif arr.size > MAX_SIZE:
+                event["error"], event["size"] = "too-many", int(arr.size)
+            else:
+                event["value"] = arr.tolist()
+    return event
+
+
 def public_outcomes(q: Question, answer: Callable[..., Any]) -> list[tuple[str, str | None]]:
-    """(label, reason or None when it passed) for each public case of ``q`` run on ``answer`` here."""
+    """(label, reason or None when it passed) for each public case of ``q`` run on ``answer`` here.
+
+    Each case is called and judged as the grader calls and judges it (:func:`_event`).
+    """
     codes = forbidden_codes(q.forbidden)
     outcomes: list[tuple[str, Verdict]] = []
     for i, args in enumerate(q.public, start=1):
@@ -93,23 +133,8 @@ def public_outcomes(q: Question, answer: Callable[..., Any]) -> list[tuple[str, 
         expected = q.reference(*copy.deepcopy(args))
         if not callable(expected) and not isinstance(expected, dict):
             expected = np.asarray(expected, dtype=float)
-        reason: str | None = None
-        verdict: Verdict | None = None
-        try:
-            got, hit = guarded_call(answer, copy.deepcopy(args), codes)
-        except NotImplementedError:
-            reason = f"{NOT_ATTEMPTED} (NotImplementedError)"
-        except Exception as exc:  # noqa: BLE001 - summarised for the student
-            reason = f"raised {type(exc).__name__}: {str(exc)[:200]}"
-        else:
-            if hit is not None:
-                reason = key_words(hit)
-            else:
-                try:
-                    verdict = q.judge(got, expected, tuple(args))
-                except Exception as exc:  # noqa: BLE001 - a bizarre value must not stop the check
-                    reason = f"could not compare the value ({type(exc).__name__})"
-        outcomes.append((label, verdict if verdict is not None else Verdict(reason)))
+        event = _event(answer, tuple(copy.deepcopy(args)), codes)
+        outcomes.append((label, call_verdict(q, event, expected, tuple(args), LIMITS)))
     verdicts = reconcile([v for _, v in outcomes])  # a mistake named only if every failing case is that mistake
     return [(label, v.reason) for (label, _), v in zip(outcomes, verdicts, strict=True)]
 

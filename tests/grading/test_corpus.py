@@ -3,8 +3,9 @@
 Every valid answer of ``tests/fixtures/answers`` earns full marks under each of the :data:`SEEDS`;
 every wrong one fails; a wrong *method* earns at most a third of its question (README: "a wrong
 method earns little"); a wrong answer tagged with a mistake has that mistake named on every failing
-case, and none names a mistake it was told not to. Graded in-process with ``Question.judge`` and
-the grader's :func:`~puma_course.grading.model.reconcile`, so the whole corpus takes seconds.
+case, and none names a mistake it was told not to; one that ``says`` something says it on every
+failing case. Graded in-process with ``Question.judge`` and the grader's
+:func:`~puma_course.grading.model.reconcile`, so the whole corpus takes seconds.
 """
 
 from __future__ import annotations
@@ -47,5 +48,8 @@ def test_wrong_answers_fail_under_every_seed_and_are_named_fairly(answer):
         if answer.told is not None:
             told = {v.reason for v in g.failing()}
             assert told == {answer.told}, f"seed {seed}: told {told}, expected {answer.told!r}"
+        if answer.says is not None:
+            unsaid = [v.reason for v in g.failing() if answer.says not in (v.reason or "")]
+            assert not unsaid, f"seed {seed}: expected {answer.says!r} on every failing case, got {unsaid[:2]}"
         wrongly = g.mistakes & set(answer.not_named)
         assert not wrongly, f"seed {seed}: named {wrongly}: {[v.reason for v in g.failing()][:2]}"

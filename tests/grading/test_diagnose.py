@@ -67,7 +67,11 @@ def test_a_turn_the_wrong_way_and_a_transposed_rotation():
     assert_named(judge("ex01_rotations", "q1", rot("y", 0.7), "-y", 0.7), "rotation_sense", "not about -y", "sign")
     assert_named(judge("ex01_rotations", "q1", rot("y", -0.7), "y", 0.7), "rotation_sense", "R_y's sines are swapped")
     assert_named(judge("ex01_rotations", "q1", rot("z", 0.7).T, "z", 0.7), "rotation_sense", "wrong way")
-    assert_named(judge("ex01_rotations", "q1", rot("x", 0.7), "-x", 0.7), "rotation_sense", '"-x"')
+    assert_named(judge("ex01_rotations", "q1", rot("x", 0.7), "-x", 0.7), "rotation_sense", '"-e" is a turn about e')
+    # the general message speaks of any signed axis: on a "-z" case it does not explain with "-x"
+    about_minus_z = judge("ex01_rotations", "q1", rot("z", 0.7), "-z", 0.7)
+    assert_named(about_minus_z, "rotation_sense", '"-e" is a turn about e by -θ', "about z, x towards y")
+    assert "-x" not in about_minus_z.reason and '"x"' not in about_minus_z.reason, about_minus_z.reason
     # ex01 q2: the turn carrying v onto u is the transpose of the one asked for
     u, v = np.array([0.0, 1.0, 1.0]), np.array([0.5, -1.0, -0.2])
     R = right("ex01_rotations", "q2", u, v)
@@ -151,8 +155,13 @@ def test_the_turn_between_orientations_read_in_the_wrong_frame_or_the_wrong_way(
     R_a = np.round(rot("x", np.pi / 2), 15)
     R_b = rot("z", np.pi / 2) @ R_a
     assert judge("ex01_rotations", "q3", [0, 0, 1, np.pi / 2], R_a, R_b).passed
-    assert_named(judge("ex01_rotations", "q3", [0, 1, 0, np.pi / 2], R_a, R_b), "frame_coordinates", "{A}'s own")
-    assert_named(judge("ex01_rotations", "q3", [0, 0, -1, np.pi / 2], R_a, R_b), "rotation_sense", "{B} onto {A}")
+    in_a = judge("ex01_rotations", "q3", [0, 1, 0, np.pi / 2], R_a, R_b)
+    assert_named(in_a, "frame_coordinates", "the tool's own coordinates", "columns of R_a")
+    back = judge("ex01_rotations", "q3", [0, 0, -1, np.pi / 2], R_a, R_b)
+    assert_named(back, "rotation_sense", "R_b back onto R_a")
+    # the question speaks of R_a and R_b only: its messages name no frame {A} or {B} it never defined
+    for verdict in (in_a, back):
+        assert "{A}" not in verdict.reason and "{B}" not in verdict.reason, verdict.reason
 
 
 def test_the_pose_of_a_in_b_and_the_product_in_the_other_order():

@@ -253,3 +253,19 @@ def test_the_figure_script_draws_every_picture(tmp_path):
     assert drawn == sorted(p.name for p in (ROOT / "figures").glob("*.png"))
     for path in tmp_path.glob("*.png"):
         assert path.stat().st_size > 20_000  # a drawing, not an empty canvas
+
+
+def test_ex01_q2_says_opposite_vectors_are_not_graded_and_no_case_asks_for_them():
+    """The text asked for a ValueError on opposite vectors that nothing checks: it now says no case asks for them
+    (there the axis is not defined) and that raising one is good practice, not graded; and no case does."""
+    import numpy as np
+
+    q = EXERCISES["ex01_rotations"].question("q2")
+    for seed in range(10):
+        for u, v in q.cases(np.random.default_rng(seed)):
+            u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+            assert u @ v / (np.linalg.norm(u) * np.linalg.norm(v)) > -1 + 1e-6, (seed, u, v)
+    cells = nbformat.read(ROOT / "exercises" / "ex01_rotations.ipynb", as_version=4).cells
+    text = " ".join(next(c.source for c in cells if c.source.startswith("## Question 2")).split())
+    assert "No case asks for opposite vectors" in text and "it is not graded" in text, text
+    assert "raise a `ValueError`" not in text, text

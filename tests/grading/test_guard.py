@@ -109,16 +109,27 @@ def test_the_tripwire_leaves_no_path_back_to_the_original():
         del sys.modules[mod.__name__]
 
 
-def test_numpy_linalg_inv_is_caught_where_a_question_asks_to_do_without_and_numpy_stays_whole(tmp_path):
-    """ex01 q4 forbids numpy.linalg.inv: a call to it fails the case, saying so; other numpy (solve, norm) is fine."""
+def test_numpy_general_inverses_are_caught_where_a_question_asks_to_do_without_and_numpy_stays_whole(tmp_path):
+    """ex01 q4 forbids numpy's general inverses and solvers (inv, pinv, solve, lstsq, ...): a call to one fails the
+    case, saying so; the rest of numpy (norm, cross, a transpose) is fine."""
     from puma_course.grading import EXERCISES
 
     ex = EXERCISES["ex01_rotations"]
-    assert "numpy.linalg:inv" in ex.question("q4").forbidden and "numpy.linalg:inv" not in ex.answer_keys
+    for spec in ("numpy.linalg:inv", "numpy.linalg:pinv", "numpy.linalg:solve", "numpy.linalg:lstsq"):
+        assert spec in ex.question("q4").forbidden and spec not in ex.answer_keys, spec
     answers = {
         "np.linalg.inv": "def relative_pose(T_a, T_b):\n    return np.linalg.inv(T_a) @ T_b",
         "imported inv": "from numpy.linalg import inv\ndef relative_pose(T_a, T_b):\n    return inv(T_a) @ T_b",
         "solve": "def relative_pose(T_a, T_b):\n    return np.linalg.solve(T_a, T_b)",
+        "pinv": "def relative_pose(T_a, T_b):\n    return np.linalg.pinv(T_a) @ T_b",
+        "norm and cross": (
+            "def relative_pose(T_a, T_b):\n"
+            "    R, p = T_a[:3, :3], T_a[:3, 3]\n"
+            "    assert np.isclose(np.linalg.norm(np.cross(R[:, 0], R[:, 1]) - R[:, 2]), 0.0)\n"
+            "    inv = np.eye(4)\n"
+            "    inv[:3, :3], inv[:3, 3] = R.T, -R.T @ p\n"
+            "    return inv @ T_b"
+        ),
     }
     scores = {}
     for name, code in answers.items():
@@ -132,9 +143,9 @@ def test_numpy_linalg_inv_is_caught_where_a_question_asks_to_do_without_and_nump
         r = grade_notebook(nb, ex)
         assert r.status == "ok", (name, r.notes)
         scores[name] = (r.scores["q4"], " ".join(r.question_notes["q4"]))
-    for name in ("np.linalg.inv", "imported inv"):
+    for name, called in (("np.linalg.inv", "inv"), ("imported inv", "inv"), ("solve", "solve"), ("pinv", "pinv")):
         assert (
             scores[name][0] == 0
-            and "called numpy.linalg.inv, which this question asks you to do without" in scores[name][1]
+            and f"called numpy.linalg.{called}, which this question asks you to do without" in scores[name][1]
         ), scores[name]
-    assert scores["solve"][0] == 2, scores["solve"]
+    assert scores["norm and cross"][0] == 2, scores["norm and cross"]

@@ -198,3 +198,34 @@ def test_feedback_files_never_collide_and_replace_a_planted_link(tmp_path):
     assert all(len(p.name) < 120 for p in files.values())
     assert target.read_text(encoding="utf-8") == "keep" and not (fb / "ann.md").is_symlink()
     assert sorted(p.name for p in fb.iterdir()) == sorted(p.name for p in files.values())
+
+
+def test_the_feedback_says_where_the_hidden_inputs_came_from_only_as_far_as_it_is_true(tmp_path):
+    """A key file: "drawn for you alone, from a key your instructor keeps". A public seed (``--seed N``): a seed
+    the class shares, and never the key file's words. Unit first, then through ``grade`` itself."""
+    import shutil
+    import warnings
+
+    from puma_course.grading import grade
+    from puma_course.grading.secret import from_seed, load_secret, one_off
+    from tests.support import ROOT
+
+    alone, shared = "drawn for you alone, from a key your instructor keeps", "a seed shared by the whole class"
+    secret = load_secret(tmp_path / "key")
+    assert alone in feedback_markdown("ann", [_result()], key=secret)
+    text = feedback_markdown("ann", [_result()], key=from_seed(3))
+    assert shared in text and "for you alone" not in text and "instructor keeps" not in text
+    text = feedback_markdown("ann", [_result()], key=one_off())
+    assert "for this grading run only" in text and "instructor keeps" not in text and shared not in text
+
+    subs = tmp_path / "subs"
+    (subs / "ann").mkdir(parents=True)
+    shutil.copy(ROOT / "exercises" / f"{EX.name}.ipynb", subs / "ann")
+    said = {}
+    for name, kw in (("seed", {"seed": 3}), ("secret", {"secret": tmp_path / "key"})):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            grade(subs, tmp_path / f"{name}.csv", feedback=tmp_path / name, exercises=[EX.name], sandbox="none", **kw)
+        said[name] = (tmp_path / name / "ann.md").read_text(encoding="utf-8")
+    assert shared in said["seed"] and "for you alone" not in said["seed"], said["seed"][-300:]
+    assert alone in said["secret"] and shared not in said["secret"], said["secret"][-300:]

@@ -125,3 +125,100 @@ def test_a_do_nothing_nearest_pose_fails_every_public_case():
     hidden = q.hidden(np.random.default_rng(5))
     same = [np.allclose(q.reference(T, s), T, atol=1e-9) for T, s in hidden]
     assert sum(same) == 1 and not any(np.allclose(q.reference(T, s), T, atol=1e-6) for T, s in q.public)
+
+
+ARRAY_METHODS_Q2 = """\
+import numpy as np
+
+def rotation_between(u, v):
+    c = u.dot(v) / (np.linalg.norm(u) * np.linalg.norm(v))  # u.dot: an array's method (a list has none)
+    w = np.cross(u, v)
+    s = np.linalg.norm(w) / (np.linalg.norm(u) * np.linalg.norm(v))
+    if s < 1e-12:  # the same direction: no turn
+        return np.eye(3)
+    k = w / np.linalg.norm(w)
+    K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + s * K + (1.0 - c) * K.dot(K)
+"""
+
+
+def test_an_answer_using_array_methods_passes_the_self_check_and_the_grader_alike(tmp_path, capsys):
+    """The self-check hands the function what the grader's worker hands it: every list an array of floats.
+
+    A right answer to ex01 q2 that calls ``u.dot(v)`` failed every public case in the notebook (the bank's
+    public inputs are lists) while ``puma-course check`` and ``grade`` gave it full marks.
+    """
+    import nbformat
+
+    from puma_course.grading.run.runner import grade_notebook
+
+    ns: dict = {}
+    exec(ARRAY_METHODS_Q2, ns)  # noqa: S102 - the test's own answer
+    check("ex01_rotations:q2", ns["rotation_between"])
+    out = capsys.readouterr().out
+    assert out.startswith("q2 rotation_between: 3 / 3 points - passed"), out
+
+    nb = tmp_path / "ex01_rotations.ipynb"
+    nbformat.write(nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(ARRAY_METHODS_Q2)]), nb)
+    graded = grade_notebook(nb, EXERCISES["ex01_rotations"], seed=3)
+    assert graded.status == "ok" and graded.scores["q2"] == 3, graded.question_notes["q2"]
+
+
+def test_the_self_check_hands_over_arguments_as_the_worker_does():
+    """For every public case of every question: what the student's function receives here is what the worker
+    passes (a JSON list becomes an array of floats; strings and numbers stay), never a list or a tuple."""
+    from puma_course.grading.plan import wire
+    from puma_course.grading.run.worker import received
+    from puma_course.grading.selfcheck import public_outcomes
+
+    for ex in EXERCISES.values():
+        for q in ex.questions:
+            seen: list = []
+
+            def probe(*args, _seen=seen):
+                _seen.append(args)
+                raise NotImplementedError
+
+            public_outcomes(q, probe)
+            assert len(seen) == len(q.public), (ex.name, q.qid)
+            for args, got in zip(q.public, seen, strict=True):
+                want = received(wire(args), np.asarray, float)
+                assert len(got) == len(want), (ex.name, q.qid)
+                for g, w in zip(got, want, strict=True):
+                    assert not isinstance(g, (list, tuple)), (ex.name, q.qid, g)
+                    assert type(g) is type(w) and np.array_equal(np.asarray(g), np.asarray(w)), (ex.name, q.qid)
+
+
+PAIR_Q3 = """\
+import numpy as np
+
+def axis_angle_between(R_a, R_b):
+    K = R_b @ R_a.T
+    w = np.array([K[2, 1] - K[1, 2], K[0, 2] - K[2, 0], K[1, 0] - K[0, 1]])
+    theta = np.arctan2(np.linalg.norm(w) / 2, (np.trace(K) - 1) / 2)
+    return w / np.linalg.norm(w), theta  # a pair, as the lecture's tf.axis_angle returns
+"""
+
+
+def test_a_pair_returned_is_worded_alike_by_the_self_check_and_the_grader(tmp_path, capsys):
+    """ex01 q3 answered with a tuple (k, θ): both say the grader's words (the self-check said "did not return
+    numbers" and the grader "returned a `tuple`, which is not an array of numbers")."""
+    import nbformat
+
+    from puma_course.grading.run.runner import grade_notebook
+    from puma_course.grading.selfcheck import public_outcomes
+
+    words = "returned a `tuple`, which is not an array of numbers"
+    ns: dict = {}
+    exec(PAIR_Q3, ns)  # noqa: S102 - the test's own answer
+    q = EXERCISES["ex01_rotations"].question("q3")
+    reasons = [reason for _, reason in public_outcomes(q, ns["axis_angle_between"])]
+    assert reasons and all(reason == words for reason in reasons), reasons
+    check("ex01_rotations:q3", ns["axis_angle_between"])
+    assert words in capsys.readouterr().out
+
+    nb = tmp_path / "ex01_rotations.ipynb"
+    nbformat.write(nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(PAIR_Q3)]), nb)
+    graded = grade_notebook(nb, EXERCISES["ex01_rotations"], seed=3)
+    notes = " ".join(graded.question_notes["q3"])
+    assert graded.scores["q3"] == 0 and words in notes and "did not return numbers" not in notes, notes

@@ -26,6 +26,7 @@ from pathlib import Path
 
 from ..model import EXERCISES, Exercise, NotebookResult, Question
 from ..run.worker import NOT_ATTEMPTED
+from ..secret import Secret
 from .text import csv_safe, file_stem, one_line, quoted
 
 __all__ = [
@@ -33,6 +34,7 @@ __all__ = [
     "format_question",
     "format_check_report",
     "feedback_markdown",
+    "hidden_inputs_note",
     "write_feedback",
     "feedback_paths",
     "write_csv",
@@ -119,14 +121,19 @@ def format_check_report(result: NotebookResult, exercise: Exercise) -> str:
 
 
 def feedback_markdown(
-    student: str, results: Sequence[NotebookResult], seed: int | None = None, unsandboxed: str | None = None
+    student: str,
+    results: Sequence[NotebookResult],
+    seed: int | None = None,
+    unsandboxed: str | None = None,
+    key: Secret | None = None,
 ) -> str:
     """One student's feedback file: per exercise the status, the score, one table row per question, hints.
 
     The student's folder name and every text of the student's that a note repeats are quoted as
     code, so the file shows them literally (no headings, links or table rows of the student's
     making). ``unsandboxed`` is the reason the notebooks ran without the operating-system sandbox,
-    if they did: the file then says so first.
+    if they did: the file then says so first. ``key`` is the grading run's key: the file ends by
+    saying where the hidden inputs came from (:func:`hidden_inputs_note`).
 
     >>> feedback_markdown("x\\n# Total: 56 / 56", [], seed=1).splitlines()[0]
     '# Feedback for `x\\\\x0a# Total: 56 / 56`'
@@ -167,12 +174,37 @@ def feedback_markdown(
         if failing:
             lines += ["", "Hints:"] + [f"- {q.qid}: {q.hint}" for q in failing]
         lines.append("")
-    lines += [
-        "",
-        "Your hidden inputs were drawn for you alone, from a key your instructor keeps; the run id names them, "
-        "so your instructor can repeat your grading exactly.",
-    ]
+    note = hidden_inputs_note(key)
+    lines += ["", note] if note else []
     return "\n".join(lines) + "\n"
+
+
+def hidden_inputs_note(key: Secret | None) -> str:
+    """The feedback's last line: where the hidden inputs came from, said only as far as it is true.
+
+    A key file (the instructor's secret): drawn for this student alone, and repeatable. A public seed
+    (``--seed N``): a seed the class shares, from which anyone can rebuild them. A one-off key: for
+    this run only. No key known: nothing.
+
+    >>> from puma_course.grading.secret import from_seed
+    >>> hidden_inputs_note(from_seed(3)).split(";")[0]
+    'Your hidden inputs came from a seed shared by the whole class, not from a secret key'
+    >>> hidden_inputs_note(None)
+    ''
+    """
+    if key is None:
+        return ""
+    if key.seed is not None:
+        return (
+            "Your hidden inputs came from a seed shared by the whole class, not from a secret key; anyone who knows "
+            "the seed can draw them again."
+        )
+    if key.source == "one-off":
+        return "Your hidden inputs were drawn for you alone, from a key made for this grading run only."
+    return (
+        "Your hidden inputs were drawn for you alone, from a key your instructor keeps; the run id names them, "
+        "so your instructor can repeat your grading exactly."
+    )
 
 
 def safe_name(name: str) -> str:
@@ -207,6 +239,7 @@ def write_feedback(
     seed: int | None = None,
     unsandboxed: str | None = None,
     reserved: Sequence[str] = (),
+    key: Secret | None = None,
 ) -> dict[str, Path]:
     """One Markdown file per student in ``folder`` (created); returns the file of each student.
 
@@ -220,7 +253,7 @@ def write_feedback(
         by_student.setdefault(r.student, []).append(r)
     files = feedback_paths(out, list(by_student), reserved)
     for student, mine in by_student.items():
-        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed))
+        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed, key))
     return files
 
 

@@ -21,7 +21,7 @@ from typing import Any
 from ..model import Exercise, NotebookResult
 from ..output.text import quoted
 from ..plan import Plan
-from . import child, events, limits
+from . import child, events, limits, worker
 from . import limits as limits_mod
 from .sandbox import Sandbox, child_env
 from .stage import Stage
@@ -54,7 +54,7 @@ def _job(
     job: dict[str, Any] = {
         "calls": [item.job() for item in plan],
         "timeout_cell": timeout_cell,
-        "max_size": 10_000,
+        "max_size": worker.MAX_SIZE,
         "forbidden": {q.qid: list(q.forbidden) for q in exercise.questions if q.forbidden},
         "path": paths,
         "limits": limits,

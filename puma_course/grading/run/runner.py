@@ -315,6 +315,6 @@ def _grade_class(
     )
     if feedback is not None:
         unsandboxed = box.reason if box.kind != "bwrap" else None
-        write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback))
+        write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback), key=key)
     write_summary(results, output, unmatched=collected.problems if collected is not None else ())
     return results

@@ -72,8 +72,16 @@ __all__ = [
     "forbidden_codes",
     "guarded_call",
     "limit_resources",
+    "received",
+    "MAX_SIZE",
+    "as_numbers",
+    "describe",
+    "type_name",
     "NOT_ATTEMPTED",
 ]
+
+#: The most numbers one answer may hold (the job's ``max_size``; the grader and the self-check set it).
+MAX_SIZE = 10_000
 
 #: The reason given for a case whose function still raises NotImplementedError (the released stub).
 NOT_ATTEMPTED = "not attempted yet"
@@ -194,6 +202,28 @@ def main() -> None:
     _run(job, sources, emit)
 
 
+def received(args: list[Any], asarray: Any, to_float: Any) -> list[Any]:
+    """A call's arguments (JSON values) as the student's function receives them: each list an array of floats.
+
+    The grader sends every array, list or tuple argument as a JSON list, so the student's function is
+    always handed a numpy array there, never a list; the self-check (:mod:`puma_course.grading.selfcheck`)
+    hands over the same. ``asarray`` and ``to_float`` are numpy's, taken before the notebook ran.
+    """
+    return [asarray(a, dtype=to_float) if isinstance(a, list) else a for a in args]
+
+
+def as_numbers(value: Any, asarray: Any, to_float: Any) -> Any:
+    """A returned value as the array of floats the grader judges (complex numbers refused).
+
+    Raises whatever numpy raises for a value that is not an array of numbers (a tuple of an array
+    and a number, say): the grader then reports it as ``not-numbers``.
+    """
+    raw = asarray(value)
+    if raw.dtype.kind == "c":
+        raise TypeError("complex numbers are not accepted")
+    return asarray(raw, dtype=to_float)
+
+
 def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
     """Execute the cells, then make the calls (see the module docstring)."""
     import numpy as np
@@ -205,7 +235,7 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
         raise CellTimeout()
 
     timeout = float(job.get("timeout_cell", 10.0))
-    max_size = int(job.get("max_size", 10_000))
+    max_size = int(job.get("max_size", MAX_SIZE))
     cpu_now = _cpu_clock(job.get("cpu_clock"))
     wall = float((job.get("cpu_clock") or {}).get("wall", timeout)) if cpu_now is not None else timeout
     monotonic = time.monotonic
@@ -265,7 +295,7 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
         elif not callable(fn):
             event["error"], event["detail"] = "not-callable", type_name(fn)
         else:
-            args = [asarray(a, dtype=to_float) if isinstance(a, list) else a for a in call["args"]]
+            args = received(call["args"], asarray, to_float)
             state["guard"], state["hit"] = forbidden.get(call["qid"], set()), None
             try:
                 value, hit = run_timed(guarded_call, fn, args, codes.get(call["qid"], {}))
@@ -280,15 +310,8 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
                 event["error"] = "raised"
                 event["detail"], event["line"] = described(exc)
             else:
-
-                def to_floats(value: Any) -> Any:
-                    raw = asarray(value)
-                    if raw.dtype.kind == "c":
-                        raise TypeError("complex numbers are not accepted")
-                    return asarray(raw, dtype=to_float)
-
                 try:
-                    arr = run_timed(to_floats, value)  # a hostile __array__ must not escape the time limit
+                    arr = run_timed(as_numbers, value, asarray, to_float)  # a hostile __array__: within the limit
                 except CellTimeout:
                     event["error"] = "convert-timeout"
                     slow.add(call["qid"])
