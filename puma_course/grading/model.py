@@ -37,6 +37,7 @@ __all__ = [
     "Verdict",
     "score_question",
     "key_words",
+    "of_course",
     "MAX_NOTES",
     "reconcile",
 ]
@@ -115,6 +116,11 @@ def reconcile(verdicts: Sequence[Verdict]) -> list[Verdict]:
     return out
 
 
+def of_course(spec: str) -> bool:
+    """Whether a ``forbidden`` ``"module:attr"`` is the course's code (package or bank), not another library's."""
+    return spec.startswith("puma_course")
+
+
 def key_words(spec: str) -> str:
     """What a case that called one of its question's ``forbidden`` names is told (``spec`` "" if unknown).
 
@@ -124,7 +130,7 @@ def key_words(spec: str) -> str:
     'called numpy.linalg.inv, which this question asks you to do without'
     """
     name = spec.replace(":", ".")
-    if spec and not spec.startswith("puma_course"):
+    if spec and not of_course(spec):
         return f"called {name}, which this question asks you to do without"
     return f"used the course package's answer ({name or 'a function of the course package'}) instead of your own code"
 
@@ -231,7 +237,7 @@ class Exercise:
     def answer_keys(self) -> tuple[str, ...]:
         """Every question's ``forbidden`` names of the course package, once each, sorted: what the student side leaves
         out unless allowed. A name of another library (``numpy.linalg:inv``) is only a tripwire: numpy stays whole."""
-        return tuple(sorted({spec for q in self.questions for spec in q.forbidden if spec.startswith("puma_course")}))
+        return tuple(sorted({spec for q in self.questions for spec in q.forbidden if of_course(spec)}))
 
     @property
     def max_score(self) -> float:
