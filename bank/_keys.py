@@ -18,9 +18,13 @@ KEY_INVERSE = (f"{_T}:inverse_transform",)
 #: numpy's general inverses and solvers: a question that asks for a rigid inverse (Rᵀ, -Rᵀp) or for motions undone
 #: forbids them all, since ``solve(T_a, T_b)`` or ``pinv(T)`` is ``inv`` by another name (the tripwire catches the
 #: call; a name outside the package is never left out of the student side: ``Exercise.answer_keys`` keeps to the
-#: package)
-KEY_GENERAL_INVERSE = tuple(
-    f"numpy.linalg:{name}" for name in ("inv", "pinv", "solve", "lstsq", "tensorinv", "tensorsolve")
+#: package). Their compiled routes too: the ufuncs of ``numpy.linalg._umath_linalg`` that invert or solve, and
+#: ``lapack_lite``'s least-squares solvers (its QR routines, like ``svd``, ``eig`` and ``det``, are decompositions,
+#: not watched: an inverse built from one by hand is judged by the question's words)
+KEY_GENERAL_INVERSE = (
+    *(f"numpy.linalg:{name}" for name in ("inv", "pinv", "solve", "lstsq", "tensorinv", "tensorsolve")),
+    *(f"numpy.linalg._umath_linalg:{name}" for name in ("inv", "solve", "solve1", "lstsq")),
+    *(f"numpy.linalg.lapack_lite:{name}" for name in ("dgelsd", "zgelsd")),
 )
 KEY_MDH = (f"{_DH}:mdh", f"{_DH}:DHChain.link_matrices", f"{_BANK}:mdh")
 KEY_LINK_PARAMETERS = (

@@ -203,7 +203,10 @@ def test_every_answer_key_names_a_function_of_the_package(name, qid):
     q = EXERCISES[name].question(qid)
     for spec in q.forbidden:
         assert resolve(spec) is not None, spec
-    assert len(forbidden_codes(q.forbidden)) == len(set(q.forbidden)), q.forbidden
+    # each name is watched: by its code (Python) or itself (C function) in the profile, or, a ufunc no profile sees,
+    # by the wrapper that replaces it wherever the student can reach it
+    ufuncs = {spec for spec in q.forbidden if type(resolve(spec)).__name__ == "ufunc"}
+    assert set(forbidden_codes(q.forbidden).values()) | ufuncs == set(q.forbidden), q.forbidden
 
 
 @pytest.mark.parametrize("name", sorted(EXERCISES))

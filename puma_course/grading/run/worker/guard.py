@@ -126,16 +126,55 @@ def resolve(spec: str) -> Any:
     return obj
 
 
+#: Bytecode shorter than this (a line or two) is too common to call a copy of anything.
+SHORTEST_COPY = 24
+
+
+def fingerprint(code: Any) -> tuple[Any, ...] | None:
+    """What a copy of a function's compiled code keeps however it was rebuilt: its bytecode and the names it uses.
+
+    Line numbers, file name, function name and text constants (docstring, messages) are left out
+    (``code.replace(co_firstlineno=...)``, ``types.FunctionType(code, ...)`` or the source pasted into a cell
+    give the same fingerprint); local names and number constants are kept, and code shorter than
+    :data:`SHORTEST_COPY` bytes has no fingerprint (None), so that code written independently does not match
+    by chance.
+
+    >>> def f(x, y):
+    ...     return 2.5 * x + y ** 3 - x * y
+    >>> fingerprint(f.__code__) == fingerprint(f.__code__.replace(co_firstlineno=99, co_name="g"))
+    True
+    >>> fingerprint((lambda x: 2 * x).__code__) is None
+    True
+    """
+    raw = code.co_code
+    if len(raw) < SHORTEST_COPY:
+        return None
+    nested = tuple(fingerprint(c) if type(c) is type(code) else c for c in code.co_consts if type(c) is not str)
+    shape = (code.co_argcount, code.co_posonlyargcount, code.co_kwonlyargcount)
+    return ("fingerprint", raw, code.co_names, code.co_varnames, shape, nested)
+
+
 def forbidden_codes(specs: Any) -> dict[Any, str]:
-    """Map the code objects of the named functions (unwrapped) to their names, for :func:`guarded_call`."""
-    codes = {}
+    """Map what :func:`guarded_call` watches for the named functions to their names.
+
+    A Python function (unwrapped) gives its code object and its :func:`fingerprint`; a function written in C
+    (``builtin_function_or_method``, e.g. ``numpy.linalg.lapack_lite.dgelsd``) gives itself. Anything else
+    (a numpy ufunc such as ``numpy.linalg._umath_linalg.inv``) no profile can see being called:
+    :func:`install_tripwires` replaces it where the student can reach it.
+    """
+    codes: dict[Any, str] = {}
     for spec in specs:
         obj = resolve(spec)
         while obj is not None and hasattr(obj, "__wrapped__"):
             obj = obj.__wrapped__
         code = getattr(obj, "__code__", None)
-        if code is not None:
+        if code is not None and type(code) is type(_watch_breakers.__code__):
             codes[code] = spec
+            mark = fingerprint(code)
+            if mark is not None:
+                codes[mark] = spec
+        elif type(obj) is type(len):
+            codes[obj] = spec
     return codes
 
 
@@ -160,6 +199,15 @@ def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | 
     breakers, breaker_codes = _BREAKERS, _BREAKER_CODES
     own = _getframe().f_code  # this function's own calls (putting the old profile back) are not the student's
 
+    seen: dict[int, tuple[Any, str | None]] = {}  # id(code) -> (code, what it is a copy of): each code read once
+
+    def copied(code: Any) -> str | None:
+        known = seen.get(id(code))
+        if known is None or known[0] is not code:
+            mark = fingerprint(code)
+            known = seen[id(code)] = (code, None if mark is None else codes.get(mark))
+        return known[1]
+
     def profile(frame: Any, event: str, arg: Any) -> None:
         if hit:
             return
@@ -169,13 +217,20 @@ def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | 
                 hit.append(codes[code])
             elif code in breaker_codes:
                 hit.append(TAMPER + breaker_codes[code])
+            else:
+                name = copied(code)
+                if name is not None:
+                    hit.append(name)
         elif event == "c_call" and frame.f_code is not own:
             try:
                 name = breakers.get(arg)
+                key = codes.get(arg)
             except TypeError:  # an unhashable callable
-                name = None
+                name = key = None
             if name is not None:
                 hit.append(TAMPER + name)
+            elif key is not None:
+                hit.append(key)
 
     old = _getprofile()
     _setprofile(profile)
@@ -189,14 +244,36 @@ def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | 
     return value, (hit[0] if hit else None)
 
 
+def _out_of_sight(original: Any) -> tuple[int, Any, Any]:
+    """(address, cast, py_object): enough for a wrapper to call ``original`` while holding no reference to it.
+
+    A numpy ufunc (``numpy.linalg._umath_linalg.inv``) is called without any event a profile could see, so
+    the wrapper that replaces it must be the only way to it: one reference is leaked on purpose (the ufunc
+    lives as long as the process) and the wrapper keeps its address, which only ``ctypes`` turns back into
+    the object. Neither the wrapper's closure nor ``gc`` (ufuncs are not tracked) leads to the original.
+    Without ``ctypes`` the wrapper keeps the object itself.
+    """
+    try:
+        import ctypes
+
+        ctypes.pythonapi.Py_IncRef(ctypes.py_object(original))
+        return id(original), ctypes.cast, ctypes.py_object
+    except (ImportError, AttributeError, OSError):  # pragma: no cover - a Python without ctypes
+        return 0, original, None
+
+
 def install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
-    """Wrap each allowed ``module:attr[.attr]`` so that calls during a guarded question are recorded in ``state``.
+    """Wrap each ``module:attr[.attr]`` so that calls during a guarded question are recorded in ``state``.
 
     The wrapper keeps the original's name and docstring but not a ``__wrapped__`` reference to it; the
-    profile of :func:`guarded_call` (by code object) is what catches a call that reaches the original anyway.
+    profile of :func:`guarded_call` (by code object or copy of it) is what catches a call that reaches a
+    Python original anyway. An original no profile sees (a numpy ufunc) is replaced wherever a module of its
+    package holds it (``np.linalg._umath_linalg.inv`` is ``sys.modules["numpy.linalg._umath_linalg"].inv``),
+    and its wrapper holds it out of sight (:func:`_out_of_sight`).
     """
     import importlib
 
+    function, builtin = type(install_tripwires), type(len)
     for spec in sorted(specs):
         modname, _, path = spec.partition(":")
         try:
@@ -207,27 +284,44 @@ def install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
             original = getattr(owner, parts[-1])
         except (ImportError, AttributeError):
             continue  # not in the student side: nothing to guard
+        hidden = type(original) not in (function, builtin) and callable(original)
 
-        def make(original: Any, spec: str) -> Any:
-            def wrapper(*args: Any, **kwargs: Any) -> Any:
-                if spec in state["guard"] and state["hit"] is None:
-                    state["hit"] = spec
-                return original(*args, **kwargs)
+        def make(original: Any, spec: str, hidden: bool) -> Any:
+            if hidden:
+                address, cast, py_object = _out_of_sight(original)
+                original = None
 
-            for attr in ("__module__", "__name__", "__qualname__", "__doc__"):
-                try:
-                    setattr(wrapper, attr, getattr(original, attr))
-                except (AttributeError, TypeError):
-                    pass
+                def wrapper(*args: Any, **kwargs: Any) -> Any:
+                    if spec in state["guard"] and state["hit"] is None:
+                        state["hit"] = spec
+                    target = cast(address, py_object).value if py_object is not None else cast
+                    return target(*args, **kwargs)
+
+            else:
+
+                def wrapper(*args: Any, **kwargs: Any) -> Any:
+                    if spec in state["guard"] and state["hit"] is None:
+                        state["hit"] = spec
+                    return original(*args, **kwargs)
+
             return wrapper
 
-        wrapped = make(original, spec)
+        wrapped = make(original, spec, hidden)
+        for attr in ("__module__", "__name__", "__qualname__", "__doc__"):
+            try:
+                setattr(wrapped, attr, getattr(original, attr))
+            except (AttributeError, TypeError):
+                pass
         setattr(owner, parts[-1], wrapped)
-        if len(parts) == 1:  # re-exports such as puma_course.rodrigues
+        if len(parts) == 1:  # re-exports (puma_course.rodrigues) and other holders in the package (numpy's modules)
+            top = modname.split(".")[0]
             for mod in list(sys.modules.values()):
                 name = getattr(mod, "__name__", "") or ""
-                if name.split(".")[0] == "puma_course" and mod.__dict__.get(parts[-1]) is original:
-                    setattr(mod, parts[-1], wrapped)
+                if name.split(".")[0] == top:
+                    for key, value in list(getattr(mod, "__dict__", {}).items()):
+                        if value is original:
+                            setattr(mod, key, wrapped)
+        del original
 
 
 def limit_resources(limits: dict[str, Any] | None = None) -> None:
