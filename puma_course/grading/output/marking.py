@@ -60,16 +60,57 @@ class Marking:
     problems: list[str] = field(default_factory=list)
 
 
+#: A formula in a student's Markdown: ``$$...$$`` or ``$...$`` (``\$`` is no delimiter), kept apart so it still renders.
+_MATH = re.compile(r"(\$\$(?:\\.|[^\\])+?\$\$|\$(?:\\.|[^\\$])+?\$)", re.DOTALL)
+#: What opens a link in text or a formula: URL schemes and ``www.`` (autolinked by GFM renderers), e-mail's ``@``,
+#: and the formula commands that make links or load code (MathJax's ``\href``, ``\url``, ``\require``, ...).
+_LINKY = re.compile(r"(?i)(?<=[a-z0-9+.-])(:)(?=//)|\b(www)(\.)|(@)|\\(href|url|require|class|cssId|style|html\w*)\b")
+#: A line that could underline the line above into a heading or draw a rule (after quote and list markers).
+_RULE = re.compile(r"^((?:[ \t]*(?:>|[*+-](?=[ \t])|\d{1,9}[.)](?=[ \t])))*[ \t]*)([-=*_][-=*_ \t]*)$")
+_IN_TEXT = {"&": "&amp;", "<": "&lt;", "[": "&#91;", "]": "&#93;", "#": "&#35;", "`": "&#96;"}
+_IN_MATH = {"<": r"\lt{}", ">": r"\gt{}", "[": r"\lbrack{}", "]": r"\rbrack{}", "#": r"\#"}
+
+
+def _unlink(match: re.Match[str]) -> str:
+    colon, www, dot, at, command = match.groups()
+    if command:
+        return rf"\mathrm{{{command}}}"
+    if www:
+        return f"{www}\u200b{dot}"
+    return f"{colon or at}\u200b"  # a zero-width space: the text reads the same, no renderer links it
+
+
 def _inert(text: str) -> str:
-    """A student's Markdown with its HTML shown as text and its images made into words (attachments are shown
-    below the answer; an image elsewhere would be fetched when the document is viewed)."""
-    text = re.sub(r"!\[([^\]]*)\]\(\s*attachment:[^)]*\)", r"*[attached image \1: shown below]*", text)
-    text = re.sub(r"!\[([^\]]*)\]\([^)]*\)", r"*[image \1: not shown]*", text)
-    return text.replace("&", "&amp;").replace("<", "&lt;")
+    r"""A student's Markdown made inert: shown as written, but with no link, image, HTML, heading or rule of its own.
+
+    Attached images become words (they are shown below the answer, from the marker's own copy). Outside formulas
+    every character that opens Markdown or HTML structure (``[ ] < # ` &``) becomes a character reference, so no
+    inline or reference-style image or link, ``[ref]: url`` definition, HTML tag (``<img>``, ``<a>``,
+    ``<iframe>``, ``srcset``), autolink ``<http://...>``, code span or heading can form, whatever the renderer;
+    inside ``$...$`` the same characters become their LaTeX names (``\lbrack``, ``\lt``), so formulas still
+    render. URLs and ``www.`` get a zero-width space after the scheme's colon so that no renderer links them
+    bare, MathJax's ``\href`` and kin are spelled out, and a line of ``-``, ``=``, ``*`` or ``_`` (a setext
+    heading's underline or a rule) is shown as characters.
+
+    >>> print(_inert("![x](http://e.org/a.png) [r]: www.e.org <img src=x> $[0, \\pi]$").replace("\u200b", "|"))
+    !&#91;x&#93;(http:|//e.org/a.png) &#91;r&#93;: www|.e.org &lt;img src=x> $\lbrack{}0, \pi\rbrack{}$
+    """
+    text = re.sub(r"!\[([^\]]*)\]\(\s*<?attachment:[^)]*\)", r"(attached image “\1”: shown below)", text)
+    parts = _MATH.split(text)
+    out = []
+    for k, part in enumerate(parts):
+        table = _IN_MATH if k % 2 else _IN_TEXT
+        out.append(_LINKY.sub(_unlink, "".join(table.get(ch, ch) for ch in part)))
+    lines = "".join(out).split("\n")
+    for i, line in enumerate(lines):
+        m = _RULE.match(line)
+        if m:
+            lines[i] = m.group(1) + "".join(f"&#{ord(ch)};" if ch in "-=*_" else ch for ch in m.group(2))
+    return "\n".join(lines)
 
 
 def _quote(text: str) -> list[str]:
-    return [f"> {line}" if line.strip() else ">" for line in text.splitlines()] or [">"]
+    return [f"> {line}" if line.strip() else ">" for line in re.split(r"\r\n|\r|\n", text)] or [">"]
 
 
 def marking_markdown(w: WrittenQuestion, answers: list[tuple[str, Answer, list[str]]]) -> str:
@@ -87,15 +128,35 @@ def marking_markdown(w: WrittenQuestion, answers: list[tuple[str, Answer, list[s
     )
     for shown, answer, images in answers:
         lines += ["", "---", "", f"### {quoted(shown, 120)}", ""]
-        lines += [f"*{note}*" for note in answer.notes] + ([""] if answer.notes else [])
+        lines += [f"*{_inert(note)}*" for note in answer.notes] + ([""] if answer.notes else [])
         if answer.empty:
             lines.append("*(no answer written)*")
             continue
         if answer.text.strip():
             lines += _quote(_inert(answer.text))
         for k, path in enumerate(images, start=1):
-            lines += ["", f"![{shown}, attachment {k}]({path})"]
+            lines += ["", f"![attachment {k} of the answer above]({path})"]
     return "\n".join(lines) + "\n"
+
+
+def _own_stem(shown: str, taken: set[str]) -> str:
+    """A file-name stem for ``shown`` that no other student of ``taken`` has (compared without case), then taken.
+
+    The stem is :func:`file_stem` of the name where that keeps it whole, else (``Ann Lee`` becomes ``Ann_Lee``,
+    a long name is cut) followed by a hash of the name, longer until it is free: ``Ann Lee`` and ``Ann_Lee``,
+    or ``ann`` and ``Ann`` on a file system that ignores case, never share an attachment.
+
+    >>> taken = set()
+    >>> _own_stem("Ann_Lee", taken), _own_stem("Ann Lee", taken), _own_stem("ann_lee", taken)[:8]
+    ('Ann_Lee', 'Ann_Lee-a36e143c', 'ann_lee-')
+    """
+    stem = file_stem(shown, 60)
+    digest = hashlib.sha256(shown.encode("utf-8", "surrogateescape")).hexdigest()
+    candidates = ([stem] if stem == shown else []) + [f"{stem}-{digest[:n]}" for n in (8, 16, 64)]
+    candidates.append(f"{stem}-{digest}-{len(taken)}")  # the same name twice (codes that collide): still apart
+    candidate = next(c for c in candidates if c.lower() not in taken)
+    taken.add(candidate.lower())
+    return candidate
 
 
 def template_rows(w: WrittenQuestion, students: list[str]) -> list[list[str]]:
@@ -166,11 +227,13 @@ def collect_written(
         handed = [(student, read_answers(files[name], name, release)) for student, files in people if name in files]
         for w in written_questions(name):
             shown_rows, listed = [], []
+            taken: set[str] = set()
             for student, answers in handed:
                 shown = student_code(student) if anonymise else student
+                stem = _own_stem(shown, taken)
                 images = []
                 for k, (_, ext, raw) in enumerate(answers[w.qid].images, start=1):
-                    path = folder / "attachments" / f"{name}-{w.qid}-{file_stem(shown, 60)}-{k}.{ext}"
+                    path = folder / "attachments" / f"{name}-{w.qid}-{stem}-{k}.{ext}"
                     path.write_bytes(raw)
                     images.append(f"attachments/{path.name}")
                 shown_rows.append((shown, answers[w.qid], images))
