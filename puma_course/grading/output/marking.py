@@ -9,8 +9,9 @@ same code, links never followed, nothing run) and writes into DIR, per written q
   went on writing in cells of their own below the answer cell is shown whole, with a note saying so
   (:func:`~puma_course.grading.written.read_answers`). It renders with its
   formulas in JupyterLab (``puma-course lab``, then open it with the Markdown preview), offline. A student's
-  text is shown inside a quote, with its HTML and links to images elsewhere made inert, so it cannot change
-  the document around it or fetch anything;
+  text is shown inside a quote, made inert (:func:`_inert`: no image, link, HTML or heading of its own), so it
+  cannot change the document around it, pose as another student's section or fetch anything; attachments
+  are saved under a file name no other student's shares;
 * ``<exercise>-<qid>-marks.csv``: the marks template, one row per student who handed the notebook in, the
   columns ``student, exercise, question, points, comment`` and one per rubric line (its name). Fill in either
   ``points`` or the rubric columns (then ``points`` is their sum), or both (they must agree), and a comment;
