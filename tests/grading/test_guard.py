@@ -211,6 +211,16 @@ ROUTES = {
         "    lapack_lite.dgelsd(4, 4, 4, a, 4, b, 4, s, -1.0, 0, work, 1000, iwork, 0)\n"
         "    return b.T"
     ),
+    "dgelsd found through gc, called by partial": (
+        "import gc, functools\n"
+        "from numpy.linalg import lapack_lite\n"
+        "C = [o for o in gc.get_objects() if type(o) is type(len) and o.__name__ == 'dgelsd'] or [lapack_lite.dgelsd]\n"
+        "def relative_pose(T_a, T_b):\n"
+        "    a, b = np.ascontiguousarray(T_a.T), np.ascontiguousarray(T_b.T)\n"
+        "    s, work, iwork = np.zeros(4), np.zeros(1000), np.zeros(1000, dtype=np.intc)\n"
+        "    functools.partial(C[0], 4, 4, 4, a, 4, b, 4, s, -1.0, 0, work, 1000, iwork, 0)()\n"
+        "    return b.T"
+    ),
     "inv rebuilt from its code object": (
         "import types\n" + IMPL + "f = impl('inv')\n"
         "INV = types.FunctionType(f.__code__.replace(co_firstlineno=7), f.__globals__, 'mine')\n"

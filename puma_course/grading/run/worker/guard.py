@@ -158,7 +158,7 @@ def forbidden_codes(specs: Any) -> dict[Any, str]:
     """Map what :func:`guarded_call` watches for the named functions to their names.
 
     A Python function (unwrapped) gives its code object and its :func:`fingerprint`; a function written in C
-    (``builtin_function_or_method``, e.g. ``numpy.linalg.lapack_lite.dgelsd``) gives itself. Anything else
+    (``builtin_function_or_method``, e.g. ``numpy.linalg.lapack_lite.dgelsd``) its module and name. Anything else
     (a numpy ufunc such as ``numpy.linalg._umath_linalg.inv``) no profile can see being called:
     :func:`install_tripwires` replaces it where the student can reach it.
     """
@@ -174,8 +174,13 @@ def forbidden_codes(specs: Any) -> dict[Any, str]:
             if mark is not None:
                 codes[mark] = spec
         elif type(obj) is type(len):
-            codes[obj] = spec
+            codes[_compiled(obj)] = spec  # by name: the function itself is kept out of sight
     return codes
+
+
+def _compiled(fn: Any) -> tuple[str, Any, Any]:
+    """How a function written in C is known to the profile: its module and name (read in C: no student code runs)."""
+    return ("compiled", getattr(fn, "__module__", None), getattr(fn, "__name__", None))
 
 
 def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | None]:
@@ -199,6 +204,8 @@ def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | 
     breakers, breaker_codes = _BREAKERS, _BREAKER_CODES
     own = _getframe().f_code  # this function's own calls (putting the old profile back) are not the student's
 
+    builtin = type(len)
+    by_name = any(type(key) is tuple and key[0] == "compiled" for key in codes)
     seen: dict[int, tuple[Any, str | None]] = {}  # id(code) -> (code, what it is a copy of): each code read once
 
     def copied(code: Any) -> str | None:
@@ -224,9 +231,9 @@ def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | 
         elif event == "c_call" and frame.f_code is not own:
             try:
                 name = breakers.get(arg)
-                key = codes.get(arg)
             except TypeError:  # an unhashable callable
-                name = key = None
+                name = None
+            key = codes.get(_compiled(arg)) if by_name and type(arg) is builtin else None
             if name is not None:
                 hit.append(TAMPER + name)
             elif key is not None:
@@ -247,16 +254,22 @@ def guarded_call(fn: Any, args: Any, codes: dict[Any, str]) -> tuple[Any, str | 
 def _out_of_sight(original: Any) -> tuple[int, Any, Any]:
     """(address, cast, py_object): enough for a wrapper to call ``original`` while holding no reference to it.
 
-    A numpy ufunc (``numpy.linalg._umath_linalg.inv``) is called without any event a profile could see, so
-    the wrapper that replaces it must be the only way to it: one reference is leaked on purpose (the ufunc
-    lives as long as the process) and the wrapper keeps its address, which only ``ctypes`` turns back into
-    the object. Neither the wrapper's closure nor ``gc`` (ufuncs are not tracked) leads to the original.
+    A numpy ufunc (``numpy.linalg._umath_linalg.inv``), or a C function called from other compiled code
+    (``functools.partial``, ``map``), is called without any event a profile could see, so the wrapper that
+    replaces it must be the only way to it: one reference is leaked on purpose (the original lives as long as
+    the process), the original is taken off ``gc``'s lists, and the wrapper keeps its address, which only
+    ``ctypes`` turns back into the object. Neither the wrapper's closure nor ``gc`` leads to the original.
     Without ``ctypes`` the wrapper keeps the object itself.
     """
     try:
         import ctypes
+        import gc
 
         ctypes.pythonapi.Py_IncRef(ctypes.py_object(original))
+        if gc.is_tracked(original):  # a function written in C is listed by gc.get_objects(): no longer
+            untrack = ctypes.pythonapi.PyObject_GC_UnTrack
+            untrack.argtypes, untrack.restype = [ctypes.py_object], None
+            untrack(original)
         return id(original), ctypes.cast, ctypes.py_object
     except (ImportError, AttributeError, OSError):  # pragma: no cover - a Python without ctypes
         return 0, original, None
@@ -273,7 +286,7 @@ def install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
     """
     import importlib
 
-    function, builtin = type(install_tripwires), type(len)
+    function = type(install_tripwires)
     for spec in sorted(specs):
         modname, _, path = spec.partition(":")
         try:
@@ -284,7 +297,7 @@ def install_tripwires(specs: set[str], state: dict[str, Any]) -> None:
             original = getattr(owner, parts[-1])
         except (ImportError, AttributeError):
             continue  # not in the student side: nothing to guard
-        hidden = type(original) not in (function, builtin) and callable(original)
+        hidden = type(original) is not function and callable(original) and not isinstance(original, type)
 
         def make(original: Any, spec: str, hidden: bool) -> Any:
             if hidden:
