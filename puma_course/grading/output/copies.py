@@ -27,6 +27,7 @@ from collections import Counter, defaultdict
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
+from itertools import combinations
 from pathlib import Path
 
 from ..model import EXERCISES, Exercise
@@ -142,7 +143,7 @@ def handed(data: bytes, exercise: Exercise, student: str, release: Release | Non
         parts[region].append(_source(cell))
     out.code = {r: "\n".join(p) for r, p in parts.items() if any(s.strip() for s in p)}
     try:
-        out.carried, out.hidden_code = payloads(nb)
+        out.carried, out.hidden_code = payloads(nb, given.sources if given is not None else frozenset())
     except (RecursionError, MemoryError, ValueError) as exc:  # noqa: B014 - a hostile notebook must not stop grading
         out.carried = [f"the notebook could not be scanned ({type(exc).__name__})"]
     return out
@@ -215,18 +216,27 @@ def _functions(path: Path, rel: str) -> list[tuple[str, str, str]]:
     return out
 
 
-@lru_cache(maxsize=4)
 def package_library(root: Path = PACKAGE) -> Library:
-    """Every function of the package's source (``puma_course/**/*.py``) as a reference."""
+    """Every function of the package's source (``puma_course/**/*.py``) as a reference (read once per process)."""
+    return _package_library(root.resolve())
+
+
+@lru_cache(maxsize=4)
+def _package_library(root: Path) -> Library:
     units = []
     for path in sorted(root.rglob("*.py")):
         units += _functions(path, path.relative_to(root.parent).as_posix())
     return Library(units)
 
 
-@lru_cache(maxsize=4)
 def lecture_library(folder: Path) -> Library:
-    """Every code cell of the lectures (``folder/*.ipynb``) as a reference, labelled ``notebooks/NAME.ipynb cell i``."""
+    """Every code cell of the lectures (``folder/*.ipynb``) as a reference, labelled ``notebooks/NAME.ipynb cell i``
+    (read once per process)."""
+    return _lecture_library(folder.resolve())
+
+
+@lru_cache(maxsize=4)
+def _lecture_library(folder: Path) -> Library:
     units = []
     for path in sorted(folder.glob("*.ipynb")):
         cells = json.loads(path.read_text(encoding="utf-8")).get("cells", [])
@@ -287,33 +297,55 @@ def _against(report: CopyReport, lib: Library, kind: str, a: Handed, region: str
 
 
 def _classmates(exercise: str, region: str, prints: Sequence[tuple[str, Print]]) -> list[Match]:
-    """The pairs of near-copies among the answers to one question."""
+    """The pairs of near-copies among the answers to one question.
+
+    Answers with the same fingerprints (the same code once renamed and reformatted) are compared once, as one
+    form; the forms sharing at least two fingerprints are then measured pair by pair."""
+    index: dict[tuple[tuple[int, tuple[int, ...]], ...], int] = {}
+    forms: list[Print] = []
+    members: list[list[str]] = []
+    for student, p in prints:
+        key = tuple(sorted((h, tuple(w)) for h, w in p.where.items()))
+        if key not in index:
+            index[key] = len(forms)
+            forms.append(p)
+            members.append([])
+        members[index[key]].append(student)
+    students: Counter[int] = Counter()
+    for i, p in enumerate(forms):
+        for h in p.where:
+            students[h] += len(members[i])
+    n = len(prints)
+    dropped = {h for h, c in students.items() if n >= COMMON_FROM and c > COMMON_SHARE * n}
+    kept = [_without(p, dropped) for p in forms]
     holders: dict[int, list[int]] = defaultdict(list)
-    for i, (_, p) in enumerate(prints):
+    for i, p in enumerate(kept):
         for h in p.where:
             holders[h].append(i)
-    too_common = len(prints) >= COMMON_FROM
     pair_counts: Counter[tuple[int, int]] = Counter()
     for who in holders.values():
-        if len(who) < 2 or too_common and len(who) > COMMON_SHARE * len(prints):
-            continue
         for x, i in enumerate(who):
             for j in who[x + 1 :]:
                 pair_counts[i, j] += 1
-    out = []
-    dropped = {h for h, who in holders.items() if too_common and len(who) > COMMON_SHARE * len(prints)}
-    for (i, j), n in pair_counts.items():
-        if n < 2:
+    out: list[Match] = []
+    for i, who in enumerate(members):
+        share, size = similarity(kept[i], kept[i])
+        if len(who) > 1 and size >= MIN_TOKENS and share >= LEVEL:
+            pairs = combinations(sorted(who), 2)
+            out += [Match(exercise, region, a, "classmate", b, share, size, share) for a, b in pairs]
+    for (i, j), count in pair_counts.items():
+        if count < 2:
             continue
-        (si, pi), (sj, pj) = prints[i], prints[j]
-        a = _without(pi, dropped)
-        b = _without(pj, dropped)
-        share_a, size_a = similarity(a, b)
-        share_b, size_b = similarity(b, a)
-        if max(size_a, size_b) >= MIN_TOKENS and max(share_a, share_b) >= LEVEL:
-            first, second = (si, sj) if si <= sj else (sj, si)
-            sa, sb, size = (share_a, share_b, size_a) if si <= sj else (share_b, share_a, size_b)
-            out.append(Match(exercise, region, first, "classmate", second, sa, size, sb))
+        share_i, size_i = similarity(kept[i], kept[j])
+        share_j, size_j = similarity(kept[j], kept[i])
+        if max(size_i, size_j) < MIN_TOKENS or max(share_i, share_j) < LEVEL:
+            continue
+        for a in members[i]:
+            for b in members[j]:
+                if a <= b:
+                    out.append(Match(exercise, region, a, "classmate", b, share_i, size_i, share_j))
+                else:
+                    out.append(Match(exercise, region, b, "classmate", a, share_j, size_j, share_i))
     return out
 
 

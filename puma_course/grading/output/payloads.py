@@ -75,12 +75,16 @@ def notebook_strings(nb: Any, where: str = "notebook") -> Iterator[tuple[str, st
         yield where, nb
 
 
-def _literals(code: str) -> list[str]:
-    """The string literals of ``code``, adjacent ones joined (``"ab" "cd"`` -> ``"abcd"``), f-strings left out."""
+def _scan(code: str) -> tuple[list[str], set[str]]:
+    """The string literals of ``code``, adjacent ones joined (``"ab" "cd"`` -> ``"abcd"``; f-strings left out),
+    and the names it uses."""
     out: list[str] = []
+    names: set[str] = set()
     joined = False
     try:
         for tok in tokenize.generate_tokens(io.StringIO(code).readline):
+            if tok.type == tokenize.NAME:
+                names.add(tok.string)
             if tok.type == tokenize.STRING:
                 try:
                     value = ast.literal_eval(tok.string)
@@ -97,7 +101,7 @@ def _literals(code: str) -> list[str]:
                 joined = False
     except (tokenize.TokenError, SyntaxError):
         pass
-    return out
+    return out, names
 
 
 def _unpack(data: bytes) -> tuple[str, list[tuple[str, str]]]:
@@ -172,9 +176,10 @@ def _blob(where: str, run: str) -> tuple[str, list[tuple[str, str]]] | None:
     return note, [(f"{where}, {name}", text) for name, text in sources]
 
 
-def payloads(nb: Any) -> tuple[list[str], list[tuple[str, str]]]:
+def payloads(nb: Any, given: frozenset[str] = frozenset()) -> tuple[list[str], list[tuple[str, str]]]:
     """What the notebook ``nb`` (its parsed JSON) carries: the notes, and the Python sources found in blobs
-    or long literals as (where, source).
+    or long literals as (where, source). Code cells whose text is in ``given`` (the exercise's own) are not
+    read again.
 
     >>> import base64, zlib
     >>> blob = base64.b64encode(zlib.compress(("def f(x):\\n    return x\\n" * 400).encode(), 0)).decode()
@@ -194,7 +199,10 @@ def payloads(nb: Any) -> tuple[list[str], list[tuple[str, str]]]:
         if not isinstance(cell, dict) or cell.get("cell_type") != "code":
             continue
         source = _text(cell.get("source", ""))
-        for text in _literals(source):
+        if source.strip() in given:
+            continue
+        literals, names = _scan(source)
+        for text in literals:
             squeezed = re.sub(r"\s+", "", text)
             if _B64.fullmatch(squeezed) or len(text) < MIN_LITERAL:
                 continue
@@ -202,8 +210,8 @@ def payloads(nb: Any) -> tuple[list[str], list[tuple[str, str]]]:
             notes.append(f"cell {i}: a string literal of {len(text)} characters")
             if _python(text):
                 found.append((f"cell {i}, a string literal", text))
-        calls = sorted(_names(source) & SUSPECT_CALLS)
-        literal_runs = [re.sub(r"\s+", "", t) for t in _literals(source)]
+        calls = sorted(names & SUSPECT_CALLS)
+        literal_runs = [re.sub(r"\s+", "", t) for t in literals]
         for run in (r for r in literal_runs if _B64.fullmatch(r)):
             seen.add(run)
             hit = _blob(f"cell {i} source", run)
@@ -222,14 +230,3 @@ def payloads(nb: Any) -> tuple[list[str], list[tuple[str, str]]]:
                 notes.append(hit[0])
                 found += hit[1]
     return notes, found
-
-
-def _names(code: str) -> set[str]:
-    out: set[str] = set()
-    try:
-        for tok in tokenize.generate_tokens(io.StringIO(code).readline):
-            if tok.type == tokenize.NAME:
-                out.add(tok.string)
-    except (tokenize.TokenError, SyntaxError):
-        pass
-    return out
