@@ -112,7 +112,9 @@ def build(students: int, seed: int) -> list[tuple[str, str, bytes]]:
     pool = pools()
     released = {n: json.loads((ROOT / "exercises" / f"{n}.ipynb").read_text(encoding="utf-8")) for n in EXERCISES}
     lecture = json.loads((ROOT / "notebooks" / "09_puma560_inverse_kinematics.ipynb").read_text(encoding="utf-8"))
-    lecture_cells = ["".join(c["source"]) for c in lecture["cells"] if c["cell_type"] == "code" and len(c["source"]) > 6]
+    lecture_cells = [
+        "".join(c["source"]) for c in lecture["cells"] if c["cell_type"] == "code" and len(c["source"]) > 6
+    ]
     puma = (ROOT / "puma_course" / "kinematics" / "puma560.py").read_text(encoding="utf-8")
     helpers = [ast.get_source_segment(puma, n) for n in ast.parse(puma).body if isinstance(n, ast.FunctionDef)]
     names = [f"s{i:03d}" for i in range(students)]

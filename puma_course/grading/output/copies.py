@@ -323,15 +323,15 @@ def _classmates(exercise: str, region: str, prints: Sequence[tuple[str, Print]])
         for h in p.where:
             holders[h].append(i)
     pair_counts: Counter[tuple[int, int]] = Counter()
-    for who in holders.values():
-        for x, i in enumerate(who):
-            for j in who[x + 1 :]:
+    for holding in holders.values():
+        for x, i in enumerate(holding):
+            for j in holding[x + 1 :]:
                 pair_counts[i, j] += 1
     out: list[Match] = []
-    for i, who in enumerate(members):
+    for i, same in enumerate(members):
         share, size = similarity(kept[i], kept[i])
-        if len(who) > 1 and size >= MIN_TOKENS and share >= LEVEL:
-            pairs = combinations(sorted(who), 2)
+        if len(same) > 1 and size >= MIN_TOKENS and share >= LEVEL:
+            pairs = combinations(sorted(same), 2)
             out += [Match(exercise, region, a, "classmate", b, share, size, share) for a, b in pairs]
     for (i, j), count in pair_counts.items():
         if count < 2:
