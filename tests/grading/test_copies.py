@@ -9,6 +9,7 @@ and grading with it gives the marks grading without it gives.
 from __future__ import annotations
 
 import base64
+import gzip
 import io
 import json
 import random
@@ -151,6 +152,24 @@ def test_a_notebook_that_is_not_json_gives_nothing_and_never_raises():
     assert h.code == {} and h.carried == []
     deep = json.dumps({"cells": [{"cell_type": "code", "source": "x", "metadata": {}, "outputs": [[[[[["a"]]]]]]}]})
     assert cp.handed(deep.encode(), EXERCISES[EXERCISE], "zed").code == {"setup": "x"}
+    odd = [{"cells": {"a": 1}}, {"cells": [{"cell_type": "code", "source": {"x": 1}, "metadata": []}]}, [1, 2], "x"]
+    for nb in odd:
+        assert isinstance(cp.handed(json.dumps(nb).encode(), EXERCISES[EXERCISE], "zed"), cp.Handed)
+    nested = "".join(f"v{i} = {i * 7919 % 10007}\n" for i in range(3000)).encode()
+    for _ in range(60):  # a gzip of a gzip of ... : read within its bounds, not run
+        nested = gzip.compress(nested)
+    cell = {"cell_type": "code", "source": f"B = '{base64.b64encode(nested).decode()}'", "metadata": {}}
+    h = cp.handed(json.dumps({"cells": [cell]}).encode(), EXERCISES[EXERCISE], "zed")
+    assert h.carried and "gzip stream" in h.carried[0], h.carried
+
+
+def test_without_copydetect_the_summary_says_so_and_grading_goes_on(monkeypatch, klass):
+    _, handed, _ = klass
+    real = cp.importlib.util.find_spec
+    monkeypatch.setattr(cp.importlib.util, "find_spec", lambda name: None if name == "copydetect" else real(name))
+    report = cp.find_copies(handed)
+    assert report.matches == [] and "copydetect is missing" in report.notes[0]
+    assert "copydetect is missing" in "\n".join(cp.copies_section(report))
 
 
 def test_grading_writes_the_report_in_the_summary_and_keeps_every_mark(klass, tmp_path, monkeypatch):
