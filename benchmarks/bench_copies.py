@@ -153,16 +153,20 @@ def main() -> None:
     notebooks = build(args.students, args.seed)
     size = sum(len(b) for _, _, b in notebooks)
     print(f"class: {args.students} students, {len(notebooks)} notebooks, {size / 1e6:.1f} MB")
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     copies.package_library()
     copies.lecture_library(ROOT / "notebooks")
-    t_refs = time.perf_counter() - t0
-    t1 = time.perf_counter()
+    t_refs, c_refs = time.perf_counter() - t0, time.process_time() - c0
+    t1, c1 = time.perf_counter(), time.process_time()
     kept = [copies.handed(data, EXERCISES[n], s) for s, n, data in notebooks]
-    t_read = time.perf_counter() - t1
-    t2 = time.perf_counter()
+    t_read, c_read = time.perf_counter() - t1, time.process_time() - c1
+    t2, c2 = time.perf_counter(), time.process_time()
     report = copies.find_copies(kept)
-    t_find = time.perf_counter() - t2
+    t_find, c_find = time.perf_counter() - t2, time.process_time() - c2
+    sources = defaultdict(int)
+    for m in report.matches:
+        if m.source != "classmate":
+            sources[m.source, m.exercise, m.region, m.other.split(":")[0]] += 1
     del kept, report
     tracemalloc.start()  # a second pass for the memory (tracemalloc slows Python down: not timed)
     kept = [copies.handed(data, EXERCISES[n], s) for s, n, data in notebooks]
@@ -173,14 +177,18 @@ def main() -> None:
     kinds = defaultdict(int)
     for m in report.matches:
         kinds[m.source] += 1
-    print(f"fingerprinting the package and the lectures (once per grading run): {t_refs:.2f} s")
-    print(f"reading the answers from the notebooks (handed, {len(notebooks)} calls): {t_read:.2f} s")
-    print(f"comparing (find_copies): {t_find:.2f} s")
-    print(f"total: {t_refs + t_read + t_find:.2f} s")
+    print(f"fingerprinting the package and the lectures (once per grading run): {t_refs:.2f} s (CPU {c_refs:.2f} s)")
+    print(
+        f"reading the answers from the notebooks (handed, {len(notebooks)} calls): {t_read:.2f} s (CPU {c_read:.2f} s)"
+    )
+    print(f"comparing (find_copies): {t_find:.2f} s (CPU {c_find:.2f} s)")
+    print(f"total: {t_refs + t_read + t_find:.2f} s (CPU {c_refs + c_read + c_find:.2f} s)")
     print(f"what the grader keeps of the notebooks while grading (handed): {kept_mb:.1f} MB")
     print(f"peak Python memory during the two steps: {peak / 1e6:.0f} MB")
     print(f"peak resident size of the process: {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
     print(f"matches: {dict(kinds)}; hidden-code notes: {len(report.carried)}")
+    for key, n in sorted(sources.items(), key=lambda kv: -kv[1])[:12]:
+        print(f"  {n:4d} x {' '.join(key)}")
     section = "\n".join(copies.copies_section(report))
     print(f"summary section: {len(section.splitlines())} lines, {len(section) / 1e3:.0f} kB")
 

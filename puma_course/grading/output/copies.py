@@ -7,14 +7,16 @@ and what the notebook carries hidden (:mod:`.payloads`). :func:`find_copies` the
 (:mod:`.fingerprints`: renaming and reformatting are invisible; runs that are also in the released exercise
 are left out, so blank notebooks never match) and compares it with
 
-* the package's own source, one function or method at a time (``puma_course/**/*.py``),
-* every code cell of the lectures (``notebooks/*.ipynb`` of the course folder),
+* the package's own source (``puma_course/**/*.py``), the functions of one module together,
+* the code cells of the lectures (``notebooks/*.ipynb`` of the course folder), one lecture's together,
 * every classmate's answer to the same question,
 
 and with the package, the Python source found inside a notebook's blobs. A match is listed when at least
-:data:`MIN_TOKENS` of the student's tokens lie in shared runs and they make at least :data:`LEVEL` of the
-answer (for a pair of classmates: of either answer). :func:`copies_section` writes the list for the class
-summary. The report is for the instructor to judge: it never changes a mark.
+:data:`MIN_TOKENS` of the student's tokens lie in runs shared with one function, cell or classmate's answer and the
+runs shared with its file make at least :data:`LEVEL` of the answer (for a pair of classmates: of either answer);
+runs common to more than :data:`IDIOM_FILES` files of the package or of the lectures are left out.
+:func:`copies_section` writes the list for the class summary. The report is for the instructor to judge: it never
+changes a mark.
 """
 
 from __future__ import annotations
@@ -45,6 +47,8 @@ MIN_TOKENS = 40
 LEVEL = 0.5
 #: A run found in more than half the answers to a question (of ten or more) is how the question is answered.
 COMMON_SHARE, COMMON_FROM = 0.5, 10
+#: A run found in more files than this (package modules, lectures) is an idiom of the course's code.
+IDIOM_FILES = 3
 #: At most this many matches are listed per question (the strongest).
 SHOWN = 30
 PACKAGE = Path(__file__).resolve().parents[2]
@@ -172,28 +176,34 @@ def _given(exercise: str) -> frozenset[int]:
 
 
 class Library:
-    """Reference codes, each labelled ``file: name`` (a function) or ``file cell i`` (a lecture cell), with an index
+    """Reference codes, each labelled ``file: name`` (a function) or ``file: cell i`` (a lecture cell), with an index
     from each fingerprint to the codes holding it. A match is judged against one file at a time: an answer pasting
-    several functions of one module, or several cells of one lecture, is measured against all of them."""
+    several functions of one module, or several cells of one lecture, is measured against all of them. A run found
+    in more than :data:`IDIOM_FILES` files is an idiom of the course's code (``np.array([[c, -s, 0], ...``), not a
+    sign of copying, and is left out."""
 
     def __init__(self, units: Iterable[tuple[str, str, str]]):
         self.labels: list[str] = []
         self.files: list[str] = []
-        self.index: dict[int, list[int]] = defaultdict(list)
+        self.hashes: list[set[int]] = []
+        index: dict[int, list[int]] = defaultdict(list)
         for file, label, code in units:
             p = fingerprint(tokens(code))
             for h in p.where:
-                self.index[h].append(len(self.labels))
+                index[h].append(len(self.labels))
             self.labels.append(label)
             self.files.append(file)
+            self.hashes.append(p.hashes)
+        self.index = {h: us for h, us in index.items() if len({self.files[u] for u in us}) <= IDIOM_FILES}
 
-    def match(self, p: Print, files: int = 3, top: int = 3) -> tuple[float, int, str]:
-        """The share of ``p`` in runs shared with the one file that shares most, its size in tokens, and that file
-        with its ``top`` codes holding most of them (of the ``files`` files holding most fingerprints of ``p``)."""
+    def match(self, p: Print, files: int = 3, top: int = 3) -> tuple[float, int, str, int]:
+        """The share of ``p`` in runs shared with the one file that shares most, its size in tokens, that file with
+        its ``top`` codes holding most of them (of the ``files`` files holding most fingerprints of ``p``), and the
+        tokens shared with the one code of them that shares most."""
         shared = p.hashes & self.index.keys()
         cover = p.coverage
         if not shared or not cover:
-            return 0.0, 0, ""
+            return 0.0, 0, "", 0
         by_file: dict[str, set[int]] = defaultdict(set)
         for h in shared:
             for u in self.index[h]:
@@ -202,7 +212,8 @@ class Library:
         size, best = max((shared_tokens(p, by_file[f]), f) for f in candidates)
         counts = Counter(u for h in by_file[best] for u in self.index[h] if self.files[u] == best)
         named = sorted(counts, key=lambda u: (-counts[u], self.labels[u]))[:top]
-        return size / cover, size, f"{best}: " + ", ".join(self.labels[u] for u in named)
+        one = max(shared_tokens(p, by_file[best] & self.hashes[u]) for u in named)
+        return size / cover, size, f"{best}: " + ", ".join(self.labels[u] for u in named), one
 
 
 def _functions(path: Path, rel: str) -> list[tuple[str, str, str]]:
@@ -296,8 +307,8 @@ def _find(answers: list[Handed], course: Path | None, package: Path, lectures: b
 
 
 def _against(report: CopyReport, lib: Library, kind: str, a: Handed, region: str, p: Print) -> bool:
-    share, size, label = lib.match(p)
-    if size >= MIN_TOKENS and share >= LEVEL:
+    share, size, label, one = lib.match(p)
+    if one >= MIN_TOKENS and share >= LEVEL:
         report.matches.append(Match(a.exercise, region, a.student, kind, label, share, size))
         return True
     return False
