@@ -20,6 +20,7 @@ from typing import Any
 
 from ..judge.diagnose import TITLES
 from ..model import EXERCISES, NotebookResult, Question
+from .copies import CopyReport, copies_section
 from .report import replace_atomically, verdict
 from .text import one_line
 
@@ -103,8 +104,11 @@ def _mistakes_cell(s: QuestionSummary) -> str:
     return "; ".join(f"{TITLES.get(key, key)} (`{key}`): {n}" for key, n in s.common()) or "–"
 
 
-def class_summary(results: Sequence[NotebookResult], unmatched: Sequence[str] = ()) -> str:
-    """The class summary as Markdown: one table per exercise, one row per question.
+def class_summary(
+    results: Sequence[NotebookResult], unmatched: Sequence[str] = (), copies: CopyReport | None = None
+) -> str:
+    """The class summary as Markdown: one table per exercise, one row per question; then the copy report
+    (:func:`~.copies.copies_section`), when one was made.
 
     >>> from puma_course.grading import EXERCISES
     >>> r = NotebookResult.blank("ann", EXERCISES["ex01_rotations"])
@@ -145,6 +149,7 @@ def class_summary(results: Sequence[NotebookResult], unmatched: Sequence[str] = 
         lines += [f"## Files not graded ({len(unmatched)})", ""]
         lines += [f"- {one_line(u, 400)}" for u in unmatched]
         lines.append("")
+    lines += copies_section(copies)
     return "\n".join(lines) + "\n"
 
 
@@ -159,7 +164,11 @@ def summary_path(output: str | os.PathLike[str]) -> Path:
 
 
 def write_summary(
-    results: Sequence[NotebookResult], output: str | os.PathLike[str], lines: int = 8, unmatched: Sequence[str] = ()
+    results: Sequence[NotebookResult],
+    output: str | os.PathLike[str],
+    lines: int = 8,
+    unmatched: Sequence[str] = (),
+    copies: CopyReport | None = None,
 ) -> tuple[Path, str]:
     """Write :func:`class_summary` next to the grades file ``output``; return its path and a short text.
 
@@ -167,10 +176,12 @@ def write_summary(
     each with its commonest diagnosed mistake. ``unmatched`` lists the files of a platform's download
     that were not graded (see :mod:`.collect`); the summary ends with them. The file is written like the
     CSV and the feedback (a fresh temporary name moved into place), and :func:`~puma_course.grading.grade`
-    keeps its name free of any student's feedback file.
+    keeps its name free of any student's feedback file. ``copies`` (:func:`~.copies.find_copies`) adds the
+    copy report: near-copies of the package, a lecture or a classmate, and hidden code; it changes no mark.
     """
     path = summary_path(output)
-    replace_atomically(path, class_summary(results, unmatched))  # whole or not at all; a planted link is replaced
+    text = class_summary(results, unmatched, copies)
+    replace_atomically(path, text)  # whole or not at all; a planted link is replaced
     return path, summary_note(results, output, lines)
 
 

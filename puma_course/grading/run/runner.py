@@ -24,6 +24,7 @@ from pathlib import Path
 
 from ...course import is_course
 from ..model import EXERCISES, Exercise, NotebookResult
+from ..output.copies import Handed, find_copies, handed
 from ..output.report import write_csv, write_feedback
 from ..output.summary import write_summary
 from ..plan import Plan, make_plan
@@ -229,6 +230,7 @@ def _grade_class(
     with Stage([EXERCISES[n] for n in names], stage_in) as stage, _undumpable(box.kind != "bwrap"):
         hidden.append(stage.root)
         pre: dict[str, StudentFiles] = {}
+        kept: list[Handed] = []  # each notebook's own code, for the copy report (read from the bytes graded)
         if box.kind != "bwrap":
             # no sandbox: read what fits in memory before any student code runs, so that a student's
             # process cannot alter what is graded for a classmate it runs before
@@ -279,6 +281,8 @@ def _grade_class(
                 except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
                     why = f"{type(exc).__name__}: {exc}"[:300]
                     res = _blank(s.name, ex, "grader-error", f"the grader failed on this notebook: {why}")
+                if nb.data is not None:
+                    kept.append(handed(nb.data, ex, s.name))
                 nb.data = None
                 res.run_id = key.run_id(s.name, name)
                 out.append(res)
@@ -316,5 +320,7 @@ def _grade_class(
     if feedback is not None:
         unsandboxed = box.reason if box.kind != "bwrap" else None
         write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback), key=key)
-    write_summary(results, output, unmatched=collected.problems if collected is not None else ())
+    write_summary(
+        results, output, unmatched=collected.problems if collected is not None else (), copies=find_copies(kept)
+    )
     return results
