@@ -16,7 +16,11 @@ and (V² + d5² - (a2 - a3)²) / (2 d5 V): at most two arcs, symmetric about γ.
 from __future__ import annotations
 
 import math
+from typing import Any
 
+import numpy as np
+
+from .._validate import as_array, as_length
 from ..transforms import wrap_angle
 
 __all__ = ["wrist_arcs", "nearest_on_arcs", "wrist_range"]
@@ -24,11 +28,20 @@ __all__ = ["wrist_arcs", "nearest_on_arcs", "wrist_range"]
 _TAU = 2.0 * math.pi
 
 
+def _checked(rho: Any, pz: Any, L: Any) -> tuple[float, float, tuple[float, ...]]:
+    """The tool point's plane coordinates and the five lengths, checked (``ValueError`` naming the argument)."""
+    x = as_length(rho, "rho", what="a single number (the tool point along the arm plane, mm)")
+    z = as_length(pz, "pz", what="a single number (the tool point's height, mm)")
+    arr = as_array(L, "L", (5,), what="the five lengths (d1, a1, a2, a3, d5) in mm")
+    lengths = tuple(as_length(float(v), f"L[{i}]", positive=i in (2, 3)) for i, v in enumerate(arr))
+    return x, z, lengths
+
+
 def _joints(a1: float, d1: float) -> tuple[tuple[float, float], ...]:
     return ((a1, d1), (-a1, d1))
 
 
-def wrist_range(rho: float, pz: float, L: tuple[float, ...]) -> list[tuple[float, float]]:
+def wrist_range(rho: Any, pz: Any, L: Any) -> list[tuple[float, float]]:
     """The least and greatest distance from joint 2 (front, then back) of the circle of wrist points.
 
     ``rho``, ``pz``: the tool point in the arm plane; ``L`` = (d1, a1, a2, a3, d5). The arm reaches some
@@ -37,7 +50,7 @@ def wrist_range(rho: float, pz: float, L: tuple[float, ...]) -> list[tuple[float
     >>> [round(x, 3) for x in wrist_range(400.0, 300.0, (360.0, 135.0, 250.0, 215.0, 100.0))[0]]  # V = |(265, -60)|
     [171.708, 371.708]
     """
-    d1, a1, _, _, d5 = L
+    rho, pz, (d1, a1, _, _, d5) = _checked(rho, pz, L)
     out = []
     for jr, jz in _joints(a1, d1):
         V = math.hypot(rho - jr, pz - jz)
@@ -45,7 +58,7 @@ def wrist_range(rho: float, pz: float, L: tuple[float, ...]) -> list[tuple[float
     return out
 
 
-def wrist_arcs(rho: float, pz: float, L: tuple[float, ...]) -> list[tuple[float, float]]:
+def wrist_arcs(rho: Any, pz: Any, L: Any) -> list[tuple[float, float]]:
     """The arcs [lo, hi] of approach angles β (radians, lo <= hi, lo in (-π, π]) whose wrist point is in reach.
 
     β is measured in the arm plane from e_r (away from the base, through the tool point) towards e_z (up),
@@ -57,7 +70,7 @@ def wrist_arcs(rho: float, pz: float, L: tuple[float, ...]) -> list[tuple[float,
     >>> len(arcs), any(lo <= -math.pi / 2 <= hi for lo, hi in arcs)  # every direction, straight down among them
     (1, True)
     """
-    d1, a1, a2, a3, d5 = L
+    rho, pz, (d1, a1, a2, a3, d5) = _checked(rho, pz, L)
     rmin2, rmax2 = (a2 - a3) ** 2, (a2 + a3) ** 2
     arcs: list[tuple[float, float]] = []
     for jr, jz in _joints(a1, d1):
@@ -100,16 +113,23 @@ def _past(a: float, lo: float) -> float:
     return d + _TAU if d < 0.0 else d
 
 
-def nearest_on_arcs(beta0: float, arcs: list[tuple[float, float]]) -> tuple[float, float, float] | None:
+def nearest_on_arcs(beta0: Any, arcs: Any) -> tuple[float, float, float] | None:
     """The angle on the arcs nearest ``beta0`` round the circle, in (-π, π], with its arc (lo, hi); None when
     there are no arcs.
 
     >>> nearest_on_arcs(0.0, [(0.5, 1.0), (-2.0, -0.6)])
     (0.5, 0.5, 1.0)
     """
+    beta0 = float(as_array(beta0, "beta0", (), what="a single angle (radians)"))
+    if isinstance(arcs, (list, tuple)) and len(arcs) == 0:
+        arcs = np.zeros((0, 2))
+    A = as_array(arcs, "arcs", (None, 2), what="arcs (lo, hi) of angles in radians, shape (n, 2)")
+    for lo, hi in A.tolist():
+        if not (lo <= hi <= lo + _TAU and abs(lo) <= 4.0 * math.pi):
+            raise ValueError(f"arcs: expected arcs (lo, hi) with lo <= hi <= lo + 2π (radians), got ({lo}, {hi})")
     best: tuple[float, float, float] | None = None
     best_gap = math.inf
-    for lo, hi in arcs:
+    for lo, hi in A.tolist():
         if _past(beta0, lo) <= hi - lo:  # β0 on the arc
             return wrap_angle(float(beta0)), lo, hi
         for end in (lo, hi):
