@@ -158,7 +158,7 @@ EXERCISE = Exercise(
             "q4",
             "quintic_motion",
             2,
-            "a joint motion timed by a quintic, the short way round",
+            "the straight joint-space line, the short way round, timed by the quintic",
             public=(
                 (np.zeros(6), np.array([0.5, -0.5, 1.0, 0.0, 0.0, 0.2]), 2.0, np.linspace(0.0, 2.0, 5)),
                 (Q_A, Q_B, 4.0, np.array([0.0, 1.0, 2.0, 3.0, 4.0])),

@@ -346,10 +346,14 @@ def as_count(value: Any, name: str, *, minimum: int = 0, maximum: int = MAX_COUN
         if not x.is_integer():
             raise ValueError(f"{name}: expected a whole number, got {x:g}")
         n = int(x)
+    # a huge integer has no float (10**400) and no decimal text past 4,300 digits: say its size (issue 31)
+    huge = n.bit_length() >= 1000
+    size = f"about {'-' if n < 0 else ''}10^{int(n.bit_length() * 0.30103)}"
     if n < minimum:
-        raise ValueError(f"{name}: expected a whole number >= {minimum}, got {n}")
+        raise ValueError(f"{name}: expected a whole number >= {minimum}, got {size if huge else n}")
     if n > maximum:
-        raise ValueError(f"{name}: expected a whole number from {minimum} to {maximum:g}, got {n:g}")
+        shown = size if huge else f"{n:g}"
+        raise ValueError(f"{name}: expected a whole number from {minimum} to {maximum:g}, got {shown}")
     return n
 
 

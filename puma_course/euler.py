@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from ._validate import as_rotation, check_broadcast
-from .transforms import _angle, _rot, rotx, roty, rotz, wrap_angle  # noqa: F401  (the examples below use them)
+from .transforms import _angle, rotx, roty, rotz, wrap_angle  # noqa: F401  (the examples below use them)
 
 __all__ = ["rotation_from_zyz", "zyz_from_rotation", "rotation_from_rpy", "rpy_from_rotation", "EULER_SINGULAR_TOL"]
 
@@ -30,9 +30,24 @@ def rotation_from_zyz(phi: Any, theta: Any, psi: Any) -> np.ndarray:
     >>> np.allclose(rotation_from_zyz(0.1, 0.2, 0.3), rotz(0.1) @ roty(0.2) @ rotz(0.3))
     True
     """
-    Rs = _rot(phi, 2, "phi"), _rot(theta, 1, "theta"), _rot(psi, 2, "psi")
-    check_broadcast(**{n: R.shape[:-2] for n, R in zip(("phi", "theta", "psi"), Rs, strict=True)})
-    return Rs[0] @ Rs[1] @ Rs[2]
+    a, b, c = _angle(phi, "phi"), _angle(theta, "theta"), _angle(psi, "psi")
+    check_broadcast(phi=a.shape, theta=b.shape, psi=c.shape)
+    (ca, sa), (cb, sb), (cc, sc) = ((np.cos(x), np.sin(x)) for x in np.broadcast_arrays(a, b, c))
+    # entry by entry, no matrix product: a BLAS kernel would decide the last bit (README)
+    return _matrix(
+        (ca * cb * cc - sa * sc, -(ca * cb * sc) - sa * cc, ca * sb),
+        (sa * cb * cc + ca * sc, -(sa * cb * sc) + ca * cc, sa * sb),
+        (-(sb * cc), sb * sc, cb),
+    )
+
+
+def _matrix(*rows: tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
+    """The (..., 3, 3) array of nine entries of one shape, given row by row."""
+    R = np.empty(rows[0][0].shape + (3, 3))
+    for i, row in enumerate(rows):
+        for j, entry in enumerate(row):
+            R[..., i, j] = entry
+    return R + 0.0  # no -0.0
 
 
 #: sin θ below this counts as the gimbal-lock case of an Euler-angle set (then only φ ± ψ is defined).
@@ -83,9 +98,15 @@ def rotation_from_rpy(roll: Any, pitch: Any, yaw: Any) -> np.ndarray:
     >>> np.allclose(rotation_from_rpy(0.1, 0.2, 0.3), rotz(0.3) @ roty(0.2) @ rotx(0.1))
     True
     """
-    Rs = _rot(yaw, 2, "yaw"), _rot(pitch, 1, "pitch"), _rot(roll, 0, "roll")
-    check_broadcast(**{n: R.shape[:-2] for n, R in zip(("yaw", "pitch", "roll"), Rs, strict=True)})
-    return Rs[0] @ Rs[1] @ Rs[2]
+    y, p, r = _angle(yaw, "yaw"), _angle(pitch, "pitch"), _angle(roll, "roll")
+    check_broadcast(yaw=y.shape, pitch=p.shape, roll=r.shape)
+    (cy, sy), (cp, sp), (cr, sr) = ((np.cos(x), np.sin(x)) for x in np.broadcast_arrays(y, p, r))
+    # entry by entry, no matrix product (see rotation_from_zyz)
+    return _matrix(
+        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+        (-sp, cp * sr, cp * cr),
+    )
 
 
 def rpy_from_rotation(R: Any, *, roll: Any = 0.0) -> np.ndarray:

@@ -14,14 +14,14 @@ exempted with a reason, so a new function cannot skip the contract.
 
 Issue 21 made it systematic. ``test_every_public_callable_is_swept_by_identity`` enumerates
 ``puma_course.__all__``, ``transforms``, ``euler`` and every module of ``puma_course.kinematics``
-(walked) plus each arm's public methods: 126 public callables, each a TABLE row (113 rows) or an
+(walked) plus each arm's public methods: 129 public callables, each a TABLE row (116 rows) or an
 exemption with its reason. The counts (``test_the_sweep_counts_its_cases`` keeps them honest):
 
-* 5,641 junk inputs: each argument gets its kind's bad values and the universal catalogue (None,
+* 5,799 junk inputs: each argument gets its kind's bad values and the universal catalogue (None,
   text, bytes, booleans, NaN, ±inf, complex, objects, ragged lists, object arrays, empty arrays,
   dicts, NaN arrays); the answer is a ValueError naming the argument (an empty batch may instead
   give an empty result);
-* 1,081 dtype cases: the valid numbers as int8/uint8/int64/object arrays, lists or numpy scalars
+* 1,109 dtype cases: the valid numbers as int8/uint8/int64/object arrays, lists or numpy scalars
   give the float value's answer bit for bit, or a ValueError naming the argument;
 * 70 pairs of batch arguments given batches of 2 and 3: a ValueError naming one of them.
 
@@ -42,7 +42,7 @@ import pytest
 
 import puma_course
 from puma_course import euler, transforms
-from puma_course.kinematics import MK3, DHChain, Link, Porter, Puma560, ThreeStepArm, dh, ik, spaces
+from puma_course.kinematics import MK3, DHChain, Link, Porter, Puma560, ThreeStepArm, dh, ik, mk3_reach, spaces
 from puma_course.kinematics import frame_assignment as fa
 from puma_course.kinematics import jacobian as jac
 from puma_course.kinematics import standard_dh as sdh
@@ -111,6 +111,9 @@ BAD: dict[str, list[Any]] = {
     "kinds": [["R"], ["R", "X"], "RX", None],
     "stroke": [*_REAL, 8.0, 0.5, -1.0],
     "rows": [[], "abc", None, [(0.0, 0.0, 1.0)], [(0.0, 0.0, 1.0, 0.0, "X")], [(np.nan, 0.0, 1.0, 0.0, "R")]],
+    # issue 31: the MK3's circle of wrist points (mk3_reach)
+    "lengths5": [*_REAL, [1.0] * 4, [1.0] * 4 + [np.nan], [360.0, 135.0, 0.0, 215.0, 100.0], [1e300] * 5],
+    "arcs": [*_REAL, [[0.0]], [[1.0, 0.0]], [[0.0, 7.0]], [[0.0, np.nan]], [[1e300, 1e300]]],
 }
 
 PUMA, MK3_, PORTER, TS = Puma560(), MK3(), Porter(1.0, 0.5, 0.3), ThreeStepArm(1.5, 1.0)
@@ -280,6 +283,12 @@ TABLE: list[tuple[str, Callable[..., Any], list[Arg]]] = [
     ("three_step.wrist_goal", ts.wrist_goal, [("result", "result", SOL), ("start", "q3", np.zeros(3))]),
     ("three_step.forearm_frames", ts.forearm_frames, [("joints", "q3", np.zeros(3))]),
     ("MK3.nearest_attainable", MK3_.nearest_attainable, [("T", "transform", T_MK3), ("tol", "tol", 1e-9)]),
+    ("mk3_reach.wrist_arcs", mk3_reach.wrist_arcs,
+     [("rho", "length", 400.0), ("pz", "length", 300.0), ("L", "lengths5", [360.0, 135.0, 250.0, 215.0, 100.0])]),
+    ("mk3_reach.wrist_range", mk3_reach.wrist_range,
+     [("rho", "length", 400.0), ("pz", "length", 300.0), ("L", "lengths5", [360.0, 135.0, 250.0, 215.0, 100.0])]),
+    ("mk3_reach.nearest_on_arcs", mk3_reach.nearest_on_arcs,
+     [("beta0", "number", 0.0), ("arcs", "arcs", [[0.5, 1.0]])]),
     (
         "three_step.ArmState",
         ts.ArmState,
@@ -963,4 +972,37 @@ def test_every_public_callable_is_swept_by_identity():
 
 def test_the_sweep_counts_its_cases():
     """The counts quoted in the module doc and in README: they must be what the sweep runs."""
-    assert (len(TABLE), len(_cases()), len(_equivalent_cases())) == (113, 5641, 1081)
+    assert (len(TABLE), len(_cases()), len(_equivalent_cases())) == (116, 5799, 1109)
+
+
+# ---------------------------------------------------------------- issue 31: accepted inputs whose answer overflowed
+#: (call, the argument the refusal must name): each returned inf or raised OverflowError before issue 31
+EDGES_31: list[tuple[str, Callable[[], Any], str]] = [
+    ("spaces.actuator_rate: θ̇ = 1.5e308", lambda: spaces.actuator_rate(0.5, 1.5e308, 3, 4), "theta_dot"),
+    ("ik.joint_distance: lengths ±1e300", lambda: ik.joint_distance([1e300], [-1e300], revolute=[False]), "q"),
+    ("trajectories.time_scaling: n = 10**400", lambda: tr.time_scaling(1, n=10**400), "n"),
+    ("trajectories.time_scaling: n = -10**5000", lambda: tr.time_scaling(1, n=-(10**5000)), "n"),
+    ("three_step.motion: 10**400 steps", lambda: ts.motion(SOL, steps_per_phase=10**400), "steps_per_phase"),
+    (
+        "three_step.motion_joints: 10**400 steps",
+        lambda: ts.motion_joints(SOL, steps_per_phase=10**400, wrist="joint"),
+        "steps_per_phase",
+    ),
+]
+
+
+@pytest.mark.parametrize("label, call, arg", EDGES_31, ids=[e[0] for e in EDGES_31])
+def test_an_answer_that_would_overflow_is_refused_naming_the_argument(label, call, arg):
+    with pytest.raises(ValueError) as err:
+        out = call()
+        pytest.fail(f"{label} returned {out!r}")
+    msg = str(err.value)
+    assert msg.split(":", 1)[0] == arg, msg
+    assert "expected" in msg and "got" in msg, msg
+
+
+def test_the_largest_accepted_inputs_still_give_finite_answers():
+    # the limits just inside the refusals above: finite answers, worked by hand
+    assert ik.joint_distance([1e150], [-1e150], revolute=[False]) == 2e150
+    assert np.isfinite(spaces.actuator_rate(0.5, 1e150, 3, 4))
+    assert abs(spaces.actuator_rate(np.pi / 2, 1e150, 3.0, 4.0) / 1e150 - 2.4) < 1e-12  # b c / s = 12 / 5

@@ -376,8 +376,9 @@ def mk3_rail_goal(q: Any, axis: Any, angle: float, s: float) -> np.ndarray:
 
 def mk3_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     """``n`` goals (T, s) for the MK3 on its rail: poses it reaches, turned about a random axis so the approach
-    leaves the arm plane by 15° to 65°, the tool point at least 100 mm off the base axis and the nearest pose
-    within reach; the carriage 100 to 600 mm from the rail's middle, either way."""
+    leaves the arm plane by 15° to 65°, the tool point at least 100 mm off the base axis and the approach's
+    projection onto the plane within reach (no further turn along it); the carriage 100 to 600 mm from the
+    rail's middle, either way."""
     arm, out = MK3(), []
     lo, hi = np.sin(np.radians(15.0)), np.sin(np.radians(65.0))
     while len(out) < n:
@@ -385,7 +386,8 @@ def mk3_nearest_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]
         T[:3, :3] = transforms.rodrigues(rng.normal(size=3), rng.uniform(0.3, 1.2)) @ T[:3, :3]
         p, z = T[:3, 3], T[:3, 2]
         h = float(np.hypot(p[0], p[1]))
-        if h < 100.0 or not lo <= abs(-p[1] * z[0] + p[0] * z[1]) / h <= hi or not arm.nearest_attainable(T)[1].success:
+        info = arm.nearest_attainable(T)[1]  # the projection onto the plane must do (the question's nearest pose)
+        if h < 100.0 or not lo <= abs(-p[1] * z[0] + p[0] * z[1]) / h <= hi or not info.success or info.along:
             continue
         s = float(rng.choice([-1.0, 1.0]) * rng.uniform(100.0, 600.0))
         out.append((transforms.transl([0.0, s, 0.0]) @ T, s))

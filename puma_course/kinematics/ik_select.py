@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_array, as_count
+from .._validate import MAX_MAGNITUDE, as_array, as_count
 from ..transforms import wrap_angle
 
 __all__ = ["joint_distance", "keys_from_bits"]
@@ -41,8 +41,9 @@ def joint_distance(q: Any, q_ref: Any, revolute: Any = None) -> np.ndarray:
     >>> float(joint_distance([0.0, 3.0], [0.0, 0.0], revolute=[True, False]))  # a length: not wrapped
     3.0
     """
-    qa = as_array(q, "q", what="joint vectors")
-    qb = as_array(q_ref, "q_ref", what="joint vectors")
+    # differences and their squares must stay finite (issue 31: lengths of ±1e300 gave inf)
+    qa = as_array(q, "q", what="joint vectors", max_magnitude=MAX_MAGNITUDE)
+    qb = as_array(q_ref, "q_ref", what="joint vectors", max_magnitude=MAX_MAGNITUDE)
     if qa.ndim == 0 or qb.ndim == 0 or qa.shape[-1] != qb.shape[-1]:
         raise ValueError(f"q, q_ref: expected joint vectors of the same length, got shapes {qa.shape} and {qb.shape}")
     rev = _revolute_mask(revolute, qa.shape[-1])

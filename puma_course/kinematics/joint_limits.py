@@ -22,8 +22,9 @@ __all__ = ["PUBLISHED_QLIM_DEG", "FROM_CORKE_DEG", "JOINT_LIMITS"]
 #: coordinates of the model they are published with: P. Corke's Robotics Toolbox, ``mdl_puma560`` (MATLAB,
 #: standard DH, ``qlim``), taken there from Wang & Chen, "A combined optimization method for solving the
 #: inverse kinematics problem of mechanical manipulators", IEEE Trans. Robotics and Automation 7(4), 1991,
-#: p. 489. Robotics Toolbox for Python's ``models.DH.Puma560`` keeps the same numbers as comments beside
-#: symmetric ones of its own for joints 2 to 4. The ranges are 320°, 270°, 270°, 280°, 200° and 532°.
+#: p. 489. Robotics Toolbox for Python's ``models.DH.Puma560`` uses the same set as its ``qlim`` in release 1.5.0
+#: (releases 1.0 to 1.3 kept these numbers as comments beside symmetric limits of their own for joints 2 to 4).
+#: The ranges are 320°, 270°, 270°, 280°, 200° and 532°.
 PUBLISHED_QLIM_DEG: tuple[tuple[float, float], ...] = (
     (-160.0, 160.0), (-45.0, 225.0), (-225.0, 45.0), (-110.0, 170.0), (-100.0, 100.0), (-266.0, 266.0),
 )  # fmt: skip

@@ -31,7 +31,9 @@ and p = Rz(θ1) (a1 + a2 c2 + a3 c23 + d5 S, 0, d1 + a2 s2 + a3 s23 - d5 C). So:
 The nearest attainable pose (Craig's treatment of the Motoman L-3): a goal whose approach vector z leaves
 the vertical plane through the base axis and the tool point p is turned, as a whole, about the axis
 K = z × z' by the smallest angle that brings z into that plane (z' the normalised projection of z onto it,
-the angle asin |m · z| with m the plane's unit normal); the position is kept. :meth:`MK3.nearest_attainable`.
+the angle asin |m · z| with m the plane's unit normal); the position is kept. The wrist point p - d5 z'
+depends on z': when the arm does not reach it, z' is turned on along the plane to the nearest direction whose
+wrist point it reaches, and only a position no such direction serves is refused. :meth:`MK3.nearest_attainable`.
 """
 
 from __future__ import annotations
@@ -47,6 +49,7 @@ from ..transforms import rodrigues, wrap_angle
 from ._ops import ARRAY
 from .dh import DHChain, Link
 from .ik import IKBatch, IKSolutions
+from .mk3_reach import nearest_on_arcs, wrist_arcs, wrist_range
 
 __all__ = ["MK3", "Attainable", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS"]
 
@@ -117,16 +120,38 @@ def _branch(o: Any, P: tuple[Any, ...], R: tuple[Any, ...], L: tuple[float, ...]
     return t1, t2, t3, t234 - t2 - t3, t5, reach, el_sing, j2
 
 
+def _turn(R: np.ndarray, zn: np.ndarray, m: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """R turned the least (about z × zn) so that its approach z becomes the unit ``zn``: (R', axis, angle).
+
+    z = -zn turns by π about ``m`` (the arm plane's normal, perpendicular to both then); z = zn does not turn.
+    """
+    z = R[:, 2]
+    k = np.cross(z, zn)
+    sk = math.hypot(*k)
+    angle = math.atan2(sk, float(z[0] * zn[0] + z[1] * zn[1] + z[2] * zn[2]))  # asin |m · z| for a projection
+    if sk <= 1e-15:
+        if angle < _H:
+            return R.copy(), np.zeros(3), 0.0
+        k, sk = m, 1.0
+    axis = k / sk
+    Rk = rodrigues(axis, angle)
+    out = (Rk[:, :, None] * R[None, :, :]).sum(axis=1)  # Rk @ R without a BLAS call
+    out[:, 2] = zn  # exactly the new approach (the product carries rounding)
+    return out, axis, angle
+
+
 @dataclass(frozen=True)
 class Attainable:
     """What :meth:`MK3.nearest_attainable` did to a goal pose.
 
-    ``angle`` is the rotation applied to the goal's orientation (radians, in [0, π/2]; 0 when the goal's
-    approach already lies in the arm plane) about the unit ``axis`` (zeros when nothing turned);
-    ``unique`` is False when the approach was perpendicular to the arm plane (every direction in the plane
-    is then 90° away: the tool is turned to point straight down); ``success`` says whether the arm reaches
-    the returned pose (``reason`` says why not: the position itself is out of reach); ``message`` is one
-    sentence on what was done.
+    ``angle`` is the rotation applied to the goal's orientation (radians, in [0, π]; 0 when the goal is
+    attainable as it is) about the unit ``axis`` (zeros when nothing turned); ``along`` is how far the
+    approach was turned along the arm plane beyond the goal's projection onto it, because the projection's
+    wrist point is out of reach (radians, 0 when the projection will do); ``unique`` is False when the
+    approach was perpendicular to the arm plane (every direction in the plane is then 90° away: the tool is
+    turned to point straight down, or as near that as the arm reaches); ``success`` says whether the arm
+    reaches the returned pose (``reason`` says why not: no orientation at that position puts the wrist point
+    within reach); ``message`` is one sentence on what was done.
     """
 
     angle: float
@@ -135,6 +160,7 @@ class Attainable:
     success: bool
     reason: str
     message: str
+    along: float = 0.0
 
 
 class MK3(DHChain):
@@ -196,18 +222,23 @@ class MK3(DHChain):
         """The attainable pose nearest the goal T: its orientation turned the least, its position kept.
 
         Craig's treatment of the Motoman L-3: a five-joint arm reaches only poses whose approach vector
-        z5 lies in the arm plane, the vertical plane through the base axis and the tool point p. The goal's
-        whole frame is turned about K = z × z' by the angle asin |m · z| that takes z onto z', its normalised
-        projection onto that plane (m the plane's unit normal, (-py, px, 0) / |(px, py)|); no rotation moving
-        z onto the plane is smaller, and z5's spin is kept as far as it can be. The position p is kept.
-        Returns the pose (4, 4) and an :class:`Attainable`.
+        z5 lies in the arm plane, the vertical plane through the base axis and the tool point p. First the
+        goal's whole frame is turned about K = z × z' by the angle asin |m · z| that takes z onto z', its
+        normalised projection onto that plane (m the plane's unit normal, (-py, px, 0) / |(px, py)|); no
+        rotation moving z onto the plane is smaller, and z5's spin is kept as far as it can be. The position p
+        is kept. But the wrist point w' = p - d5 z' depends on z': if the arm does not reach it, the approach
+        is turned on along the plane, to the nearest direction whose wrist point it reaches (the circle of
+        wrist points against joint 2's annulus, lecture 04 §8; :mod:`.mk3_reach`), and the frame is turned the
+        least that takes z there. Returns the pose (4, 4) and an :class:`Attainable`.
 
-        * a goal whose approach is in the plane (|m · z| <= ``tol``, the tolerance of :meth:`ik`) comes back
-          unchanged, as does a goal whose tool point is on the base axis (every vertical plane holds it);
+        * a goal whose approach is in the plane (|m · z| <= ``tol``, the tolerance of :meth:`ik`) and whose
+          wrist point is in reach comes back unchanged, as does a reachable goal whose tool point is on the
+          base axis (every vertical plane holds it; else the plane through its approach is searched);
         * an approach perpendicular to the plane (horizontal, along m; within 1e-6 rad) is 90° from every
-          direction in it: it is turned to point straight down (the MK3's working posture), ``unique`` False;
-        * if the position itself is out of reach, the pose with the nearest orientation is returned
-          with ``success`` False and the solver's ``reason``.
+          direction in it: it is turned to point straight down (the MK3's working posture), or to the
+          reachable direction nearest straight down, ``unique`` False;
+        * only if no approach in the plane puts the wrist point in reach (the position itself is out of reach
+          for every orientation) is the projected pose returned with ``success`` False and the reason.
 
         >>> from puma_course.transforms import rotx
         >>> arm = MK3()
@@ -226,18 +257,23 @@ class MK3(DHChain):
         z = out[:3, 2].copy()
         h = math.hypot(px, py)
         axis, angle, unique = np.zeros(3), 0.0, True
-        if h <= self._ltol:
+        if h <= self._ltol:  # every vertical plane holds p: the one through the approach turns it the least
+            zh = math.hypot(z[0], z[1])
+            er = np.array([z[0] / zh, z[1] / zh, 0.0]) if zh > 1e-12 else np.array([1.0, 0.0, 0.0])
+            beta0 = math.atan2(z[2], zh)
             message = "the tool point is on the base axis: every vertical plane holds it, the goal is kept"
         else:
+            er = np.array([px / h, py / h, 0.0])
             m = np.array([-py / h, px / h, 0.0])  # the arm plane's unit normal
             s = float(m[0] * z[0] + m[1] * z[1])  # sine of z's angle to the plane
+            beta0 = math.atan2(z[2], float(er[0] * z[0] + er[1] * z[1]))
             if abs(s) <= tol:
                 message = "the approach vector lies in the arm plane: the goal is attainable as it is"
             else:
                 zp = z - s * m
                 c = math.hypot(*zp)
                 if c <= _PERPENDICULAR:  # z along ±m (horizontal): every direction in the plane is 90° away
-                    unique = False
+                    unique, beta0 = False, -_H
                     zn = np.array([0.0, 0.0, -1.0])
                     message = (
                         "the approach vector is perpendicular to the arm plane: every direction in the plane is "
@@ -245,22 +281,54 @@ class MK3(DHChain):
                     )
                 else:
                     zn = zp / c
-                k = np.cross(z, zn)
-                sk = math.hypot(*k)
-                angle = math.atan2(sk, float(z[0] * zn[0] + z[1] * zn[1] + z[2] * zn[2]))  # asin |m · z| if unique
-                axis = k / sk
-                if unique:
                     message = (
-                        f"the approach vector was {math.degrees(angle):.3g}° out of the arm plane: the goal's frame "
-                        "is turned by that much about z × z', z' its projection onto the plane"
+                        "the approach vector was {:.3g}° out of the arm plane: the goal's frame is turned by that "
+                        "much about z × z', z' its projection onto the plane"
                     )
-                Rk = rodrigues(axis, angle)
-                R = (Rk[:, :, None] * out[:3, :3][None, :, :]).sum(axis=1)  # Rk @ R without a BLAS call
-                R[:, 2] = zn  # exactly in the plane (the product carries rounding)
-                out[:3, :3] = R
+                out[:3, :3], axis, angle = _turn(out[:3, :3], zn, m)
+                message = message.format(math.degrees(angle))
         sol = self.ik(out, tol=max(tol, 1e-9))
-        info = Attainable(angle, axis, unique, bool(sol.success), "" if sol.success else sol.reason, message)
-        return out, info
+        if sol.success:
+            return out, Attainable(angle, axis, unique, True, "", message)
+        return self._search(Tm[0], out, er, beta0, unique, Attainable(angle, axis, unique, False, "", message), tol)
+
+    def _search(self, goal: np.ndarray, first: np.ndarray, er: np.ndarray, beta0: float, unique: bool,
+                info: Attainable, tol: float) -> tuple[np.ndarray, Attainable]:  # fmt: skip
+        """Turn the approach along the arm plane (unit horizontal ``er``) from ``beta0`` to the nearest direction
+        whose wrist point is in reach; ``first`` (the projected pose) with the reason when there is none."""
+        rho, pz = float(er[0] * goal[0, 3] + er[1] * goal[1, 3]), float(goal[2, 3])
+        arcs = wrist_arcs(rho, pz, self._L)
+        found = nearest_on_arcs(beta0, arcs)
+        if found is None:
+            (f0, f1), (b0, b1) = wrist_range(rho, pz, self._L)
+            _, _, a2, a3, d5 = self._L
+            why = (
+                f"out of reach at this position for every orientation: as the approach z' turns in the arm plane, "
+                f"the wrist point p - d5 z' runs round a circle of radius d5 = {abs(d5):g} mm about p, {f0:.4g} to "
+                f"{f1:.4g} mm from joint 2 (front) and {b0:.4g} to {b1:.4g} mm from it reaching over the base, "
+                f"never within the arm's reach of {abs(a2 - a3):g} to {a2 + a3:g} mm"
+            )
+            return first, Attainable(info.angle, info.axis, unique, False, why, info.message)
+        m = np.array([-er[1], er[0], 0.0])
+        beta, lo, hi = found
+        at_lo = abs(wrap_angle(beta - lo)) <= abs(wrap_angle(beta - hi))  # which end beta is: step inwards
+        inward = beta + math.copysign(min(1e-9, (hi - lo) / 2.0), 1.0 if at_lo else -1.0)
+        for b in (beta,) if beta == beta0 else (inward, beta):  # 1e-9 rad inside the reach first: not stretched
+            zn = np.array([math.cos(b) * er[0], math.cos(b) * er[1], math.sin(b)])
+            out = goal.copy()
+            out[:3, :3], axis, angle = _turn(goal[:3, :3], zn, m)
+            sol = self.ik(out, tol=max(tol, 1e-9))
+            if sol.success:
+                break
+        along = abs(wrap_angle(b - beta0))
+        message = (
+            f"the wrist point w' = p - d5 z' of the approach nearest the goal's in the arm plane is out of reach: "
+            f"the approach is turned a further {math.degrees(along):.3g}° along the plane, to the nearest "
+            f"direction whose wrist point the arm reaches; the goal's frame is turned by "
+            f"{math.degrees(angle):.3g}° about z × z'"
+        )
+        return out, Attainable(angle, axis, unique, bool(sol.success), "" if sol.success else sol.reason, message,
+                               along=along)  # fmt: skip
 
     def ik(self, T: Any, near: Any = None, *, tol: float = 1e-9) -> IKSolutions:
         """Every joint vector reaching T: up to four (front/back arm plane x elbow up/down).

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_array, as_robot_length, check_broadcast
+from .._validate import MAX_MAGNITUDE, as_array, as_robot_length, check_broadcast
 
 __all__ = ["actuator_from_joint", "joint_from_actuator", "actuator_rate"]
 
@@ -76,7 +76,8 @@ def actuator_rate(theta: Any, theta_dot: Any, b: float, c: float, gamma0: float 
     b, c = _arms(b, c)
     g0 = float(as_array(gamma0, "gamma0", (), what="an angle in radians (a number)"))
     t = as_array(theta, "theta", what="a joint angle in radians (a number or an array)")
-    w = as_array(theta_dot, "theta_dot", what="a joint speed in rad/s (a number or an array)")
+    w = as_array(theta_dot, "theta_dot", what="a joint speed in rad/s (a number or an array)",
+                 max_magnitude=MAX_MAGNITUDE)  # (b c / s) θ̇ must stay finite (issue 31: 1.5e308 gave inf)
     check_broadcast(theta=t.shape, theta_dot=w.shape)  # not numpy's "could not be broadcast" (issue 21)
     s = np.asarray(actuator_from_joint(t, b, c, g0))
     if np.any(s <= 1e-15 * (b + c)):

@@ -3,6 +3,8 @@
 :func:`plot_nearest_attainable` draws goals from above (each with its arm plane, the goal's approach dashed and
 the nearest attainable one solid, a cross where it points straight down) and one goal's arm plane face on, with
 the arm at two solutions of its nearest pose (:meth:`~puma_course.kinematics.mk3.MK3.nearest_attainable`).
+:func:`plot_wrist_circle` draws one goal's arm plane: the circle of wrist points p - d5 z' as the approach z' turns
+in it, against the annuli joint 2 reaches, and the approach the search chose.
 """
 
 from __future__ import annotations
@@ -17,8 +19,10 @@ from matplotlib.figure import Figure
 
 from .._validate import as_count, as_transform
 from ..kinematics.mk3 import MK3
+from ..kinematics.mk3_reach import wrist_arcs
+from ..transforms import wrap_angle
 
-__all__ = ["plot_nearest_attainable", "ARROW"]
+__all__ = ["plot_nearest_attainable", "plot_wrist_circle", "ARROW"]
 
 #: Length of the approach arrows (mm).
 ARROW = 150.0
@@ -97,4 +101,83 @@ def plot_nearest_attainable(arm: MK3, goals: Sequence[Any], names: Sequence[str]
              title=f"{names[k]}: nearest pose, face on")  # fmt: skip
     side.legend(loc="upper right")
     side.grid(alpha=0.3)
+    return fig
+
+
+def plot_wrist_circle(arm: MK3, goal: Any, name: str = "goal") -> Figure:
+    """One goal's arm plane, face on: where the wrist point can be as the approach turns in the plane.
+
+    The base axis, joint 2 in both arm planes (front at (a1, d1), back at (-a1, d1)) and the annuli it reaches
+    (|a2 - a3| to a2 + a3 from it, shaded); the circle of wrist points w' = p - d5 z' about the tool point p,
+    solid where the arm reaches w' and dotted where it does not; the wrist point and approach of the goal's
+    projection onto the plane (dashed, a cross) and of the nearest attainable pose (solid, a dot). The goal's
+    tool point must be off the base axis.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from puma_course.transforms import homogeneous, rotx
+    >>> fig = plot_wrist_circle(MK3(), homogeneous(rotx(2.0), [400.0, 100.0, 300.0]))
+    >>> fig.axes[0].get_xlabel()
+    'along the arm plane [mm]'
+    >>> plt.close(fig)
+    """
+    if not isinstance(arm, MK3):
+        raise ValueError(f"arm: expected an MK3, got {type(arm).__name__}")
+    T = as_transform(goal, "goal")
+    if not isinstance(name, str):
+        raise ValueError(f"name: expected a string, got {type(name).__name__}")
+    h = math.hypot(T[0, 3], T[1, 3])
+    if h <= 1e-6:
+        raise ValueError("goal: expected a tool point off the base axis (its arm plane is then not fixed), got "
+                         f"({T[0, 3]:g}, {T[1, 3]:g}, {T[2, 3]:g})")  # fmt: skip
+    d1, a1, a2, a3, d5 = arm.lengths.values()
+    er = np.array([T[0, 3], T[1, 3], 0.0]) / h
+    m = np.array([-er[1], er[0], 0.0])
+    p = np.array([h, T[2, 3]])
+    z = T[:3, 2]
+    zp = z - (m @ z) * m
+    near, info = arm.nearest_attainable(T)
+    zn = near[:3, 2]
+
+    fig, (whole, zoom) = plt.subplots(1, 2, figsize=(12.0, 6.2), gridspec_kw={"width_ratios": [1.25, 1]},
+                                      layout="constrained")  # fmt: skip
+    t = np.linspace(0.0, 2.0 * math.pi, 1441)
+    ring = np.column_stack([np.cos(t), np.sin(t)])
+    beta = np.linspace(-math.pi, math.pi, 1441)  # the approach's angle from e_r towards e_z
+    W = p - d5 * np.column_stack([np.cos(beta), np.sin(beta)])
+    ok = np.zeros(beta.size, dtype=bool)
+    for lo, hi in wrist_arcs(float(p[0]), float(p[1]), tuple(arm.lengths.values())):
+        past = wrap_angle(beta - lo)  # how far past the arc's start, going round the positive way
+        ok |= np.where(past < 0.0, past + 2.0 * math.pi, past) <= hi - lo
+    shown = (
+        (zp / np.linalg.norm(zp), "--", "X", "the goal's approach projected onto the plane"),
+        (zn, "-", "o", f"the nearest attainable approach, {math.degrees(info.angle):.2f}° from the goal's"),
+    )
+    for ax in (whole, zoom):
+        for k, (jr, label) in enumerate(((a1, "front"), (-a1, "back (over the base)"))):
+            colour = ("tab:green", "tab:olive")[k]
+            outer, inner = (a2 + a3) * ring + (jr, d1), abs(a2 - a3) * ring[::-1] + (jr, d1)
+            ax.fill(*np.concatenate([outer, inner]).T, color=colour, alpha=0.12, lw=0)
+            ax.plot(*outer.T, "-", color=colour, lw=1.0, alpha=0.8)
+            ax.plot(*inner.T, "-", color=colour, lw=1.0, alpha=0.8)
+            reach = f"{abs(a2 - a3):g} to {a2 + a3:g} {arm.units}"
+            ax.plot(jr, d1, "^", color=colour, ms=9, label=f"joint 2, {label}: reaches {reach} (shaded)")
+        ax.plot(*W.T, ":", color="0.3", lw=1.5, label="wrist points p − d5 z′ the arm does not reach")
+        ax.plot(*np.where(ok[:, None], W, np.nan).T, "-", color="tab:blue", lw=3.5, label="wrist points it reaches")
+        ax.plot(*p, "ko", ms=6)
+        ax.annotate("p", p, xytext=(6, 6), textcoords="offset points")
+        for zz, style, mark, text in shown:
+            u = np.array([zz @ er, zz[2]])
+            w = p - d5 * u
+            arrow = dict(arrowstyle="-|>", color="tab:red", lw=2.0, ls=style)
+            ax.annotate("", xy=p + 0.5 * d5 * u, xytext=w, arrowprops=arrow)
+            ax.plot(*w, mark, color="tab:red", ms=9, label=f"{text}, and its wrist point")
+        ax.axvline(0.0, color="0.5", ls="-.", lw=1)
+        ax.set(aspect="equal", xlabel=f"along the arm plane [{arm.units}]", ylabel=f"z [{arm.units}]")
+        ax.grid(alpha=0.3)
+    whole.set_title(f"{name}: the arm plane")
+    zoom.set(xlim=(p[0] - 1.9 * d5, p[0] + 1.9 * d5), ylim=(p[1] - 1.7 * d5, p[1] + 1.7 * d5),
+             title="near p: the circle of wrist points")  # fmt: skip
+    handles, labels = whole.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=9, frameon=False)
     return fig

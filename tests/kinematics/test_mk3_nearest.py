@@ -72,10 +72,13 @@ def test_the_nearest_orientation_is_the_brute_search_minimum(seed):
     for T in tilted_goals(np.random.default_rng(seed), 5):
         T2, info = ARM.nearest_attainable(T)
         angle, R = brute_nearest(T)
+        assert info.unique
+        if info.along > 0.0:  # the projection's wrist point is out of reach: turned further (the next tests)
+            assert info.angle > angle + 1e-3 and info.success
+            continue
         assert abs(info.angle - angle) < 1e-6, (info.angle, angle)
         assert abs(float(rotation_angle(T[:3, :3], T2[:3, :3])) - angle) < 1e-6
         assert np.abs(T2[:3, :3] - R).max() < 1e-5  # the minimum is unique here
-        assert info.unique
 
 
 def test_the_result_is_reached_by_ik_keeps_the_position_and_turns_the_least():
@@ -91,7 +94,10 @@ def test_the_result_is_reached_by_ik_keeps_the_position_and_turns_the_least():
         assert abs(T2[0, 3] * T2[1, 2] - T2[1, 3] * T2[0, 2]) < 1e-9 * np.abs(T2[:2, 3]).max()
         # the angle by hand: asin |m · z| with m the plane's normal (-py, px, 0) / |(px, py)|
         m = np.array([-T[1, 3], T[0, 3], 0.0]) / math.hypot(T[0, 3], T[1, 3])
-        assert abs(info.angle - math.asin(abs(m @ T[:3, 2]))) < 1e-12
+        if info.along == 0.0:
+            assert abs(info.angle - math.asin(abs(m @ T[:3, 2]))) < 1e-12
+        else:  # the projection's wrist point is out of reach: the approach turned further along the plane
+            assert info.angle > math.asin(abs(m @ T[:3, 2])) and info.success
         # the goal turned about the reported axis by the reported angle
         assert np.allclose(rodrigues(info.axis, info.angle) @ T[:3, :3], R, atol=1e-12)
         axis, ang = axis_angle(R @ T[:3, :3].T)
@@ -164,3 +170,110 @@ def test_bad_input(call, fragment):
     with pytest.raises(ValueError) as err:
         call()
     assert fragment in str(err.value)
+
+
+# ---- the approach searched along the arm plane (issue 31): against a brute search with ik as the judge ----
+
+GRID = np.radians(np.arange(-180.0, 180.0, 0.25))  # approach directions in the arm plane, 0.25° apart
+
+
+def plane_directions(T: np.ndarray, betas: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Poses at T's position whose approach is cos β e_r + sin β e_z in T's arm plane (x5 along its normal),
+    and each approach's angle from T's: the arm reaches such a pose exactly when it reaches its wrist point."""
+    p = T[:3, 3]
+    er = np.array([p[0], p[1], 0.0]) / math.hypot(p[0], p[1])
+    m = np.array([-er[1], er[0], 0.0])
+    Z = np.cos(betas)[:, None] * er + np.sin(betas)[:, None] * np.array([0.0, 0.0, 1.0])
+    P = np.zeros((betas.size, 4, 4))
+    P[:, :3, 0], P[:, :3, 1], P[:, :3, 2] = m, np.cross(Z, m), Z
+    P[:, :3, 3], P[:, 3, 3] = p, 1.0
+    return P, np.arccos(np.clip(Z @ T[:3, 2], -1.0, 1.0))
+
+
+def attainable(P: np.ndarray) -> np.ndarray:
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # stretched or folded arms on the grid's edge
+        return ARM.ik_batch(P).valid.any(axis=1)
+
+
+def goal_family(rng: np.random.Generator, n: int, stretched: bool) -> list[np.ndarray]:
+    """Reachable poses (nearly stretched ones if ``stretched``: θ3 within 0.3 rad of 0) turned by 0.2-1.5 rad
+    about a random axis, the tool point at least 1 mm off the base axis: the issue's family, and a uniform one."""
+    out = []
+    while len(out) < n:
+        q = rng.uniform(-math.pi, math.pi, 5)
+        if stretched:
+            q[2] = rng.uniform(-0.3, 0.3)
+        T = ARM.fk(q)
+        T[:3, :3] = rodrigues(rng.normal(size=3), rng.uniform(0.2, 1.5)) @ T[:3, :3]
+        if math.hypot(T[0, 3], T[1, 3]) > 1.0:
+            out.append(T)
+    return out
+
+
+def test_the_issue_example_is_turned_along_the_plane_not_refused():
+    # p = (134.71, 191.34, -107.83) mm: the wrist points reachable for approaches β in [-154.48°, -1.62°] of the
+    # arm plane (from e_r towards e_z). A goal 9.85° out of the plane whose projection is at β = +7.07°: the
+    # projection's wrist point is out of reach, the direction 8.69° further along the plane is the nearest that
+    # is not, arccos(cos 9.85° cos 8.69°) = 13.11° from the goal's approach.
+    p = np.array([134.71, 191.34, -107.83])
+    er = np.array([p[0], p[1], 0.0]) / math.hypot(p[0], p[1])
+    m = np.array([-er[1], er[0], 0.0])
+    s, b = math.radians(9.85), math.radians(-1.62225 + 8.69465)
+    z = math.cos(s) * (math.cos(b) * er + math.sin(b) * np.array([0.0, 0.0, 1.0])) + math.sin(s) * m
+    x = np.cross([0.0, 0.0, 1.0], z)
+    x /= np.linalg.norm(x)
+    T = homogeneous(np.column_stack([x, np.cross(z, x), z]), p)
+    assert not ARM.ik(T).success
+    projected = T.copy()
+    projected[:3, :3] = rodrigues(np.cross(z, z - (m @ z) * m), s) @ T[:3, :3]
+    assert "out of reach" in ARM.ik(projected).reason  # the old answer: turned 9.85°, then refused
+    T2, info = ARM.nearest_attainable(T)
+    assert info.success and info.unique
+    assert abs(math.degrees(info.angle) - 13.11) < 0.005 and abs(math.degrees(info.along) - 8.69465) < 1e-3
+    sol = ARM.ik(T2)
+    assert len(sol) >= 1 and all(np.abs(ARM.fk(q)[:3, 3] - p).max() < 1e-9 for q in sol.q)
+    assert abs(float(rotation_angle(T[:3, :3], T2[:3, :3])) - info.angle) < 1e-9
+    P, ang = plane_directions(T, GRID)
+    assert ang[attainable(P)].min() >= info.angle - 1e-12  # no grid direction nearer is reached
+
+
+@pytest.mark.parametrize("stretched, seed", [(True, 31), (False, 32)])
+def test_the_nearest_approach_agrees_with_a_brute_search_over_the_plane(stretched, seed):
+    goals = goal_family(np.random.default_rng(seed), 1500, stretched)
+    infos = [ARM.nearest_attainable(T) for T in goals]
+    P = np.concatenate([plane_directions(T, GRID)[0] for T in goals])
+    ok = attainable(P).reshape(len(goals), GRID.size)
+    turned = refused = 0
+    for T, (T2, info), reach in zip(goals, infos, ok, strict=True):
+        _, ang = plane_directions(T, GRID)
+        assert info.success or not reach.any()  # a grid direction the arm reaches: never refused
+        if not info.success:
+            refused += 1
+            assert not reach.any() and "for every orientation" in info.reason
+            continue
+        turned += info.along > 0.0
+        # the result: a rotation at the goal's position, its approach in the arm plane, reached by ik
+        assert np.array_equal(T2[:3, 3], T[:3, 3])
+        R = T2[:3, :3]
+        assert np.allclose(R.T @ R, np.eye(3), atol=1e-12) and abs(np.linalg.det(R) - 1.0) < 1e-12
+        sol = ARM.ik(T2)
+        assert sol.success and all(np.abs(ARM.fk(q) - T2).max() < 1e-8 for q in sol.q)
+        # turned the least that moves the approach there: the angle between the two approaches
+        assert abs(float(rotation_angle(T[:3, :3], R)) - info.angle) < 1e-9
+        assert abs(math.acos(min(1.0, float(T[:3, 2] @ R[:, 2]))) - info.angle) < 1e-7
+        # no grid direction nearer than the returned one is reached; the nearest reached is at most a step away
+        if reach.any():
+            assert ang[reach].min() >= info.angle - 1e-9
+            assert ang[reach].min() <= info.angle + math.radians(0.25)
+    assert turned > 50 and refused < len(goals) // 10, (turned, refused)
+
+
+def test_a_position_no_approach_serves_is_refused_with_the_circle_and_the_annulus():
+    T = homogeneous(rotx(0.5), [700.0, 300.0, 300.0])  # the wrist point stays beyond a2 + a3 = 465 mm
+    T2, info = ARM.nearest_attainable(T)
+    assert not info.success and "for every orientation" in info.reason and "465" in info.reason
+    P, _ = plane_directions(T, GRID)
+    assert not attainable(P).any()

@@ -1,4 +1,5 @@
-"""Lecture 04's figure of the nearest attainable pose: what it draws, checked against projections worked here."""
+"""Lecture 04's figures of the nearest attainable pose: what they draw, checked against projections and distances
+worked here."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import pytest  # noqa: E402
 
 from puma_course import MK3  # noqa: E402
 from puma_course.transforms import homogeneous, rotx, roty, rotz  # noqa: E402
-from puma_course.viz.mk3_figures import ARROW, plot_nearest_attainable  # noqa: E402
+from puma_course.viz.mk3_figures import ARROW, plot_nearest_attainable, plot_wrist_circle  # noqa: E402
 
 ARM = MK3()
 BETA = np.arctan2(200.0, 300.0)
@@ -61,3 +62,55 @@ def test_bad_input(call, fragment):
         call()
     assert fragment in str(err.value)
     plt.close("all")
+
+
+def issue_goal() -> np.ndarray:
+    """Issue 31's goal: p = (134.71, 191.34, -107.83) mm, the approach 9.85° off the arm plane, its projection
+    7.07° above the horizontal (its wrist point out of reach)."""
+    p = np.array([134.71, 191.34, -107.83])
+    er = np.array([p[0], p[1], 0.0]) / np.hypot(p[0], p[1])
+    m = np.array([-er[1], er[0], 0.0])
+    t, b = np.radians(9.85), np.radians(7.07)
+    z = np.cos(t) * (np.cos(b) * er + np.sin(b) * np.array([0.0, 0.0, 1.0])) + np.sin(t) * m
+    x = np.cross([0.0, 0.0, 1.0], z)
+    x /= np.linalg.norm(x)
+    return homogeneous(np.column_stack([x, np.cross(z, x), z]), p)
+
+
+def test_the_wrist_circle_is_solid_exactly_where_joint_2_reaches_it():
+    T = issue_goal()
+    fig = plot_wrist_circle(ARM, T, "issue 31")
+    d1, a1, a2, a3, d5 = ARM.lengths.values()
+    p = np.array([np.hypot(T[0, 3], T[1, 3]), T[2, 3]])
+    for ax in fig.axes:
+        by_label = {line.get_label(): line for line in ax.lines}
+        solid = by_label["wrist points it reaches"].get_xydata()
+        dotted = by_label["wrist points p − d5 z′ the arm does not reach"].get_xydata()
+        assert np.allclose(np.linalg.norm(dotted - p, axis=1), d5)  # the circle of radius d5 about p
+        solid = solid[~np.isnan(solid).any(axis=1)]
+        assert len(solid) > 100
+        dist = np.stack([np.linalg.norm(solid - (j, d1), axis=1) for j in (a1, -a1)])
+        within = ((dist >= abs(a2 - a3) - 1e-6) & (dist <= a2 + a3 + 1e-6)).any(axis=0)
+        assert within.all()  # every solid point is in an annulus, worked here by distance
+        # the two wrist points: the projection's out of reach, the nearest attainable one on the annulus's edge
+        (cross,) = [ln for ln in ax.lines if ln.get_marker() == "X"]
+        (dot,) = [ln for ln in ax.lines if ln.get_marker() == "o" and ln.get_color() == "tab:red"]
+        assert np.hypot(cross.get_xdata()[0] - a1, cross.get_ydata()[0] - d1) > a2 + a3 + 10.0
+        assert abs(np.hypot(dot.get_xdata()[0] - a1, dot.get_ydata()[0] - d1) - (a2 + a3)) < 1e-3
+    assert "13.11°" in fig.legends[0].texts[-1].get_text()
+    plt.close(fig)
+
+
+@pytest.mark.parametrize(
+    "call, fragment",
+    [
+        (lambda: plot_wrist_circle("MK3", issue_goal()), "arm: expected an MK3"),
+        (lambda: plot_wrist_circle(ARM, np.eye(3)), "goal: expected"),
+        (lambda: plot_wrist_circle(ARM, issue_goal(), 3), "name: expected a string"),
+        (lambda: plot_wrist_circle(ARM, homogeneous(rotx(0.5), [0.0, 0.0, 600.0])), "goal: expected a tool point off"),
+    ],
+)
+def test_wrist_circle_bad_input(call, fragment):
+    with pytest.raises(ValueError) as err:
+        call()
+    assert fragment in str(err.value)
