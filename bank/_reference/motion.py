@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -377,15 +377,45 @@ def puma_paths(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
     return out
 
 
+class PublicPaths(Sequence[tuple[Any, ...]]):
+    """The public cases ``puma_paths(default_rng(seed), n)``, drawn the first time they are used, not when the bank
+    is imported: a command that loads the bank without grading ex10's q3 (release, edition of other exercises,
+    every check) does not pay for the drawing. Read-only, like the tuple it stands for; picklable.
+
+    >>> paths = PublicPaths(seed=10, n=2)
+    >>> paths._cases is None, len(paths), paths._cases is not None
+    (True, 2, True)
+    """
+
+    def __init__(self, seed: int, n: int) -> None:
+        self.seed, self.n = seed, n
+        self._cases: tuple[tuple[Any, ...], ...] | None = None
+
+    def _drawn(self) -> tuple[tuple[Any, ...], ...]:
+        if self._cases is None:
+            self._cases = tuple(puma_paths(np.random.default_rng(self.seed), self.n))
+        return self._cases
+
+    def __getitem__(self, index: Any) -> Any:
+        return self._drawn()[index]
+
+    def __len__(self) -> int:
+        return len(self._drawn())
+
+    def __repr__(self) -> str:
+        return f"PublicPaths(seed={self.seed}, n={self.n})"
+
+
 def _start_nearest_jumps(arm: Puma560, path06: np.ndarray, q0: np.ndarray, slack: float = 0.01) -> bool:
     """True when choosing, at every pose, the solution nearest the *start* q0 (not the previous pose) makes a
     step the path judge calls a jump: only such paths tell that mistake from the right method."""
     ref = tr.follow(arm, path06, q0).q
-    rows = []
-    for T in path06:
-        S = np.atleast_2d(np.asarray(_quiet(arm.ik, T).q, dtype=float))
-        rows.append(S[int(np.argmin(np.sum(np.asarray(transforms.wrap_angle(S - q0)) ** 2, axis=1)))])
-    mine = np.array(rows)
+    # every branch of every pose in one batched solve (the rows arm.ik gives, bit for bit: the same decisions
+    # as solving pose by pose, so the same paths are drawn for the same key; tests/grading/test_ex10_paths.py)
+    sols = _quiet(arm.ik_batch, path06)
+    d = np.asarray(transforms.wrap_angle(sols.q - q0))
+    cost = np.where(sols.valid, np.sum(d * d, axis=2), np.inf)
+    mine = sols.q[np.arange(len(path06)), np.argmin(cost, axis=1)]
 
     def largest(P: np.ndarray) -> float:
         d = np.asarray(transforms.wrap_angle(P[1:] - P[:-1]))
