@@ -380,7 +380,7 @@ def puma_paths(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
 class PublicPaths(Sequence[tuple[Any, ...]]):
     """The public cases ``puma_paths(default_rng(seed), n)``, drawn the first time they are used, not when the bank
     is imported: a command that loads the bank without grading ex10's q3 (release, edition of other exercises,
-    every check) does not pay for the drawing. Read-only, like the tuple it stands for; picklable.
+    every check) does not pay for the drawing. Read-only, like the tuple it stands for, and pickled as that tuple.
 
     >>> paths = PublicPaths(seed=10, n=2)
     >>> paths._cases is None, len(paths), paths._cases is not None
@@ -402,8 +402,12 @@ class PublicPaths(Sequence[tuple[Any, ...]]):
     def __len__(self) -> int:
         return len(self._drawn())
 
-    def __repr__(self) -> str:
-        return f"PublicPaths(seed={self.seed}, n={self.n})"
+    def __repr__(self) -> str:  # the tuple's (an exercise's repr is the same as with the tuple itself)
+        return repr(self._drawn())
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # pickled as the plain tuple it stands for: a student edition's public data names no bank code
+        return (tuple, (self._drawn(),))
 
 
 def _follow_rows(arm: Puma560, path06: np.ndarray, sols: Any, q0: np.ndarray) -> np.ndarray:
