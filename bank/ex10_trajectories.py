@@ -145,7 +145,7 @@ EXERCISE = Exercise(
             "follow_path",
             6,
             "a joint path for a pen along a Cartesian path",
-            public=tuple(ref.puma_paths(np.random.default_rng(10), 2)),
+            public=ref.PublicPaths(seed=10, n=2),  # drawn when first used, not at import
             hidden=lambda rng: ref.puma_paths(rng, 3),
             reference=ref.puma_path_expected,
             judge_with=path_judge(),

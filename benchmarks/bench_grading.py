@@ -2,6 +2,7 @@
 
     python benchmarks/bench_grading.py [--students 100] [--jobs 2] [--sandbox both|bwrap|none]
                                        [--overhead 20] [--kernel-sample 3] [--repeat 2]
+    python benchmarks/bench_grading.py --plans-only 5    # each exercise's plan per student, nothing graded
 
 Each student's folder holds, per exercise, one of: the solution, the solution with a bug
 injected (a sign flipped in the first answer line that has a '+'), the untouched exercise
@@ -25,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -38,6 +40,7 @@ from puma_course.grading import EXERCISES, grade, release
 from puma_course.grading.run.runner import make_plan
 from puma_course.grading.run.sandbox import Sandbox, child_env, choose
 from puma_course.grading.run.stage import Stage
+from puma_course.grading.secret import Secret
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -159,6 +162,29 @@ def time_grader_steps(repeat: int = 3) -> tuple[float, int, float, float]:
     return plan_s, calls, stage_s, check_s
 
 
+def time_plans(students: int = 5) -> dict[str, list[float]]:
+    """Seconds to plan each exercise for each of ``students`` students under one key (their own hidden cases).
+
+    The first student of each exercise also draws the public cases a bank draws on first use (ex10's paths)."""
+    key = Secret(b"bench-grading-plans" * 2)
+    out: dict[str, list[float]] = {}
+    for name, ex in EXERCISES.items():
+        for k in range(students):
+            start = time.perf_counter()
+            make_plan(ex, key, f"student-{k:03d}")
+            out.setdefault(name, []).append(time.perf_counter() - start)
+    return out
+
+
+def print_plans(students: int) -> None:
+    plans = time_plans(students)
+    print(f"plan per student ({students} students under one key; ms, median and largest):")
+    for name, times in plans.items():
+        print(f"  {name:<22} {statistics.median(times) * 1e3:8.1f} {max(times) * 1e3:8.1f}")
+    total = sum(statistics.median(t) for t in plans.values())
+    print(f"  {'all exercises':<22} {total * 1e3:8.1f}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--students", type=int, default=100)
@@ -167,7 +193,13 @@ def main() -> None:
     parser.add_argument("--overhead", type=int, default=20, help="notebooks for the per-notebook cost (0: skip)")
     parser.add_argument("--kernel-sample", type=int, default=3, help="notebooks to time with nbclient (0: skip)")
     parser.add_argument("--repeat", type=int, default=2, help="gradings of the class per sandbox (the best counts)")
+    parser.add_argument(
+        "--plans-only", type=int, default=0, metavar="N", help="only time each exercise's plan for N students"
+    )
     args = parser.parse_args()
+    if args.plans_only:
+        print_plans(args.plans_only)
+        return
     bwrap = choose("auto")
     boxes = [choose("none")] if args.sandbox in ("both", "none") else []
     if args.sandbox in ("both", "bwrap"):

@@ -29,15 +29,14 @@ from __future__ import annotations
 import argparse
 import contextlib
 import dataclasses
-import os
-import shlex
-import subprocess
 import sys
 import threading
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from .cli_help import BROKEN_PIPE, command_list, drop_stdout
+from .cli_lab import CONTENTS_MANAGER, add_lab_parser, lab, lab_command
 from .cli_platform import (
     add_grade_arguments,
     add_gradescope_parser,
@@ -48,43 +47,16 @@ from .cli_platform import (
 )
 from .cli_publish import add_publish_parsers, edition, site
 from .cli_written import collect_written
-from .course import INDEX, CourseNotFoundError, course_root, find_course
+from .course import CourseNotFoundError, course_root, find_course
 from .extras import MissingExtraError, require_extra
 from .instructor.cli import add_parsers as add_instructor_parsers
 from .instructor.cli import run_keys, run_slides
 
-__all__ = ["main", "build_parser", "lab_command"]
+__all__ = ["main", "build_parser", "lab_command", "CONTENTS_MANAGER"]
 
 _COURSE_HELP = (
     "the course folder (default: the nearest folder, at or above the current one, that holds solutions/ or notebooks/)"
 )
-
-#: notebooks open unmodified whatever the student's Python (see :mod:`puma_course.lab_contents`)
-CONTENTS_MANAGER = "--ServerApp.contents_manager_class=puma_course.lab_contents.CourseContentsManager"
-
-
-def lab_command(root: str | os.PathLike[str], jupyter_args: Sequence[str] = (), no_browser: bool = False) -> list[str]:
-    """The command line that opens JupyterLab at the course folder ``root``, its index first.
-
-    JupyterLab serves ``root`` (lectures in ``notebooks/`` and exercises in ``exercises/`` are
-    both in its file browser); when ``root`` holds the index ``START_HERE.ipynb``, JupyterLab's
-    default page (the URL it opens and prints) is that notebook. ``jupyter_args`` come last, so
-    an option given there overrides the ones chosen here.
-
-    >>> cmd = lab_command("/srv/course", ["--port", "8899"], no_browser=True)
-    >>> cmd[1:4], cmd[5:], cmd[0] == sys.executable
-    (['-m', 'jupyterlab', '--ServerApp.root_dir=/srv/course'], ['--no-browser', '--port', '8899'], True)
-    >>> cmd[4] == CONTENTS_MANAGER
-    True
-    """
-    folder = Path(root)
-    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={folder}", CONTENTS_MANAGER]
-    if (folder / INDEX).is_file():
-        cmd.append(f"--LabApp.default_url=/lab/tree/{INDEX}")
-    if no_browser:
-        cmd.append("--no-browser")
-    cmd.extend(jupyter_args)
-    return cmd
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -96,24 +68,16 @@ def build_parser() -> argparse.ArgumentParser:
     >>> build_parser().parse_args(["release", "--check"]).command
     'release'
     """
-    parser = argparse.ArgumentParser(prog="puma-course", description="Manipulator-kinematics course tools.")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", help="what to do")
+    parser = argparse.ArgumentParser(
+        prog="puma-course", usage="%(prog)s [-h] COMMAND ...", formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    # the commands are listed by _command_list (students' first), not in argparse's one list
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", help=argparse.SUPPRESS)
 
     course = argparse.ArgumentParser(add_help=False)
     course.add_argument("--course", type=Path, default=None, metavar="DIR", help=_COURSE_HELP)
 
-    lab = sub.add_parser(
-        "lab",
-        parents=[course],
-        allow_abbrev=False,  # an abbreviation of a JupyterLab option must reach JupyterLab, not match ours
-        usage="puma-course lab [-h] [--course DIR] [--no-browser] [--print-command] [JUPYTER-OPTIONS ...]",
-        help="open JupyterLab on the course (lectures and exercises), START_HERE.ipynb first",
-        description="Open JupyterLab at the course folder, with the index START_HERE.ipynb as its first page.",
-        epilog="Every other option goes to JupyterLab unchanged, e.g. --port 8899, --allow-root, "
-        "--IdentityProvider.token=TOKEN, --LabApp.default_url=/lab.",
-    )
-    lab.add_argument("--no-browser", action="store_true", help="start the server without opening a browser")
-    lab.add_argument("--print-command", action="store_true", help="print the JupyterLab command instead of running it")
+    add_lab_parser(sub, course)
 
     rel = sub.add_parser("release", parents=[course], help="generate exercises/ from solutions/")
     rel.add_argument(
@@ -191,36 +155,13 @@ def build_parser() -> argparse.ArgumentParser:
     ck.add_argument("--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)")
     add_publish_parsers(sub, course)
     add_instructor_parsers(sub, course)  # slides, keys (the instructor's kit)
+    parser.description = command_list([(a.dest, a.help or "") for a in sub._choices_actions])
     return parser
 
 
 def _course(args: argparse.Namespace) -> Path:
     """The course the command works on: ``--course DIR``, else found from the current directory."""
     return course_root(args.course)
-
-
-def _exec(cmd: list[str]) -> int:
-    """Run ``cmd`` in place of this process (POSIX), else as a child whose exit code is returned."""
-    sys.stdout.flush()
-    sys.stderr.flush()
-    if os.name == "posix":
-        # Like `jupyter lab` itself: Ctrl-C, SIGTERM and the exit code belong to JupyterLab,
-        # which asks before shutting down and stops its kernels (a waiting parent would not).
-        os.execv(cmd[0], cmd)
-    with subprocess.Popen(cmd) as proc:  # pragma: no cover - Windows
-        while True:
-            try:
-                return proc.wait()
-            except KeyboardInterrupt:
-                continue  # JupyterLab got the Ctrl-C as well and handles it
-
-
-def _lab(args: argparse.Namespace) -> int:
-    cmd = lab_command(_course(args), args.jupyter_args, no_browser=args.no_browser)
-    if args.print_command:
-        print(shlex.join(cmd))
-        return 0
-    return _exec(cmd)
 
 
 def _release(args: argparse.Namespace) -> int:
@@ -288,8 +229,12 @@ def _grade(args: argparse.Namespace) -> int:
         if not args.quiet:
             line = f"{r.student:>20} {r.exercise:<18} {r.score:>6g}/{r.max_score:<4g} {r.status} ({r.seconds:.1f} s)"
             with lock:
-                sys.stdout.write(line.replace("\n", " ") + "\n")
-                sys.stdout.flush()
+                try:
+                    sys.stdout.write(line.replace("\n", " ") + "\n")
+                    sys.stdout.flush()
+                except BrokenPipeError:  # `grade ... | head`: grading goes on, its output goes nowhere
+                    args.quiet = True
+                    drop_stdout()
 
     with warnings.catch_warnings(record=True) as caught, contextlib.closing(groups):
         warnings.simplefilter("always", GradingIntegrityWarning)
@@ -382,15 +327,29 @@ def _check(args: argparse.Namespace) -> int:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``puma-course``; returns the exit code (2: bad input, such as no course found).
 
+    Output read by a program that stops early (``puma-course check ... | head``) ends the command quietly with
+    exit code 141, as a shell tool killed by SIGPIPE, never with a traceback.
+
     >>> main(["release", "--course", "/no/such/course"])
     2
     """
+    try:
+        try:
+            return _main(argv)
+        finally:
+            sys.stdout.flush()  # a closed pipe shows here (also after --help), not at the interpreter's exit
+    except BrokenPipeError:
+        drop_stdout()
+        return BROKEN_PIPE
+
+
+def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)
     if extra and args.command != "lab":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.jupyter_args = extra
-    handlers: dict[str, Any] = {"lab": _lab, "release": _release, "grade": _grade, "check": _check}
+    handlers: dict[str, Any] = {"lab": lab, "release": _release, "grade": _grade, "check": _check}
     handlers["gradescope"] = lambda a: gradescope(a, _course(a))
     handlers["collect-written"] = lambda a: collect_written(a, _course(a))
     handlers["site"] = lambda a: site(a, _course(a))

@@ -2,9 +2,9 @@
 
 The plain install (``pip install .``) carries what the lectures and the self-checks import; the
 commands that need more say which extra to install (see ``pyproject.toml``): ``lab`` (JupyterLab
-and the kernel), ``grader`` (nbformat, bubblewrap), ``site`` (Sphinx), ``instructor`` (nbconvert and MathJax for the
-slides and the keys), ``dev`` (all of them and the
-maintainers' tools). Standard library only (base layer).
+and the kernel), ``grader`` (nbformat, bubblewrap), ``site`` (Sphinx), ``instructor`` (nbconvert, and
+MathJax from sphinx-mathjax-offline, which brings Sphinx, for the slides and the keys), ``dev`` (all of
+them and the maintainers' tools). Standard library only (base layer).
 """
 
 from __future__ import annotations

@@ -6,7 +6,8 @@ with, and nothing of the answer key:
 * a student README (make a virtual environment, install, open, work, self-check, hand in);
 * ``START_HERE.ipynb``, ``notebooks/`` (the lectures, with their outputs), ``exercises/`` (the
   student versions) and the figures the exercises show (``figures/*.png``);
-* the package source (``puma_course/``, ``pyproject.toml``, ``LICENSE``), so ``pip install .`` in
+* the package source (``puma_course/``, ``pyproject.toml``, ``LICENSE``, and a ``setup.py`` that builds in a
+  temporary folder, so installing leaves no ``build/`` or ``*.egg-info`` behind), so ``pip install .`` in
   DIR gives the kinematics, the viewer and the grading engine, and the self-check's data for the
   public cases only (``puma_course/grading/public_data/exercises.pickle``,
   :mod:`puma_course.grading.public`): inputs, expected values, the mistaken answers it recognises
@@ -30,7 +31,7 @@ from ..hub import write_binder_files
 from .model import load_bank
 from .public import DATA_FILE, dumps, public_exercise
 
-__all__ = ["Edition", "write_edition", "STUDENT_README", "MANAGED"]
+__all__ = ["Edition", "write_edition", "STUDENT_README", "SETUP_PY", "MANAGED"]
 
 #: What an edition holds at its top level (replaced on every write; anything else in DIR is kept).
 MANAGED = (
@@ -38,6 +39,7 @@ MANAGED = (
     "binder",
     "LICENSE",
     "pyproject.toml",
+    "setup.py",
     ".gitignore",
     INDEX,
     "notebooks",
@@ -68,26 +70,38 @@ source .venv/bin/activate
 python -m pip install ".[lab]"
 ```
 
-Windows (PowerShell):
+Windows (a Command Prompt):
 
-```powershell
+```bat
 py -m venv .venv
-.venv\\Scripts\\Activate.ps1
+.venv\\Scripts\\activate.bat
 python -m pip install ".[lab]"
 ```
+
+(In PowerShell the second line is `.venv\\Scripts\\Activate.ps1`; if PowerShell refuses to run it because
+running scripts is disabled, use a Command Prompt, or allow your own scripts once with
+`Set-ExecutionPolicy -Scope CurrentUser RemoteSigned`.)
+
+The install builds in a temporary folder (`setup.py`), so this folder gets no `build/` or `*.egg-info`.
 
 (Already have JupyterLab, on a university hub say? `python -m pip install .` installs only what the
 lectures and the self-checks need, and leaves your JupyterLab as it is.)
 
 ## Open
 
-With the environment active (`source .venv/bin/activate`, or `.venv\\Scripts\\Activate.ps1`):
+With the environment active (`source .venv/bin/activate`, or `.venv\\Scripts\\activate.bat` on Windows):
 
 ```bash
 puma-course lab
 ```
 
 JupyterLab opens at this folder with `START_HERE.ipynb`, the index of every lecture and exercise.
+`puma-course --help` lists your commands (`lab`, `check`) first; the others are your instructor's.
+
+JupyterLab will not run as root (the administrator). In a container (Docker, Podman) where you are root,
+`puma-course lab` gives JupyterLab `--allow-root` itself and says so. Anywhere else it stops and tells you
+to run it as your own user, without `sudo`; if root really is the only user there, run
+`puma-course lab --allow-root`.
 
 ## Work
 
@@ -120,6 +134,26 @@ __pycache__/
 *.egg-info/
 .ipynb_checkpoints/
 build/
+"""
+
+
+#: The edition's ``setup.py``: setuptools builds in a temporary folder, so ``pip install .`` (or ``-e .``) leaves
+#: no ``build/`` or ``*.egg-info`` in the student's folder (everything else comes from ``pyproject.toml``).
+SETUP_PY = """\
+\"\"\"Build the course's package in a temporary folder, so the install leaves this folder as it was.
+
+Everything else about the package is in pyproject.toml.
+\"\"\"
+
+import atexit
+import shutil
+import tempfile
+
+from setuptools import setup
+
+scratch = tempfile.mkdtemp(prefix="puma-course-build-")
+atexit.register(shutil.rmtree, scratch, ignore_errors=True)
+setup(options={"build": {"build_base": scratch}, "egg_info": {"egg_base": scratch}})
 """
 
 
@@ -174,6 +208,7 @@ def write_edition(out: str | Path, course: str | Path | None = None) -> Edition:
 
     (dest / "README.md").write_text(STUDENT_README.format(title=_title(root)), encoding="utf-8")
     (dest / ".gitignore").write_text(GITIGNORE, encoding="utf-8")
+    (dest / "setup.py").write_text(SETUP_PY, encoding="utf-8")
     for name in ("LICENSE", "pyproject.toml", INDEX):
         if (root / name).is_file():
             shutil.copy2(root / name, dest / name)

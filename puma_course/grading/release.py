@@ -42,6 +42,7 @@ import re
 from pathlib import Path
 from typing import Any
 
+from . import notebook_json as nbjson
 from .model import EXERCISES, Exercise, Question
 from .written import ANSWER_TAG, PLACEHOLDER, PROMPT_TAG, prompt_source, written_questions, written_summary
 
@@ -191,7 +192,7 @@ def _known(exercise: Exercise, qid: str) -> bool:
 
 
 def release_notebook(nb: Any, exercise: Exercise | None = None) -> Any:
-    r"""The student version of a solution notebook (a new nbformat NotebookNode; ``nb`` is untouched).
+    r"""The student version of a solution notebook (a new :class:`~.notebook_json.Node`; ``nb`` is untouched).
 
     With ``exercise`` (what :func:`release` passes), each answer cell tagged ``question:qN`` gets its
     ``points:N`` tag and a heading cell from the question bank, and a points summary follows the first
@@ -203,12 +204,10 @@ def release_notebook(nb: Any, exercise: Exercise | None = None) -> Any:
     >>> [c.source for c in release_notebook(nbformat.v4.new_notebook(cells=[given, hidden])).cells]
     ['def f():\n    raise NotImplementedError("write your answer here")']
     """
-    import nbformat
-
     answers = _answer_cells(nb, exercise) if exercise is not None else {}
     summary_due = exercise is not None
-    out = nbformat.v4.new_notebook()
-    out.metadata = nbformat.from_dict(copy.deepcopy(NOTEBOOK_METADATA))
+    out = nbjson.new_notebook()
+    out.metadata = nbjson.from_dict(copy.deepcopy(NOTEBOOK_METADATA))
     for index, cell in enumerate(nb.cells):
         try:
             source = _transform_source(cell.source, cell.cell_type)
@@ -216,7 +215,7 @@ def release_notebook(nb: Any, exercise: Exercise | None = None) -> Any:
             raise ValueError(f"cell {index + 1} ({cell.get('id', '?')}): {exc}") from None
         q = answers.get(index)
         if q is not None:
-            heading = nbformat.v4.new_markdown_cell(question_heading(q), metadata={"tags": [HEADING_TAG + q.qid]})
+            heading = nbjson.new_markdown_cell(question_heading(q), metadata={"tags": [HEADING_TAG + q.qid]})
             heading["id"] = f"heading-{q.qid}"
             out.cells.append(heading)
         if source is None:
@@ -224,16 +223,16 @@ def release_notebook(nb: Any, exercise: Exercise | None = None) -> Any:
         tags = _tags(cell) + ([f"{POINTS_TAG}{q.points:g}"] if q is not None else [])
         meta = {"tags": tags} if tags else {}
         if cell.cell_type == "code":
-            new = nbformat.v4.new_code_cell(source, metadata=meta)
+            new = nbjson.new_code_cell(source, metadata=meta)
         elif cell.cell_type == "markdown":
-            new = nbformat.v4.new_markdown_cell(source, metadata=meta)
+            new = nbjson.new_markdown_cell(source, metadata=meta)
         else:
-            new = nbformat.v4.new_raw_cell(source, metadata=meta)
+            new = nbjson.new_raw_cell(source, metadata=meta)
         new["id"] = cell.get("id") or f"cell-{index + 1}"
         out.cells.append(new)
         if summary_due and exercise is not None:
             text = points_summary(exercise) + written_summary(exercise)
-            summary = nbformat.v4.new_markdown_cell(text, metadata={"tags": [SUMMARY_TAG]})
+            summary = nbjson.new_markdown_cell(text, metadata={"tags": [SUMMARY_TAG]})
             summary["id"] = SUMMARY_TAG
             out.cells.append(summary)
             summary_due = False
@@ -249,13 +248,11 @@ def release_notebook(nb: Any, exercise: Exercise | None = None) -> Any:
 def _add_written(out: Any, exercise: Exercise) -> None:
     """Put each written question's prompt and answer cell before the notebook's closing cell (the last one,
     when it is Markdown), else at the end (see :mod:`.written`)."""
-    import nbformat
-
     cells = []
     for w in written_questions(exercise):
-        prompt = nbformat.v4.new_markdown_cell(prompt_source(w), metadata={"tags": [PROMPT_TAG + w.qid]})
+        prompt = nbjson.new_markdown_cell(prompt_source(w), metadata={"tags": [PROMPT_TAG + w.qid]})
         prompt["id"] = f"written-prompt-{w.qid}"
-        answer = nbformat.v4.new_markdown_cell(PLACEHOLDER, metadata={"tags": [ANSWER_TAG + w.qid]})
+        answer = nbjson.new_markdown_cell(PLACEHOLDER, metadata={"tags": [ANSWER_TAG + w.qid]})
         answer["id"] = f"written-{w.qid}"
         cells += [prompt, answer]
     at = len(out.cells) - 1 if out.cells and out.cells[-1].cell_type == "markdown" else len(out.cells)
@@ -264,9 +261,7 @@ def _add_written(out: Any, exercise: Exercise) -> None:
 
 def notebook_text(nb: Any) -> str:
     """The exact text :func:`release` writes for ``nb`` (nbformat's layout plus a final newline)."""
-    import nbformat
-
-    return nbformat.writes(nb) + "\n"
+    return nbjson.writes(nb) + "\n"
 
 
 def essentials(nb: Any) -> list[tuple[str, str, tuple[str, ...]]]:
@@ -310,8 +305,6 @@ def release(
     ``check_only`` nothing is written and each out-of-date name comes with its first difference,
     e.g. ``"ex02_dh_puma (cell 7: source differs)"``; what counts is stated in the module docstring.
     """
-    import nbformat
-
     sol_dir, ex_dir = Path(solutions), Path(exercises)
     if not sol_dir.is_dir():
         raise ValueError(f"solutions: expected a folder of solution notebooks, got {str(sol_dir)!r}")
@@ -324,7 +317,7 @@ def release(
                 f"got {path.name} (add bank/{path.stem}.py)"
             )
         try:
-            generated = release_notebook(nbformat.read(path, as_version=4), exercise)
+            generated = release_notebook(nbjson.read(path), exercise)
         except ValueError as exc:
             raise ValueError(f"{path.name}: {exc}") from None
         text = notebook_text(generated)
@@ -345,12 +338,10 @@ def release(
 
 def _stale(target: Path, generated: Any) -> str | None:
     """Why the exercise at ``target`` is out of date with ``generated``, or None if it is not."""
-    import nbformat
-
     if not target.exists():
         return "not generated yet"
     try:
-        committed = nbformat.reads(target.read_text(encoding="utf-8"), as_version=4)
+        committed = nbjson.reads(target.read_text(encoding="utf-8"))
     except Exception as exc:  # noqa: BLE001 - nbformat raises many kinds
         return f"not a readable notebook: {type(exc).__name__}"
     return _first_difference(committed, generated)

@@ -147,6 +147,10 @@ def test_the_edition_holds_what_a_student_needs(edition):
                  'pip install ".[lab]"', "puma-course lab", 'check("q1", my_function)', "puma-course check",
                  "Hand in"):  # fmt: skip
         assert step in readme, step
+    # Windows: the Command Prompt's form first (PowerShell's default policy refuses Activate.ps1), and why
+    assert readme.index(".venv\\Scripts\\activate.bat") < readme.index(".venv\\Scripts\\Activate.ps1")
+    assert "Set-ExecutionPolicy" in readme
+    assert "puma-course lab --allow-root" in readme and "sudo" in readme  # what to do as root
     assert (edition / "puma_course" / DATA_FILE.relative_to(DATA_FILE.parents[2])).is_file()
     assert not list(edition.rglob("__pycache__"))
 
@@ -335,7 +339,10 @@ def _venv(where: Path) -> Path:
 @pytest.mark.slow
 def test_the_installed_edition_holds_no_key_and_checks_the_public_cases(edition, tmp_path):
     python = _venv(tmp_path / "venv")
+    before = sorted(p.relative_to(edition).as_posix() for p in edition.rglob("*"))
     subprocess.run([str(python), "-m", "pip", "install", "-q", str(edition)], check=True)
+    # the student's folder as it was: no build/, no *.egg-info (setup.py builds in a temporary folder)
+    assert sorted(p.relative_to(edition).as_posix() for p in edition.rglob("*")) == before
     site = Path(
         subprocess.run(
             [str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],

@@ -302,6 +302,23 @@ def test_collect_written_reads_the_platforms_downloads_too(tmp_path, layout, whe
     assert len(list((tmp_path / "m" / "attachments").glob("*.png"))) == 1
 
 
+def test_collect_written_says_an_exercise_has_no_written_question_not_that_it_matches_none(tmp_path, capsys):
+    download = tmp_path / "canvas"
+    _hand_in(tmp_path / "tmp", ANN, attach=True)
+    download.mkdir()
+    shutil.copy(tmp_path / "tmp" / f"{EX}.ipynb", download / f"smithjohn_101_1001_{EX}.ipynb")
+    shutil.copy(ROOT / "exercises" / "ex01_rotations.ipynb", download / "smithjohn_101_1002_ex01_rotations.ipynb")
+    (download / "smithjohn_101_1003_notes.ipynb").write_text("{}", encoding="utf-8")
+    args = ["collect-written", str(download), "-o", str(tmp_path / "m"), "--course", str(ROOT), "--layout", "canvas"]
+    assert main(args) == 0
+    err = capsys.readouterr().err
+    assert "ex01_rotations.ipynb" in err and "not collected: ex01_rotations has no written question" in err
+    ex01 = next(line for line in err.splitlines() if "ex01_rotations" in line)
+    assert "matches no exercise" not in ex01
+    notes = next(line for line in err.splitlines() if "notes.ipynb" in line)
+    assert "matches no exercise" in notes  # a file of no exercise at all is still said to be one
+
+
 HEAD = ["student", "exercise", "question", "points", "comment", "z axes", "origin 1", "origin 2", "x axes"]
 
 

@@ -31,6 +31,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..model import EXERCISES
 from ..run.collect import collect
 from ..run.submissions import StudentFolder, read_student, scan
 from ..written import Answer, WrittenQuestion, read_answers, release_of, written_exercises, written_questions
@@ -167,7 +168,9 @@ def template_rows(w: WrittenQuestion, students: list[str]) -> list[list[str]]:
     return [[*FIXED_COLUMNS, *names]] + [[csv_safe(s), w.exercise, w.qid, "", "", *blank] for s in students]
 
 
-def _read_all(submissions: Path, layout: str, names: list[str]) -> tuple[list[tuple[str, dict[str, bytes]]], list[str]]:
+def _read_all(
+    submissions: Path, layout: str, names: list[str], others: dict[str, str]
+) -> tuple[list[tuple[str, dict[str, bytes]]], list[str]]:
     """(student as graded, exercise -> notebook bytes) for every student, and the files not read, with why."""
     problems: list[str] = []
     found: list[tuple[str, dict[str, bytes]]] = []
@@ -178,7 +181,7 @@ def _read_all(submissions: Path, layout: str, names: list[str]) -> tuple[list[tu
             raise ValueError(f"submissions: expected a readable folder, got {str(submissions)!r} ({exc})") from None
         read = [(s.name, read_student(submissions, s, names)) for s in students]
     else:
-        c = collect(submissions, layout, names)
+        c = collect(submissions, layout, names, others)
         problems += c.problems
         read = [(s.key, c.read(StudentFolder(s.key, s.key), names)) for s in c.students]
     for student, files in read:
@@ -212,7 +215,10 @@ def collect_written(
     sub = Path(submissions)
     if not sub.is_dir():
         raise ValueError(f"submissions: expected a folder, got {str(sub)!r}")
-    people, problems = _read_all(sub, layout, names)
+    # a file of another exercise is "not collected: has no written question", not "matches no exercise"
+    others = {n: "has no written question" for n in EXERCISES if n not in have}
+    others.update({n: "was not asked for (--exercise)" for n in have if n not in names})
+    people, problems = _read_all(sub, layout, names, others)
     if not exercises:  # by default, the exercises someone handed in
         names = [n for n in names if any(n in files for _, files in people)]
         if not names:

@@ -66,6 +66,8 @@ class Collected:
     students: list[Submitter] = field(default_factory=list)
     problems: list[str] = field(default_factory=list)
     seen: list[str] = field(default_factory=list)
+    #: exercises of the course left out on purpose, with why (a file of one is "not collected: why", not "no exercise")
+    others: dict[str, str] = field(default_factory=dict)
 
     def notebooks(self) -> int:
         """How many notebooks will be graded."""
@@ -153,6 +155,10 @@ def _add(
     """File ``path`` (uploaded as ``filename``) for ``s``; returns its exercise if it is the one kept so far."""
     found = _exercise_of(filename, exercises)
     if found is None:
+        other = _exercise_of(filename, list(c.others))
+        if other is not None:
+            c.problems.append(f"{shown}: not collected: {other[0]} {c.others[other[0]]}")
+            return None
         c.problems.append(
             f"{shown}: matches no exercise (expected one of {', '.join(e + '.ipynb' for e in exercises)})"
         )
@@ -234,14 +240,18 @@ def _collect_moodle(c: Collected, exercises: list[str]) -> None:
     c.students = sorted(students.values(), key=lambda s: s.key)
 
 
-def collect(folder: str | os.PathLike[str], layout: str, exercises: list[str]) -> Collected:
+def collect(
+    folder: str | os.PathLike[str], layout: str, exercises: list[str], others: dict[str, str] | None = None
+) -> Collected:
     """The students and notebooks of a ``canvas`` or ``moodle`` download in ``folder`` (see the module docstring).
 
-    ValueError when ``layout`` is unknown or the folder cannot be read.
+    ``others``: exercises of the course not collected this time, each with why (e.g. "has no written question");
+    their files are listed as not collected, with that reason. ValueError when ``layout`` is unknown or the
+    folder cannot be read.
     """
     if layout not in ("canvas", "moodle"):
         raise ValueError(f"layout: expected 'canvas' or 'moodle' to collect, got {layout!r}")
-    c = Collected(layout, Path(folder))
+    c = Collected(layout, Path(folder), others=dict(others or {}))
     try:
         (_collect_canvas if layout == "canvas" else _collect_moodle)(c, list(exercises))
     except OSError as exc:
