@@ -12,6 +12,7 @@ and the honest and blank notebooks of the same exercise get full marks and 0 in 
 from __future__ import annotations
 
 import json
+import shutil
 import uuid
 from pathlib import Path
 
@@ -95,3 +96,20 @@ def test_honest_and_blank_in_the_same_image(exercise, caps, images, tmp_path):
         run = _grade(images[exercise], tmp_path / folder, (ROOT / folder / f"{exercise}.ipynb").read_bytes(), caps, "x")
         assert run.results is not None and run.results["score"] == want, run.results
         assert "status: ok" in run.results["output"]
+
+
+def test_without_the_user_nothing_runs_as_root(images, tmp_path):
+    """An image whose setup made no puma-student (and a read-only /etc: it cannot be made now) grades nothing."""
+    image = images["ex01_rotations"]
+    etc = tmp_path / "etc"
+    shutil.copytree(image.etc, etc, symlinks=True)
+    for name in ("passwd", "group", "shadow", "gshadow"):
+        path = etc / name
+        if path.is_file():
+            lines = path.read_text().splitlines(keepends=True)
+            path.write_text("".join(line for line in lines if not line.startswith("puma-student:")))
+    nb = (ROOT / "solutions" / "ex01_rotations.ipynb").read_bytes()
+    run = container.run_submission(container.Image(image.tree, etc, image.uid, image.setup), tmp_path / "run", nb)
+    assert run.returncode == 0 and run.results is not None, run.stderr[-2000:]
+    assert run.results["score"] == 0 and run.results["tests"] == []
+    assert "not graded: the unprivileged user puma-student does not exist" in run.results["output"]

@@ -163,9 +163,9 @@ class Probe:
     said: str
 
 
-def probe(user: User, private: Sequence[str], namespaces: bool = True) -> Probe:
-    """Run a process through the launcher as ``user``; ``private``: paths it must not be able to open."""
-    cmd = [*_prefix(user, namespaces), "--", sys.executable, "-I", "-S", "-c", _PROBE, *private]
+def probe(user: User, private: Sequence[str], namespaces: bool = True, python: str = sys.executable) -> Probe:
+    """Run ``python`` through the launcher as ``user``; ``private``: paths it must not be able to open."""
+    cmd = [*_prefix(user, namespaces), "--", python, "-I", "-S", "-c", _PROBE, *private]
     env = {"PATH": "/usr/bin:/bin", "PUMA_PROBE_PARENT": str(os.getpid())}
     try:
         done = subprocess.run(cmd, capture_output=True, timeout=60, env=env, cwd="/")
@@ -197,7 +197,7 @@ def _of(uid: int) -> list[int]:
     return [int(p) for p in os.listdir("/proc") if p.isdigit() and uid in uids(int(p))]
 
 
-def end_processes(user: User, rounds: int = 100) -> int:
+def end_processes(user: User, rounds: int = 100, python: str = sys.executable) -> int:
     """End every process of ``user`` (zombies aside); return how many were found. RuntimeError if some survive."""
     found: set[int] = set()
     for _ in range(rounds):
@@ -208,7 +208,7 @@ def end_processes(user: User, rounds: int = 100) -> int:
         # sent as the user, kill(-1) reaches every process the user may signal, in one pass of the kernel's
         # process list (a fork under way then fails): nothing of the user can be started between two kills
         subprocess.run(
-            [sys.executable, "-I", "-S", "-c", "import os; os.kill(-1, 9)"],
+            [python, "-I", "-S", "-c", "import os; os.kill(-1, 9)"],
             user=user.uid,
             group=user.gid,
             extra_groups=[],
