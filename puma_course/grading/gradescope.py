@@ -9,20 +9,20 @@ Specifications"): ``setup.sh`` and ``run_autograder`` at its root; Gradescope un
 * ``setup.sh`` makes a virtual environment ``/autograder/puma-venv`` and installs into it the wheel of
   this package that the zip carries (``dist/puma_course-<version>-py3-none-any.whl``: the version that
   built the zip, so the grader is pinned to it), with its dependencies from the package index the
-  image's pip uses; nothing else is downloaded. ``PUMA_PIP_OPTIONS`` adds pip options (the tests
-  install offline with ``--no-index``).
-* ``run_autograder`` runs ``python -m puma_course.grading.gradescope``: :func:`run` grades the
-  submitted notebook (``<exercise>.ipynb``, or the only notebook submitted) as ``puma-course grade``
-  does, with the course's question bank, and writes ``results.json``: the score; one test per
-  question (name, score, max_score, visible, its result worded as in the feedback file with the
-  hidden cases' details left out), and for a question that failed a hidden case one more test, unscored,
-  ``after_due_date``, with those details; the whole feedback file as an ``after_due_date`` test; the
-  run's notes as the top-level output.
-* The course's bank goes in the zip through :func:`_bank_files` and is loaded from ``/autograder/source``.
-
-Gradescope's container may not allow the user namespaces bubblewrap needs: the run then grades without
-the operating-system sandbox, and says so in the output everyone sees. The answer key stays out of the
-student's process as in every grading run: the worker imports only the student-side package.
+  image's pip uses; nothing else is downloaded. ``PUMA_PIP_OPTIONS`` adds pip options and
+  ``PUMA_VENV_OPTIONS`` venv options (the tests install offline). It makes the system user
+  ``puma-student`` (:data:`~.run.asuser.STUDENT_USER`; ``PUMA_STUDENT_UID`` fixes its uid) and makes the
+  installed package, its record and ``/autograder/source`` root's alone.
+* ``run_autograder`` runs ``python -m puma_course.grading.gradescope``: :func:`run` locks the grader's
+  folders and checks the student's user (:func:`~.gradescope_run.isolate`), grades the submitted notebook
+  (``<exercise>.ipynb``, or the only notebook submitted) as ``puma-course grade`` does, as that user
+  (:mod:`.run.asuser`), with the zip's question bank, ends every process of the user and writes
+  ``results.json`` (:func:`~.gradescope_run.finish`): the score; one test per question (name, score,
+  max_score, visible, its result worded as in the feedback file with the hidden cases' details left out),
+  and for a question that failed a hidden case one more test, unscored, ``after_due_date``, with those
+  details; the whole feedback file as an ``after_due_date`` test; the run's notes, which say what held, as
+  the top-level output.
+* The zip carries the bank of its own exercise only (:func:`_bank_files`), loaded from ``/autograder/source``.
 """
 
 from __future__ import annotations
