@@ -9,6 +9,7 @@ import os
 import secrets
 import shutil
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -16,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from puma_course.grading.gradescope_run import write_results
-from puma_course.grading.run.asuser import LAUNCHER, NPROC, User, end_processes, probe, uids
+from puma_course.grading.run.asuser import _PROBE, LAUNCHER, NPROC, User, end_processes, probe, uids
 
 PYTHON = "/usr/bin/python3"
 needs_root = pytest.mark.skipif(
@@ -118,3 +119,10 @@ def test_results_are_written_by_rename_never_through_a_link(tmp_path):
     path = tmp_path / "results" / "results.json"
     assert not path.is_symlink() and json.loads(path.read_text()) == out and outside.read_text() == "keep"
     assert [p.name for p in (tmp_path / "results").iterdir()] == ["results.json"]  # no temporary file left
+
+
+def test_the_probe_would_see_a_process_that_can_reach_the_grader():
+    """Run without the launcher (as the grader's own user), the probe's check of the grader's reach fires."""
+    env = {"PUMA_PROBE_PARENT": str(os.getpid())}
+    done = subprocess.run([sys.executable, "-I", "-S", "-c", _PROBE], capture_output=True, text=True, env=env)
+    assert json.loads(done.stdout)["signals_root"] is True
