@@ -9,24 +9,25 @@ Specifications"): ``setup.sh`` and ``run_autograder`` at its root; Gradescope un
 * ``setup.sh`` makes a virtual environment ``/autograder/puma-venv`` and installs into it the wheel of
   this package that the zip carries (``dist/puma_course-<version>-py3-none-any.whl``: the version that
   built the zip, so the grader is pinned to it), with its dependencies from the package index the
-  image's pip uses; nothing else is downloaded. ``PUMA_PIP_OPTIONS`` adds pip options (the tests
-  install offline with ``--no-index``).
-* ``run_autograder`` runs ``python -m puma_course.grading.gradescope``: :func:`run` grades the
-  submitted notebook (``<exercise>.ipynb``, or the only notebook submitted) as ``puma-course grade``
-  does, with the course's question bank, and writes ``results.json``: the score; one test per
-  question (name, score, max_score, visible, its result worded as in the feedback file with the
-  hidden cases' details left out), and for a question that failed a hidden case one more test, unscored,
-  ``after_due_date``, with those details; the whole feedback file as an ``after_due_date`` test; the
-  run's notes as the top-level output.
-* The course's bank goes in the zip through :func:`_bank_files` and is loaded from ``/autograder/source``.
-
-Gradescope's container may not allow the user namespaces bubblewrap needs: the run then grades without
-the operating-system sandbox, and says so in the output everyone sees. The answer key stays out of the
-student's process as in every grading run: the worker imports only the student-side package.
+  image's pip uses; nothing else is downloaded. ``PUMA_PIP_OPTIONS`` adds pip options and
+  ``PUMA_VENV_OPTIONS`` venv options (the tests install offline). It makes the system user
+  ``puma-student`` (:data:`~.run.asuser.STUDENT_USER`; ``PUMA_STUDENT_UID`` fixes its uid) and makes the
+  installed package, its record and ``/autograder/source`` root's alone.
+* ``run_autograder`` runs ``python -m puma_course.grading.gradescope``: :func:`run` locks the grader's
+  folders and checks the student's user (:func:`~.gradescope_run.isolate`), grades the submitted notebook
+  (``<exercise>.ipynb``, or the only notebook submitted) as ``puma-course grade`` does, as that user
+  (:mod:`.run.asuser`), with the zip's question bank, ends every process of the user and writes
+  ``results.json`` (:func:`~.gradescope_run.finish`): the score; one test per question (name, score,
+  max_score, visible, its result worded as in the feedback file with the hidden cases' details left out),
+  and for a question that failed a hidden case one more test, unscored, ``after_due_date``, with those
+  details; the whole feedback file as an ``after_due_date`` test; the run's notes, which say what held, as
+  the top-level output.
+* The zip carries the bank of its own exercise only (:func:`_bank_files`), loaded from ``/autograder/source``.
 """
 
 from __future__ import annotations
 
+import ast
 import base64
 import csv
 import hashlib
@@ -44,8 +45,10 @@ from pathlib import Path
 from typing import Any
 
 from .. import _version
+from .gradescope_run import finish, isolate, write_results
 from .model import EXERCISES, Exercise, NotebookResult, load_bank
 from .output.report import format_question
+from .run.asuser import STUDENT_USER
 from .run.submissions import read_path
 
 __all__ = ["build_autograder", "run", "results_json", "wheel_name", "SETUP_SH", "RUN_AUTOGRADER"]
@@ -58,13 +61,20 @@ SETUP_SH = """#!/usr/bin/env bash
 # Gradescope runs this once, as root, when it builds the autograder's image (puma-course {version}).
 set -euo pipefail
 cd "$(dirname "$0")"
-python3 -m venv /autograder/puma-venv || {{
-    apt-get update && apt-get install -y python3-venv && python3 -m venv /autograder/puma-venv
+python3 -m venv ${{PUMA_VENV_OPTIONS:-}} /autograder/puma-venv || {{
+    apt-get update && apt-get install -y python3-venv && python3 -m venv ${{PUMA_VENV_OPTIONS:-}} /autograder/puma-venv
 }}
 /autograder/puma-venv/bin/python -m pip install --disable-pip-version-check --no-cache-dir ${{PUMA_PIP_OPTIONS:-}} \\
     "./dist/{wheel}"
 /autograder/puma-venv/bin/python -c \\
     "import importlib.metadata as m; v = m.version('puma-course'); assert v == '{version}', v"
+# the user every notebook runs as, never root (PUMA_STUDENT_UID: its uid, if the image needs a fixed one)
+id -u {user} >/dev/null 2>&1 || useradd --system --user-group --no-create-home --shell /usr/sbin/nologin \\
+    ${{PUMA_STUDENT_UID:+--uid "$PUMA_STUDENT_UID"}} {user}
+# the grader's full package, its record and this folder (the wheel, the bank): root's alone
+PKG=$(/autograder/puma-venv/bin/python -I -c \\
+    "import importlib.util as u; print(u.find_spec('puma_course').submodule_search_locations[0])")
+chmod -R go-rwx "$PKG" "$(dirname "$PKG")"/puma_course-*.dist-info /autograder/source
 """
 
 RUN_AUTOGRADER = """#!/usr/bin/env bash
@@ -84,22 +94,72 @@ def wheel_name(version: str = _version.__version__) -> str:
     return f"puma_course-{version}-py3-none-any.whl"
 
 
-def _bank_files(course: Path) -> dict[str, bytes]:
+#: The bank/__init__.py of an autograder: it registers the zip's own exercise only.
+BANK_INIT = '''"""The question bank of this autograder: {exercise} alone (puma-course {version} built it)."""
+
+from puma_course.grading.model import register
+
+from . import {exercise} as _exercise
+
+register(_exercise.EXERCISE)
+'''
+
+
+def _bank_files(course: Path, exercise: str | None = None) -> dict[str, bytes]:
     """The course's question bank, as zip paths -> bytes, shipped under ``bank/``.
 
-    The bank lives in the course folder (``bank/``, beside ``solutions/``), never in the package, so it is
-    shipped whole; ``run_autograder`` loads it from ``/autograder/source/bank``. The zip is made by the
-    instructor, so the key may be in it; the student's process never sees it (hidden by the OS sandbox,
-    or taken off the container's disk before any student code runs where there is none).
+    With ``exercise``: that exercise's module (``bank/<exercise>.py``), the bank's modules it imports, and theirs
+    (its private helpers: ``_keys``, ``_reference``, ...), with a ``bank/__init__.py`` registering it alone (the
+    bank's own is left out); without, or when the bank has no ``<exercise>.py``, the whole bank. The bank lives
+    in the course folder (``bank/``, beside ``solutions/``), never in the package; ``run_autograder`` loads it
+    from ``/autograder/source/bank``, which only root can read (``setup.sh``).
     """
     folder = Path(course) / "bank"
     if not folder.is_dir():
         return {}
+    if exercise is not None and (folder / f"{exercise}.py").is_file():
+        mine = sorted(_imported(folder, exercise))
+        files = {f"bank/{p.relative_to(folder).as_posix()}": p.read_bytes() for p in mine}
+        files["bank/__init__.py"] = BANK_INIT.format(exercise=exercise, version=_version.__version__).encode()
+        return files
     return {
         f"bank/{p.relative_to(folder).as_posix()}": p.read_bytes()
         for p in sorted(folder.rglob("*"))
         if p.is_file() and "__pycache__" not in p.parts and not p.name.endswith(".pyc")
     }
+
+
+def _imported(folder: Path, exercise: str) -> set[Path]:
+    """The files of the bank at ``folder`` that ``<exercise>.py`` imports, and those they import (relative imports,
+    or absolute ones of the bank's package name), with the ``__init__.py`` of every package between them."""
+    from .model import BANK_MODULE
+
+    seen: set[Path] = set()
+    todo = [folder / f"{exercise}.py"]
+    while todo:
+        path = todo.pop()
+        if path in seen or not path.is_file() or folder not in path.parents or path == folder / "__init__.py":
+            continue  # the bank's own __init__ imports every exercise: the zip has one of its own
+        seen.add(path)
+        todo += [p / "__init__.py" for p in path.parents if folder in p.parents]
+        for node in ast.walk(ast.parse(path.read_bytes(), str(path))):
+            if isinstance(node, ast.ImportFrom):
+                parts, names = (node.module or "").split("."), [a.name for a in node.names]
+                if node.level:
+                    todo += _candidates(path.parents[node.level - 1].joinpath(*filter(None, parts)), names)
+                elif parts[0] == BANK_MODULE:
+                    todo += _candidates(folder.joinpath(*parts[1:]), names)
+            elif isinstance(node, ast.Import):
+                for parts in (a.name.split(".") for a in node.names):
+                    if parts[0] == BANK_MODULE:
+                        todo += _candidates(folder.joinpath(*parts[1:]), [])
+    return seen
+
+
+def _candidates(target: Path, names: list[str]) -> list[Path]:
+    """The files ``from <target> import <names>`` may read: the module, the package, and submodules of that name."""
+    found = [target.with_suffix(".py"), target / "__init__.py"]
+    return found + [target / f"{n}.py" for n in names] + [target / n / "__init__.py" for n in names]
 
 
 def _record_hash(data: bytes) -> str:
@@ -151,9 +211,9 @@ def build_autograder(course: str | os.PathLike[str], exercise: str, output: str 
     config = {"exercise": exercise, "version": version, "wheel": wheel}
     out = Path(output)
     out.parent.mkdir(parents=True, exist_ok=True)
-    bank = _bank_files(Path(course))
+    bank = _bank_files(Path(course), exercise)
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
-        _put(zf, "setup.sh", SETUP_SH.format(version=version, wheel=wheel).encode(), executable=True)
+        _put(zf, "setup.sh", SETUP_SH.format(version=version, wheel=wheel, user=STUDENT_USER).encode(), executable=True)
         _put(zf, "run_autograder", RUN_AUTOGRADER.format(version=version, exercise=exercise).encode(), True)
         _put(zf, "autograder.json", (json.dumps(config, indent=1) + "\n").encode())
         _put(zf, f"dist/{wheel}", _wheel_bytes(version))
@@ -243,22 +303,13 @@ def run(root: str | os.PathLike[str] = "/autograder") -> dict[str, Any]:
     except Exception as exc:  # noqa: BLE001 - Gradescope must get a results.json whatever happens
         out = {"score": 0.0, "output": f"the autograder failed ({type(exc).__name__}: {exc}); ask your instructor"}
         out["tests"] = []
-        _write(Path(root), out)
+        write_results(Path(root), out)
         raise
 
 
-def _write(base: Path, out: dict[str, Any]) -> None:
-    results_dir = base / "results"
-    results_dir.mkdir(parents=True, exist_ok=True)
-    tmp = results_dir / ".results.json.tmp"
-    tmp.write_text(json.dumps(out, indent=1) + "\n", encoding="utf-8")
-    os.replace(tmp, results_dir / "results.json")
-
-
 def _forget_bank(source: Path) -> None:
-    """Import every module of the bank at ``source/bank`` (already loaded), then delete its files: without the
-    OS sandbox, a student's process could otherwise read the answer key from the container's disk. Gradescope
-    runs each submission in a fresh container, so nothing else needs them."""
+    """Import every module of the bank at ``source/bank`` (already loaded), then delete its files: nothing needs them
+    any more (Gradescope runs each submission in a fresh container), and a file gone cannot be read."""
     import importlib
     import pkgutil
     import shutil
@@ -272,14 +323,18 @@ def _forget_bank(source: Path) -> None:
 
 def _run(base: Path) -> dict[str, Any]:
     from .run.runner import grade
-    from .run.sandbox import choose
 
     start = time.perf_counter()
+    iso = isolate(base)  # before anything else: the grader's files root's alone, the student's user checked
     config = json.loads((base / "source" / "autograder.json").read_text(encoding="utf-8"))
     name = config["exercise"]
-    load_bank(base / "source")  # the course's bank, shipped in the zip (never in the student's process)
+    load_bank(base / "source")  # the zip's bank: this exercise's module and its helpers (root's alone)
     exercise = EXERCISES[name]
     notes: list[str] = []
+    if iso.refused:
+        out = {"score": 0.0, "output": f"not graded: {iso.refused}. Ask your instructor.", "tests": []}
+        write_results(base, out)
+        return out
     if config.get("version") != _version.__version__:
         notes.append(
             f"WARNING: the zip was built by puma-course {config.get('version')}, this is {_version.__version__}"
@@ -287,13 +342,9 @@ def _run(base: Path) -> dict[str, Any]:
     path, said = _find_notebook(base / "submission", name)
     if said:
         notes.append(said)
-    box = choose("auto")
-    if box.kind != "bwrap":
-        notes.append(
-            f"Graded WITHOUT the operating-system sandbox ({box.reason}): this container does not allow it. "
-            "Your code ran in its own process, with time and memory limits, against a package without the answer key."
-        )
-        _forget_bank(base / "source")  # nothing hides the folder from the student's process: take it off the disk
+    box = iso.box
+    notes += iso.notes
+    _forget_bank(base / "source")
     seed = secrets.randbits(31)
     with tempfile.TemporaryDirectory(prefix="puma-gradescope-") as tmp:
         sub = Path(tmp) / "submissions" / "submission"
@@ -324,9 +375,8 @@ def _run(base: Path) -> dict[str, Any]:
     notes.append(f"{name}: {result.score:g} / {result.max_score:g} points")
     extra = {"exercise": name, "status": result.status, "version": _version.__version__, "seed": seed}
     extra["sandbox"] = box.kind
-    out = results_json(result, exercise, notes, feedback, time.perf_counter() - start, extra)
-    _write(base, out)
-    print("\n".join(notes))
+    out = finish(iso, base, results_json(result, exercise, notes, feedback, time.perf_counter() - start, extra))
+    print(out["output"])
     return out
 
 

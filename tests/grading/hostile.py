@@ -70,7 +70,7 @@ PRELUDE = (
     "    '''The attack found what it should not: say so through the exit code.'''\n"
     "    _os._exit(97)\n"
 )
-CATEGORIES = ("answer-key", "isolation", "persistence", "crash", "slow", "forging", "limits")
+CATEGORIES = ("answer-key", "isolation", "persistence", "crash", "slow", "forging", "limits", "gradescope")
 LIMITS = {"timeout_cell": 2.0, "timeout_total": 5.0, "timeout_student": 10.0}
 
 

