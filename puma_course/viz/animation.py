@@ -14,8 +14,9 @@ The player here:
   without scripts; its size never depends on layout at the time a script runs (JupyterLab's
   windowed notebook keeps cells out of view out of layout, and Chromium then drew an image that
   got its picture there at 0 x 0: an IntersectionObserver lays a fresh copy out if that happens);
-* ships its buttons and slider disabled, with a line saying they play once the cell has run; its
-  script enables them and removes the line (in a trusted notebook, after Run All, on the website);
+* ships its buttons and slider hidden, with a line saying they appear once the cell has run (no
+  control sits there dead); its script shows them and removes the line (in a trusted notebook,
+  after Run All, on the website);
 * draws its icons as text glyphs (nothing fetched), names every button, labels its slider with the
   visible word "frame", and marks the slider ``data-lm-suppress-shortcuts`` so JupyterLab's
   command-mode shortcuts leave its arrow keys alone.
@@ -69,7 +70,7 @@ _BUTTONS = (
 _CSS = """<style>
 .puma-anim{display:inline-block;text-align:center;max-width:100%}
 .puma-anim img{display:block;margin:0 auto}
-.puma-anim .anim-label{margin-right:.5em}
+.puma-anim .anim-label{margin:0 .4em;white-space:nowrap}
 .puma-anim input.anim-slider{width:min(374px,70%);vertical-align:middle}
 .puma-anim .anim-buttons{margin:6px 0}
 .puma-anim .anim-buttons button{min-width:36px;padding:2px 4px;font-family:sans-serif}
@@ -140,11 +141,9 @@ _SCRIPT = """<script>
   };
   box.querySelectorAll("button[data-act]").forEach(function (b) {
     b.addEventListener("click", act[b.getAttribute("data-act")]);
-    b.disabled = false;
   });
   slider.addEventListener("input", function () { stop(); show(parseInt(slider.value, 10)); });
-  slider.disabled = false;
-  loop.disabled = false;
+  box.querySelector(".anim-player").hidden = false;
   if (note) note.remove();
   if (window.IntersectionObserver) {
     new IntersectionObserver(function (entries) {
@@ -188,25 +187,27 @@ def player_html(frames: list[bytes], alt: str, interval: float = 200.0, loop: bo
     uid = uuid.uuid4().hex
     urls = ["data:image/png;base64," + base64.b64encode(f).decode("ascii") for f in frames]
     n = len(frames)
-    checked = " checked" if loop else ""
+    checked = ' checked="checked"' if loop else ""
     style = f"width:{w}px;max-width:100%;height:auto;aspect-ratio:{w}/{h}"
     buttons = "\n".join(
-        f'    <button type="button" data-act="{act}" title="{name}" aria-label="{name}" disabled>{glyph}</button>'
+        f'    <button type="button" data-act="{act}" title="{name}" aria-label="{name}">{glyph}</button>'
         for act, name, glyph in _BUTTONS
     )
     body = f"""<div class="animation puma-anim" id="_anim_box{uid}">
   <img id="_anim_img{uid}" src="{urls[0]}" width="{w}" height="{h}" style="{style}" alt="{_html.escape(alt)}">
+  <div class="anim-player" hidden="hidden">
   <div class="anim-controls">
     <label class="anim-label">frame <input id="_anim_slider{uid}" class="anim-slider" type="range" min="0"
-      max="{n - 1}" step="1" value="0" disabled data-lm-suppress-shortcuts="true"></label>
-    <output class="anim-count">1 / {n}</output>
-    <label class="anim-label"><input class="anim-loop" type="checkbox"{checked} disabled> loop</label>
+      max="{n - 1}" step="1" value="0" data-lm-suppress-shortcuts="true"></label>
+    <span class="anim-count">1 / {n}</span>
   </div>
   <div class="anim-buttons">
 {buttons}
+    <label class="anim-label"><input class="anim-loop" type="checkbox"{checked}> loop</label>
   </div>
-  <p class="anim-note">The first of {n} frames. The buttons play the animation once this cell has run
-  (Run All, or run the cell): until then JupyterLab does not start its script.</p>
+  </div>
+  <p class="anim-note">The first of {n} frames. The buttons that play them appear once this cell has run
+  (Run All, or run the cell): JupyterLab starts no script of a notebook it has not run or trusted.</p>
 </div>"""
     script = (
         _SCRIPT.replace("UID", uid)
