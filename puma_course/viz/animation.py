@@ -68,7 +68,7 @@ _BUTTONS = (
 )
 
 _CSS = """<style>
-.puma-anim{display:inline-block;text-align:center;max-width:100%}
+.puma-anim,.puma-anim .animation{display:inline-block;text-align:center;max-width:100%}
 .puma-anim img{display:block;margin:0 auto}
 .puma-anim .anim-label{margin:0 .4em;white-space:nowrap}
 .puma-anim input.anim-slider{width:min(374px,70%);vertical-align:middle}
@@ -193,7 +193,7 @@ def player_html(frames: list[bytes], alt: str, interval: float = 200.0, loop: bo
         f'    <button type="button" data-act="{act}" title="{name}" aria-label="{name}">{glyph}</button>'
         for act, name, glyph in _BUTTONS
     )
-    body = f"""<div class="animation puma-anim" id="_anim_box{uid}">
+    body = f"""<div class="puma-anim"><div class="animation" id="_anim_box{uid}">
   <img id="_anim_img{uid}" src="{urls[0]}" width="{w}" height="{h}" style="{style}" alt="{_html.escape(alt)}">
   <div class="anim-player" hidden="hidden">
   <div class="anim-controls">
@@ -208,7 +208,7 @@ def player_html(frames: list[bytes], alt: str, interval: float = 200.0, loop: bo
   </div>
   <p class="anim-note">The first of {n} frames. The buttons that play them appear once this cell has run
   (Run All, or run the cell): JupyterLab starts no script of a notebook it has not run or trusted.</p>
-</div>"""
+</div></div>"""
     script = (
         _SCRIPT.replace("UID", uid)
         .replace("INTERVAL", repr(float(interval)))
