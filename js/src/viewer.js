@@ -491,6 +491,7 @@ function render({ model, el }) {
     range.step = "1";
     range.value = "0";
     range.setAttribute("aria-label", "animation step");
+    range.setAttribute("data-lm-suppress-shortcuts", "true"); // the arrow keys step it, not JupyterLab's shortcuts
     const count = document.createElement("span");
     node.append(play, range, count);
     bar.prepend(node);

@@ -1,10 +1,11 @@
 """Text alternatives of the lectures' figures, where MyST-NB does not put them by itself.
 
 A lecture cell describes its figure in ``metadata.mystnb.image.alt``; MyST-NB renders that as the
-``alt`` of an image output. An animation (matplotlib's jshtml player, a ``text/html`` output) shows
-its frames in an ``<img id="_anim_img…">`` that MyST-NB passes through untouched: here the copy of a
-notebook that the website (and the slides) are built from gets the cell's text on that element, so a
-screen reader announces the animation. The committed notebooks are not changed.
+``alt`` of an image output. An animation (a ``text/html`` output) shows its frames in an
+``<img id="_anim_img…">`` that MyST-NB passes through untouched. ``viz.jshtml(anim, alt=...)`` writes
+the alt itself (JupyterLab shows it too); for an animation without one (matplotlib's own player),
+the copy of a notebook that the website (and the slides) are built from gets the cell's text on that
+element, so a screen reader announces the animation. The committed notebooks are not changed.
 """
 
 from __future__ import annotations

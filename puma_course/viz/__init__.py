@@ -8,7 +8,7 @@
 * :mod:`~puma_course.viz.viewer`: the WebGL viewer (an anywidget with three.js bundled): any
   chain or robot, turned with the mouse, ghost arms, targets, animations;
 * :mod:`~puma_course.viz.widgets`: joint sliders and the :class:`Panel` joining them to a viewer;
-* :mod:`~puma_course.viz.animation`: ``jshtml(anim)``, matplotlib's animation player without its CDN link;
+* :mod:`~puma_course.viz.animation`: ``jshtml(anim, alt=...)``, an offline player showing its first frame unscripted;
 * :mod:`~puma_course.viz.style`: the course's figure style (``use_course_style()``; ``use_projector_style()``
   for a lecture hall);
 * :mod:`~puma_course.viz.panels`: the lectures' panels, :func:`robot_panel` (any robot, optional

@@ -153,10 +153,12 @@ def test_animations_have_their_controls_and_play(site, server, chromium):
             for i in range(players.count()):
                 buttons = players.nth(i).locator("button")
                 assert buttons.count() >= 8, f"{rel}: animation {i} lacks its controls"
-                # the icons come from the site itself: the course's inline glyphs (an <i> with a ::before
-                # character), or the theme's bundled Font Awesome, which swaps each <i> for an inline <svg>
+                # the icons come from the site itself: the course player's text glyphs, matplotlib's player's
+                # inline glyphs (an <i> with a ::before character), or the theme's bundled Font Awesome,
+                # which swaps each <i> for an inline <svg>
                 drawn = page.evaluate(
                     """(b) => {
+                        if (!b.querySelector('i, svg') && b.textContent.trim()) return true;  // a text glyph
                         const svg = b.querySelector('svg');
                         if (svg) return svg.getBoundingClientRect().width > 4;
                         const i = b.querySelector('i');

@@ -143,3 +143,31 @@ def test_bad_input_is_refused_with_the_argument_named():
         ts.motion_joints(sol, 0)
     with pytest.raises(ValueError, match="start: expected three finite wrist angles"):
         ts.wrist_goal(sol, [0.0, np.nan, 0.0])
+
+
+def test_finer_sampling_does_not_shrink_the_first_wrist_step_lecture_08_section_6():
+    """The first step of φ and ψ on the geodesic tends to ±(the tilt's direction), not to 0, as n grows.
+
+    Independent truth: near the start the wrist's relative rotation is I + s [ω]x, ω = axis · angle of
+    Fa^T F (Fa the forearm frame at the end of step 2); its third column (s ω_y, -s ω_x, 1) gives
+    φ -> atan2(-ω_x, ω_y), and φ + ψ -> 0. The lecture's numbers: 157.63° and -157.37° at 60 samples.
+    """
+    from puma_course.kinematics.three_step.wrist_paths import forearm_frames
+    from puma_course.transforms import axis_angle
+
+    sol = ARM.three_step(W_EX, TARGET_EX, elbow="up")
+    q6 = ts.motion_joints(sol, 6)
+    axis, _ = axis_angle(forearm_frames(q6[12, :3]).T @ sol.target)
+    limit = math.degrees(math.atan2(-axis[0], axis[1]))
+    assert limit == pytest.approx(157.5, abs=1e-9)
+    firsts = {}
+    for n in (6, 60, 600, 6000):
+        q = ts.motion_joints(sol, n)
+        firsts[n] = np.degrees(q[2 * n + 1, 3:] - q[2 * n, 3:])
+    np.testing.assert_allclose(firsts[60][[0, 2]], [157.63, -157.37], atol=0.005)  # not "still 157.5"
+    np.testing.assert_allclose(firsts[600][[0, 2]], [157.51, -157.49], atol=0.005)
+    gaps = [abs(firsts[n][0] - limit) for n in (6, 60, 600, 6000)]
+    assert all(b < a / 5 for a, b in zip(gaps, gaps[1:], strict=False))  # it settles on the limit ...
+    assert gaps[-1] < 0.01
+    assert firsts[6000][0] + firsts[6000][2] == pytest.approx(0.0, abs=0.01)  # ... with ψ = -φ
+    assert abs(firsts[6000][1]) < 0.03  # while ϑ's first step shrinks with the sample period

@@ -313,3 +313,58 @@ def test_joint_interpolation_rejects_bad_input_naming_it(args, kwargs, name):
 
     with pytest.raises(ValueError, match=name):
         joint_interpolation(*args, **kwargs)
+
+
+# ---- lecture 10 section 10: a joint-space line through a singularity; steps compared like for like ------
+
+
+def _det_factored(q: np.ndarray, a2: float, a3: float, d4: float) -> np.ndarray:
+    """det J of the PUMA-560 as lecture 09 factors it: -a2 (a3 s3 + d4 c3)(a2 c2 + a3 c23 - d4 s23) s5."""
+    t2, t3, t5 = q[..., 1], q[..., 2], q[..., 4]
+    return (-a2 * (a3 * np.sin(t3) + d4 * np.cos(t3))
+            * (a2 * np.cos(t2) + a3 * np.cos(t2 + t3) - d4 * np.sin(t2 + t3)) * np.sin(t5))  # fmt: skip
+
+
+def test_a_joint_space_line_crosses_a_singularity_with_neither_end_at_one():
+    arm = Puma560()
+    q_from = np.radians([10.0, -40.0, 10.0, 20.0, 25.0, -30.0])
+    q_to = np.radians([40.0, -60.0, 30.0, -10.0, -25.0, 20.0])
+    s = np.linspace(0.0, 1.0, 11)
+    line = tr.joint_interpolation(q_from, q_to, s=s, revolute=arm.revolute)
+    J = arm.jacobian(line)
+    det = np.linalg.det(J)
+    p = arm.parameters()
+    np.testing.assert_allclose(det, _det_factored(line, p["a2"], p["a3"], p["d4"]), atol=1e-12)
+    assert det[0] == pytest.approx(-0.0441, abs=5e-5) and det[-1] == pytest.approx(0.0315, abs=5e-5)
+    assert det[0] < 0 < det[-1]  # the ends are not singular, and the sign changes on the way
+    # at s = 0.5, θ5 = 25° - 25° = 0 (to rounding): joints 4 and 6 turn about one axis through the wrist centre,
+    # so their columns of J are equal (rank 5) and det J is 0
+    assert abs(line[5, 4]) < 1e-15
+    np.testing.assert_allclose(J[5][:, 3], J[5][:, 5], atol=1e-12)
+    assert abs(det[5]) < 1e-12
+    # what does hold: the joint rates are bounded, the same Δq per unit of s on every stretch
+    rates = np.diff(line, axis=0) / np.diff(s)[:, None]
+    np.testing.assert_allclose(rates, np.broadcast_to(q_to - q_from, rates.shape), atol=1e-12)
+
+
+def test_largest_step_of_one_joint_and_step_length_like_for_like():
+    """JointPath.max_step is a length ‖Δq‖ (wrapped): the lecture compares one joint with one, length with length."""
+    arm = Puma560()
+    q_start = arm.q("qn")
+    T_a = arm.fk(q_start)
+    T_b = T_a.copy()
+    T_b[:3, 3] += [-0.3, 0.1, 0.1]
+    cart = tr.follow(arm, tr.line_path(T_a, T_b, 61), q_start)
+    joint = tr.joint_interpolation(cart.q[0], cart.q[-1], 61, revolute=arm.revolute)
+    dq_cart = np.diff(np.unwrap(cart.q, axis=0), axis=0)
+    dq_joint = np.diff(joint, axis=0)
+    assert cart.max_step == pytest.approx(np.linalg.norm(dq_cart, axis=1).max(), abs=1e-12)  # a length
+    # on the joint-space line every step is Δq / 60, Δq from the two ends by hand
+    delta = (cart.q[-1] - cart.q[0] + np.pi) % (2 * np.pi) - np.pi
+    assert np.abs(dq_joint).max() == pytest.approx(np.abs(delta).max() / 60, abs=1e-12)
+    assert np.linalg.norm(dq_joint, axis=1).max() == pytest.approx(np.linalg.norm(delta) / 60, abs=1e-12)
+    # the lecture's table [deg]: one joint 1.30 (Cartesian) and 0.70 (joint space), lengths 1.65 and 1.04
+    lengths = np.linalg.norm(dq_joint, axis=1)
+    got = np.degrees([np.abs(dq_cart).max(), np.abs(dq_joint).max(), cart.max_step, lengths.max()])
+    np.testing.assert_allclose(got, [1.296, 0.695, 1.646, 1.039], atol=1e-3)
+    assert got[0] < got[2] and got[1] < got[3]  # a step's length exceeds its largest joint's change
