@@ -117,16 +117,39 @@ class TreeMeter(Meter):
         self.seen: dict[int, tuple[int, float]] = {}
         self.last = 0.0
 
+    def _pids(self) -> list[str] | None:
+        """The processes to look at: every process of ``uid`` (all of /proc), else the tree from the root and
+        every process seen before (each process's ``children`` file: no scan of the whole of /proc)."""
+        if self.uid is not None:
+            try:
+                return [n for n in os.listdir(self.proc) if n.isdigit()]
+            except OSError:
+                return None
+        out, todo = set(), [self.root, *(p for p in self.seen if p > 0)]
+        while todo:
+            pid = todo.pop()
+            if pid in out:
+                continue
+            out.add(pid)
+            try:
+                for task in os.listdir(f"{self.proc}/{pid}/task"):
+                    with open(f"{self.proc}/{pid}/task/{task}/children", "rb") as fh:
+                        todo += [int(x) for x in fh.read().split()]
+            except (OSError, ValueError):
+                continue
+        return [str(p) for p in out]
+
     def __call__(self) -> float | None:
-        try:
-            names = [n for n in os.listdir(self.proc) if n.isdigit()]
-        except OSError:
+        names = self._pids()
+        if names is None:
             return None
         stats = {}
         for name in names:
             st = _stat(name)
             if st is not None:
                 stats[int(name)] = st
+        if not stats and not self.seen:
+            return None
         mine = {self.root} | {p for p, st in stats.items() if p in self.seen and self.seen[p][0] == st[1]}
         if self.uid is not None:
             for pid in stats:
