@@ -137,8 +137,10 @@ def test_a_call_that_never_answers_is_ended_on_its_cpu_time_whatever_it_writes()
 def test_the_proc_meter_counts_a_forked_child():
     import subprocess
 
-    code = "import os, time\nif os.fork() == 0:\n    e = time.process_time() + 1.0\n    while time.process_time() < e: pass\n" \
-           "    time.sleep(30)\n    os._exit(0)\ntime.sleep(30)"  # fmt: skip
+    code = (
+        "import os, time\nif os.fork() == 0:\n    e = time.process_time() + 1.0\n"
+        "    while time.process_time() < e: pass\n    time.sleep(30)\n    os._exit(0)\ntime.sleep(30)"
+    )
     p = subprocess.Popen([sys.executable, "-c", code], start_new_session=True)
     try:
         meter = monitor.meter_for(None, p.pid)
