@@ -156,7 +156,7 @@ def run(
         if os.name == "posix":
             _loop(proc, payload, result, start + timeout, list(calls), watch)
         else:  # pragma: no cover - Windows: no selectors on pipes; only `puma-course check` runs here
-            _communicate(proc, payload, result, timeout)
+            _communicate(proc, payload + b"".join(calls), result, timeout)  # the calls at once: no monitor
     finally:
         _kill(proc)
         for stream in (proc.stdin, proc.stdout, proc.stderr):
