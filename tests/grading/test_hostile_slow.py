@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import pytest
 
+from puma_course.grading.run.limits import WALL_FACTOR
 from tests.grading.hostile import LIMITS, check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile
@@ -19,9 +20,11 @@ def test_slow_attack_costs_at_most_its_limits(fx, mode, tmp_path, monkeypatch):
     check_run(run)
     limits = {**LIMITS, **fx.limits}
     spent = sum(r.seconds for r in run.of("attacker"))
-    assert spent <= limits["timeout_student"] + 3, spent
+    # the limits count the notebook's own time (CPU time; wall-clock time less its waits for a CPU others held,
+    # grading/run/monitor.py): on a busy machine the wall clock stretches, up to the backstop of WALL_FACTOR times
+    assert spent <= WALL_FACTOR * limits["timeout_student"] + 3, spent
     for r in run.of("attacker"):
-        assert r.seconds <= limits["timeout_total"] + 3, (r.exercise, r.seconds)
+        assert r.seconds <= WALL_FACTOR * limits["timeout_total"] + 3, (r.exercise, r.seconds)
     if limits["timeout_total"] >= 20:
         # what the notebook leaves running once it is done (a grandchild holding the pipe, exit hooks)
         # is not waited for: far below the 20 s the notebook was allowed

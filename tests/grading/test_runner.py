@@ -32,8 +32,8 @@ def test_hidden_inputs_depend_on_the_seed_and_are_reproducible():
 def test_the_worker_never_receives_expected_values(monkeypatch, tmp_path):
     seen = {}
 
-    def fake_run(cmd, payload, *, cwd, env, timeout):
-        seen["payload"], seen["env"] = payload, env
+    def fake_run(cmd, payload, *, cwd, env, timeout, calls=(), watch=None, **kw):
+        seen["payload"], seen["env"], seen["calls"] = payload, env, calls
         return child_mod.ChildResult()
 
     monkeypatch.setattr(child_mod, "run", fake_run)
@@ -43,8 +43,11 @@ def test_the_worker_never_receives_expected_values(monkeypatch, tmp_path):
     assert result.status == "grader-error" and result.score == 0  # no worker answered at all: not the student's doing
     header, _, notebook = seen["payload"].partition(b"\n")
     job = json.loads(header)
-    assert job["calls"] and all(set(c) == {"qid", "case", "function", "args"} for c in job["calls"])
-    assert b"expected" not in header and notebook == sub.read_bytes()
+    # the calls travel one at a time, after the notebook (child.run hands each over once the one before is answered)
+    calls = [json.loads(line) for line in seen["calls"]]
+    assert "calls" not in job and job["notebook_bytes"] == len(notebook)
+    assert calls and all(set(c) == {"qid", "case", "function", "args"} for c in calls)
+    assert b"expected" not in header + b"".join(seen["calls"]) and notebook == sub.read_bytes()
     # the grader's environment does not travel either
     assert "PATH" in seen["env"] and not set(seen["env"]) - {
         "PATH",

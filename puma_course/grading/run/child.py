@@ -8,6 +8,11 @@ Linux a pidfd wakes the loop the moment the process exits), so there is no fixed
   process has exited and the pipe holds nothing more, even if a grandchild still holds the pipe
   open; whatever runs at the process's exit (``atexit``, threads, ``__del__``) costs nothing;
 * at the deadline, or when the output passes its cap, it stops the process;
+* it hands the worker its calls one at a time (``calls``: one JSON line each), the first once the worker
+  says its cells ran (``{"kind": "cells"}``), each next one once the answer to the one before has come
+  (a ``call`` event of that question and case), and closes the worker's stdin after the last;
+* with a :class:`~.monitor.Watch`, it reads the notebook's CPU time every :data:`~.monitor.TICK` s and
+  stops the process when a cell, a call or the notebook passes its limit (:attr:`ChildResult.stopped`);
 * at the end it kills the whole session (``killpg``), so children the student's code started in
   that session end with it (under bubblewrap the whole PID namespace ends with the worker).
 
@@ -28,6 +33,8 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
+
+from .monitor import TICK, Stop, Watch
 
 __all__ = ["ChildResult", "run", "MAX_OUTPUT_BYTES", "MAX_LINE_BYTES"]
 
@@ -52,10 +59,20 @@ class ChildResult:
     #: lines the worker never writes (not a JSON object of an event kind it sends): the student's code
     #: wrote to the result pipe, so the events cannot be trusted (:func:`.events.apply` fails the notebook)
     foreign: int = 0
+    #: the limit the grader's monitor ended the worker on (:mod:`.monitor`), None if it did not
+    stopped: Stop | None = None
+    #: the notebook's CPU seconds as the monitor last read them (0.0 without a meter)
+    cpu: float = 0.0
+    #: the notebook's own wall-clock seconds (less its waits for a CPU others held; 0.0 without a watch)
+    own: float = 0.0
+    #: how many of ``calls`` were sent to the worker
+    sent: int = 0
+    #: what the grader says about this run beyond the events (a call it had to end, :mod:`.notebook_run`)
+    notes: list[str] = field(default_factory=list)
 
 
 #: The kinds of event the worker sends (:mod:`.worker`).
-KINDS = frozenset({"ready", "malformed", "cell", "call", "done"})
+KINDS = frozenset({"ready", "malformed", "cell", "cells", "call", "done"})
 
 
 class _Lines:
@@ -113,10 +130,14 @@ def run(
     env: dict[str, str],
     timeout: float,
     pass_fds: Sequence[int] = (),
+    calls: Sequence[bytes] = (),
+    watch: Watch | None = None,
 ) -> ChildResult:
     """Run ``cmd`` with ``payload`` on its stdin for at most ``timeout`` seconds; collect its events.
 
-    ``pass_fds`` are descriptors the process inherits (bubblewrap's ``--args`` file).
+    ``pass_fds`` are descriptors the process inherits (bubblewrap's ``--args`` file); ``calls`` the worker's
+    calls, each a JSON object ``{"qid", "case", ...}`` on one line, handed over one at a time; ``watch`` the
+    limits the grader keeps (:mod:`.monitor`).
     """
     start = time.monotonic()
     result = ChildResult()
@@ -133,9 +154,9 @@ def run(
     )
     try:
         if os.name == "posix":
-            _loop(proc, payload, result, start + timeout)
+            _loop(proc, payload, result, start + timeout, list(calls), watch)
         else:  # pragma: no cover - Windows: no selectors on pipes; only `puma-course check` runs here
-            _communicate(proc, payload, result, timeout)
+            _communicate(proc, payload + b"".join(calls), result, timeout)  # the calls at once: no monitor
     finally:
         _kill(proc)
         for stream in (proc.stdin, proc.stdout, proc.stderr):
@@ -145,11 +166,20 @@ def run(
             except OSError:
                 pass
     result.returncode = proc.returncode
+    if watch is not None:
+        result.cpu, result.own = watch.used, watch.own
     result.seconds = time.monotonic() - start
     return result
 
 
-def _loop(proc: subprocess.Popen[bytes], payload: bytes, result: ChildResult, deadline: float) -> None:
+def _loop(
+    proc: subprocess.Popen[bytes],
+    payload: bytes,
+    result: ChildResult,
+    deadline: float,
+    calls: list[bytes],
+    watch: Watch | None,
+) -> None:
     assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
     out_fd, in_fd, err_fd = proc.stdout.fileno(), proc.stdin.fileno(), proc.stderr.fileno()
     for fd in (out_fd, in_fd, err_fd):
@@ -158,38 +188,38 @@ def _loop(proc: subprocess.Popen[bytes], payload: bytes, result: ChildResult, de
     sel = selectors.DefaultSelector()
     sel.register(out_fd, selectors.EVENT_READ, "out")
     sel.register(err_fd, selectors.EVENT_READ, "err")
-    view = memoryview(payload)
-    if view:
-        sel.register(in_fd, selectors.EVENT_WRITE, "in")
-    else:
-        proc.stdin.close()
+    feed = _Feed(proc, sel, payload, calls, watch)
     pidfd = -1
     try:
         pidfd = os.pidfd_open(proc.pid)  # type: ignore[attr-defined,unused-ignore]
         sel.register(pidfd, selectors.EVENT_READ, "exit")
     except (AttributeError, OSError):
         pass
+    if watch is not None:
+        watch.begin(time.monotonic(), proc.pid)
     exited = eof = False
     try:
         while not (result.done or result.overflow or eof or exited):
-            remaining = deadline - time.monotonic()
+            now = time.monotonic()
+            remaining = deadline - now
             if remaining <= 0:
                 result.timed_out = True
                 return
-            ready = sel.select(remaining if pidfd >= 0 else min(remaining, 0.02))
+            if watch is not None:
+                result.stopped = watch.check(now)
+                if result.stopped is not None:
+                    result.timed_out = result.stopped.what == "notebook"
+                    return
+            wait = remaining if pidfd >= 0 else min(remaining, 0.02)
+            ready = sel.select(min(wait, TICK) if watch is not None else wait)
             for key, _ in ready:
                 if key.data == "in":
-                    try:
-                        view = view[os.write(in_fd, view[:65536]) :]
-                    except BlockingIOError:
-                        continue
-                    except OSError:  # the worker closed its stdin or died
-                        view = view[:0]
-                    if not view:
-                        sel.unregister(in_fd)
-                        proc.stdin.close()
+                    feed.write()
                 elif key.data == "out":
+                    seen = len(result.events)
                     eof = _read_some(out_fd, lines) == "eof"
+                    for event in result.events[seen:]:
+                        feed.event(event)
                 elif key.data == "err":
                     try:
                         chunk = os.read(err_fd, 4096)
@@ -207,9 +237,93 @@ def _loop(proc: subprocess.Popen[bytes], payload: bytes, result: ChildResult, de
             while _read_some(out_fd, lines) == "data" and not (result.done or result.overflow):
                 pass  # what the worker wrote before it exited is in the pipe already
     finally:
+        result.sent = feed.index
+        if watch is not None:
+            watch.close()
         sel.close()
         if pidfd >= 0:
             os.close(pidfd)
+
+
+class _Feed:
+    """The worker's stdin: the payload, then each call once the one before it is answered (module docstring)."""
+
+    def __init__(
+        self,
+        proc: subprocess.Popen[bytes],
+        sel: selectors.BaseSelector,
+        payload: bytes,
+        calls: list[bytes],
+        watch: Watch | None,
+    ) -> None:
+        self.proc, self.sel, self.calls, self.watch = proc, sel, calls, watch
+        assert proc.stdin is not None
+        self.fd = proc.stdin.fileno()
+        self.view = memoryview(payload)
+        self.index = 0  # calls sent so far
+        self.waiting: tuple[Any, Any] | None = None  # (qid, case) of the call sent and not yet answered
+        self.keys = []
+        for line in calls:
+            job = json.loads(line)
+            self.keys.append((job.get("qid"), job.get("case")))
+        self.registered = False
+        self.started = False
+        self._arm()
+
+    def _arm(self) -> None:
+        if self.view and not self.registered:
+            self.sel.register(self.fd, selectors.EVENT_WRITE, "in")
+            self.registered = True
+        elif not self.view and self.index >= len(self.calls) and self.waiting is None:
+            self.close()
+
+    def close(self) -> None:
+        if self.registered:
+            self.sel.unregister(self.fd)
+            self.registered = False
+        assert self.proc.stdin is not None
+        if not self.proc.stdin.closed:
+            try:
+                self.proc.stdin.close()
+            except OSError:
+                pass
+
+    def write(self) -> None:
+        try:
+            self.view = self.view[os.write(self.fd, self.view[:65536]) :]
+        except BlockingIOError:
+            return
+        except OSError:  # the worker closed its stdin or died
+            self.view = self.view[:0]
+            self.calls = self.calls[: self.index]
+            self.waiting = None
+        if not self.view:
+            self.sel.unregister(self.fd)
+            self.registered = False
+            self._arm()
+
+    def _send_next(self) -> None:
+        if self.index < len(self.calls) and self.proc.stdin is not None and not self.proc.stdin.closed:
+            self.view = memoryview(bytes(self.view) + self.calls[self.index])
+            self.waiting = self.keys[self.index]
+            if self.watch is not None:
+                self.watch.sent(self.index, time.monotonic())
+            self.index += 1
+        else:
+            self.waiting = None
+        self._arm()
+
+    def event(self, event: dict[str, Any]) -> None:
+        kind = event.get("kind")
+        if self.watch is not None:
+            self.watch.event(str(kind), time.monotonic())
+        if kind == "cells" and not self.started:
+            self.started = True
+            self._send_next()
+        elif kind == "call" and self.waiting is not None and (event.get("qid"), event.get("case")) == self.waiting:
+            if self.watch is not None:
+                self.watch.answered()
+            self._send_next()
 
 
 def _read_some(fd: int, lines: _Lines) -> str:

@@ -13,8 +13,9 @@ it detaches (``setsid``, double forks), so the limits below hold for the noteboo
   weighs as many ordinary processes as notebooks are graded at once (:meth:`Run.share`);
 * each call (and each code cell) is timed on the CPU time of the notebook's group (:meth:`Group.cpu_clock`),
   so a classmate who takes the CPU cannot make a right but slowish call fail, with a wall-clock backstop of
-  :data:`WALL_FACTOR` times the limit (a call that sleeps or waits); without a group, on the wall clock
-  (:func:`call_limit` says which).
+  :data:`WALL_FACTOR` times the limit (a call that sleeps or waits); without a group, on the CPU time of its
+  process tree read from /proc (:mod:`.monitor`; :func:`call_limit` says which). The grader's process keeps
+  these limits (:mod:`.monitor`); the worker's own timer only stops a call politely.
 
 :func:`open_run` makes a folder for the grading run in each controller's hierarchy, under the grader's own
 group (so limits set on the grader, by systemd or a container, still hold above), in the first layout
@@ -253,17 +254,24 @@ def describe(run: Run) -> str:
 WALL_FACTOR = 3.0
 
 
-def call_limit(run: Run, seconds: float) -> str:
+def call_limit(run: Run, seconds: float, proc: bool | None = None) -> str:
     """The per-call time limit as it holds, in a few words (the CSV's ``limits`` column, the terminal).
+
+    Without a control group, the grader reads the CPU time of the worker's process tree from /proc
+    (``proc``: whether there is one; None: look), and only where there is none either, the wall clock.
 
     >>> call_limit(Run(1), 10)
     'each call 10 s of CPU time (its whole process tree; wall-clock backstop 30 s)'
-    >>> call_limit(Run(0, reason="not root"), 10)
+    >>> call_limit(Run(0, reason="not root"), 10, proc=True)
+    'each call 10 s of CPU time (its process tree, from /proc; wall-clock backstop 30 s)'
+    >>> call_limit(Run(0, reason="not root"), 10, proc=False)
     'each call 10 s WALL CLOCK (no CPU time counter)'
     """
+    backstop = WALL_FACTOR * seconds
     if run.enforced:
-        backstop = WALL_FACTOR * seconds
         return f"each call {seconds:g} s of CPU time (its whole process tree; wall-clock backstop {backstop:g} s)"
+    if proc if proc is not None else os.path.isfile("/proc/self/stat"):
+        return f"each call {seconds:g} s of CPU time (its process tree, from /proc; wall-clock backstop {backstop:g} s)"
     return f"each call {seconds:g} s WALL CLOCK (no CPU time counter)"
 
 

@@ -21,7 +21,7 @@ from typing import Any
 from ..model import Exercise, NotebookResult
 from ..output.text import quoted
 from ..plan import Plan
-from . import child, events, limits, worker
+from . import child, events, limits, monitor, worker
 from . import limits as limits_mod
 from .sandbox import Sandbox, child_env
 from .stage import Stage
@@ -40,8 +40,10 @@ def _job(
     paths: list[str],
     nproc: bool,
     clock: tuple[int, str] = (-1, ""),
+    size: int = 0,
 ) -> bytes:
-    """The worker's first line: what to call (never what is expected), its limits, its import path.
+    """The worker's first line: its limits, its import path, the size of the notebook that follows (the calls
+    follow one at a time, :func:`calls`: what to call, never what is expected).
 
     The process limit is set only inside the sandbox's user namespace, where it counts the worker's
     own processes; outside, it would count every process of the grading user. ``clock`` is the
@@ -52,8 +54,9 @@ def _job(
     if not nproc:
         limits.pop("processes")
     job: dict[str, Any] = {
-        "calls": [item.job() for item in plan],
+        "notebook_bytes": size,
         "timeout_cell": timeout_cell,
+        "wall": limits_mod.WALL_FACTOR * timeout_cell,
         "max_size": worker.MAX_SIZE,
         "forbidden": {q.qid: list(q.forbidden) for q in exercise.questions if q.forbidden},
         "path": paths,
@@ -63,6 +66,11 @@ def _job(
     if clock[0] >= 0:
         job["cpu_clock"] = {"fd": clock[0], "format": clock[1], "wall": limits_mod.WALL_FACTOR * timeout_cell}
     return json.dumps(job).encode() + b"\n"
+
+
+def calls(plan: Plan) -> list[bytes]:
+    """The worker's calls, one JSON line each (sent one at a time: :func:`.child.run`)."""
+    return [json.dumps(item.job()).encode() + b"\n" for item in plan]
 
 
 def _run_worker(
@@ -75,12 +83,17 @@ def _run_worker(
     timeout: float,
     private: Sequence[Path],
     groups: limits.Run | None = None,
+    wall: float | None = None,
 ) -> child.ChildResult:
     """One worker on one notebook: under bubblewrap its work folder is the sandbox's own, else a fresh temporary one.
 
     With ``groups`` (the run's control groups, :mod:`.limits`) the worker starts inside a fresh group of its
-    own, and whatever of its process tree is left when it ends is killed with the group.
+    own, and whatever of its process tree is left when it ends is killed with the group. The grader keeps the
+    limits (:mod:`.monitor`): ``timeout_cell`` s of CPU time per cell and call, ``timeout`` s per notebook, and
+    ``wall`` s of its own wall-clock time (default ``timeout``; the time it waited for a CPU others held does
+    not count), and :data:`.limits.WALL_FACTOR` times that on the wall clock, whatever the machine does.
     """
+    wall_total = timeout if wall is None else wall
 
     def launch(work: str | None) -> child.ChildResult:
         lib, _, seen_work = box.paths(stage.libs[exercise.name], stage.bin, Path(work or "."))
@@ -92,10 +105,16 @@ def _run_worker(
                 cmd = group.wrap(cmd) if group is not None else cmd
                 clock, fmt = group.cpu_clock() if group is not None else (-1, "")  # calls timed on CPU time
                 paths = [lib, *box.seen_sites]
-                job = _job(exercise, plan, timeout_cell, timeout, paths, box.kind == "bwrap", (clock, fmt))
+                nproc = box.kind == "bwrap"
+                job = _job(exercise, plan, timeout_cell, timeout, paths, nproc, (clock, fmt), len(data))
                 passed = tuple(f for f in (fd, clock) if f >= 0)
                 fds: dict[str, Any] = {"pass_fds": passed} if passed else {}
-                return child.run(cmd, job + data, cwd=work or "/", env=child_env(seen_work), timeout=timeout, **fds)
+                watch = monitor.Watch(lambda pid: monitor.meter_for(group, pid), timeout_cell, timeout, wall_total)
+                return child.run(
+                    cmd, job + data, cwd=work or "/", env=child_env(seen_work),
+                    timeout=limits_mod.WALL_FACTOR * wall_total + 1.0,
+                    calls=calls(plan), watch=watch, **fds,
+                )  # fmt: skip
         finally:
             for f in (fd, clock):
                 if f >= 0:
@@ -105,6 +124,56 @@ def _run_worker(
         return launch(None)
     with tempfile.TemporaryDirectory(prefix="puma-grade-", ignore_cleanup_errors=True) as work:
         return launch(work)
+
+
+def _run_to_the_end(data: bytes, plan: Plan, timeout: float, wall: float, run: Any) -> child.ChildResult:
+    """The worker on ``plan``; when the grader had to end a call that did not stop (:mod:`.monitor`), that case
+    fails on time, the question's other cases are skipped, and a fresh worker runs the notebook again for the
+    questions after it, within what is left of the notebook's limits (``run(plan, cpu, wall)`` runs one)."""
+    out = run(plan, timeout, wall)
+    last = out
+    while last.stopped is not None and last.stopped.what == "call" and 0 <= last.stopped.index < len(plan):
+        item = plan[last.stopped.index]
+        out.events.append({"kind": "call", "qid": item.qid, "case": item.case, "error": "timeout",
+                           "clock": last.stopped.clock})  # fmt: skip
+        rest = plan[last.stopped.index + 1 :]
+        out.events += [{"kind": "call", "qid": c.qid, "case": c.case, "error": "skipped"} for c in rest
+                       if c.qid == item.qid]  # fmt: skip
+        plan = [c for c in rest if c.qid != item.qid]
+        timeout, wall = timeout - last.cpu, wall - last.own
+        out.notes.append(f"{item.qid}: the call kept running past its limit, and the grader ended it")
+        if not plan:
+            out.done = True
+            break
+        if min(timeout, wall) < 0.5:
+            out.timed_out = True
+            break
+        last = run(plan, timeout, wall)
+        out.events += [e for e in last.events if e.get("kind") in ("call", "done")]
+        out.foreign += last.foreign
+        out.overflow = out.overflow or last.overflow
+        out.timed_out, out.done, out.returncode = last.timed_out, last.done, last.returncode
+        out.cpu, out.own, out.seconds = out.cpu + last.cpu, out.own + last.own, out.seconds + last.seconds
+        out.stopped = last.stopped if last.stopped is not None and last.stopped.what != "call" else None
+    return out
+
+
+def _stop_words(outcome: child.ChildResult, stop_note: str, timeout: float, wall: float) -> str:
+    """Why the notebook was stopped, on the clock that ended it (``stop_note``: the runner's words)."""
+    stopped = outcome.stopped
+    if stopped is None or stopped.what != "notebook" or "this student's notebooks" in stop_note:
+        return stop_note
+    if stopped.clock == "cpu":
+        return (
+            f"the notebook ran longer than {timeout:g} s of CPU time in total and was stopped; "
+            "answers that came back before that were graded"
+        )
+    if stopped.clock == "backstop":
+        return (
+            f"the notebook ran longer than {wall:g} s in total (its own time on the wall clock, waiting rather "
+            "than computing) and was stopped; answers that came back before that were graded"
+        )
+    return stop_note
 
 
 def _grade_data(
@@ -119,13 +188,22 @@ def _grade_data(
     stop_note: str,
     private: Sequence[Path] = (),
     groups: limits.Run | None = None,
+    wall: float | None = None,
+    spent: list[float] | None = None,
 ) -> NotebookResult:
+    """Grade one notebook: ``timeout`` s of CPU time and ``wall`` s of its own wall-clock time at most (default
+    ``timeout``; :mod:`.monitor`); the own wall-clock seconds it used are appended to ``spent``."""
     start = time.perf_counter()
+    wall = timeout if wall is None else wall
     result = NotebookResult.blank(student, exercise)
-    outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private, groups)
+
+    def run(part: Plan, cpu: float, clock: float) -> child.ChildResult:
+        return _run_worker(data, exercise, part, stage, box, timeout_cell, cpu, private, groups, clock)
+
+    outcome = _run_to_the_end(data, plan, timeout, wall, run)
     if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
         # the worker never started (the sandbox could not be set up, say): not the student's doing; once more
-        outcome = _run_worker(data, exercise, plan, stage, box, timeout_cell, timeout, private, groups)
+        outcome = _run_to_the_end(data, plan, timeout, wall, run)
         if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):
             said = outcome.stderr.decode("utf-8", "replace").strip().splitlines()
             result.status = "grader-error"
@@ -135,6 +213,10 @@ def _grade_data(
             )
             result.seconds = time.perf_counter() - start
             return result
-    events.apply(result, exercise, plan, outcome, timeout_cell=timeout_cell, stop_note=stop_note)
+    note = _stop_words(outcome, stop_note, timeout, wall)
+    events.apply(result, exercise, plan, outcome, timeout_cell=timeout_cell, stop_note=note)
+    result.notes += outcome.notes
+    if spent is not None:
+        spent.append(max(outcome.own, outcome.cpu) if outcome.own or outcome.cpu else outcome.seconds)
     result.seconds = time.perf_counter() - start
     return result

@@ -6,25 +6,31 @@ standard library only (numpy once student code runs) and imports nothing from th
 the ``puma_course`` a student's cell imports is the student-side copy named in the job
 (:mod:`puma_course.grading.run.student`). Its standard input holds one JSON line, the job::
 
-    {"calls": [{"qid", "case", "function", "args"}, ...], "timeout_cell": s, "max_size": n,
+    {"notebook_bytes": n, "timeout_cell": s, "wall": s, "max_size": n,
      "forbidden": {qid: ["module:attr", ...]}, "path": [folder, ...], "limits": {...}, "filename": name,
      "cpu_clock": {"fd": n, "format": "ns" | "stat", "wall": s}}   (cpu_clock: with a control group only)
 
-followed by the submitted notebook's bytes, which it parses here (never in the grader's process):
-its code cells, with hidden-test blocks removed as the release removes them (they check a
+followed by the submitted notebook's ``notebook_bytes`` bytes, which it parses here (never in the grader's
+process): its code cells, with hidden-test blocks removed as the release removes them (they check a
 solution against the package, which the student side does not have). It executes the cells in
 order in one namespace (a cell that raises or runs past ``timeout_cell`` is recorded and the next
-cell still runs; with ``cpu_clock``, the descriptor of the notebook's control-group CPU counter, the
-limit is CPU time of the whole notebook, with a wall-clock backstop), then calls each requested
-function on the grader's inputs and streams JSON lines back on the original stdout, one event per
-line::
+cell still runs; the limit is CPU time, with a wall-clock backstop of ``wall`` s: with ``cpu_clock``,
+the descriptor of the notebook's control-group counter, the whole notebook's, else this process's and its
+waited-for children's), then reads the calls from its stdin, one JSON line ``{"qid", "case", "function",
+"args"}`` at a time (the grader sends the next once this one is answered, and ends its stdin after the last;
+a job with a ``"calls"`` list holds them all instead), calls each requested function on the grader's inputs
+and streams JSON lines back on the original stdout, one event per line::
 
     {"kind": "ready"}   (first, once the job is read: the worker started)
     {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
     {"kind": "cell", "index": i, "status": "error" | "timeout", "detail": "...", "line": n}   (cells that ran: nothing)
+    {"kind": "cells"}   (the cells ran: the grader sends the first call; not with a "calls" list)
     {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
     (a cell or call that ran out of time also says on which "clock": "cpu", "backstop" or "wall")
     {"kind": "done"}
+
+This timer is the polite stop (the notebook goes on with its next question); the limits hold in the
+grader's process (:mod:`puma_course.grading.run.monitor`), which ends a worker whose timer was switched off.
 
 Only numbers travel back (at most ``max_size`` of them), and errors travel as a code plus the
 student's own text (``detail``); the grader words them, quotes the student's text and compares
@@ -155,6 +161,20 @@ def _ticker(cpu_now: Any, cpu0: float, limit: float, wall: float, wall0: float, 
     return on_tick
 
 
+def _own_clock(wall: Any) -> Any:
+    """Without a control group's counter: this process's CPU time, its waited-for children's included (None
+    where the job gives no wall-clock backstop: the wall clock alone, as a job written by hand asks)."""
+    if not wall:
+        return None
+    times = os.times
+
+    def now() -> float:
+        t = times()
+        return t[0] + t[1] + t[2] + t[3]
+
+    return now
+
+
 def _ready(job: dict[str, Any]) -> None:
     """Set the import path to the student side first, then the standard library and site-packages (no .pth files)."""
     stdlib = [p for p in sys.path if p]
@@ -176,9 +196,12 @@ def main() -> None:
             n = write(out_fd, view)
             view = view[n:]
 
-    header, _, notebook = sys.stdin.buffer.read().partition(b"\n")
+    line, exact = _reader(os.dup(0), os.read)
+    header = line() or b""
     emit({"kind": "ready"})  # the worker started: what follows is the notebook's doing
     job = json.loads(header)
+    size = job.get("notebook_bytes")
+    notebook = exact(size) if isinstance(size, int) and size >= 0 else exact(-1)
     limit_resources(job.get("limits"))
     _ready(job)
     try:
@@ -199,7 +222,54 @@ def main() -> None:
         os.dup2(devnull, fd)
     sink = CappedWriter()
     sys.stdout = sys.stderr = sink
-    _run(job, sources, emit)
+    if isinstance(job.get("calls"), list):  # every call in the job line (a test's job, or a run by hand)
+        listed = iter(job["calls"])
+        _run(job, sources, emit, lambda: next(listed, None), False)
+    else:  # one at a time, each once the one before is answered (the grader's runs: grading/run/child.py)
+        _run(job, sources, emit, lambda: _next_call(line), True)
+
+
+def _reader(fd: int, read: Any) -> tuple[Any, Any]:
+    """A private reader of the job's pipe: ``line()`` (None at its end) and ``exact(n)`` (-1: to the end)."""
+    buf = bytearray()
+
+    def fill() -> bool:
+        chunk = read(fd, 1 << 20)
+        buf.extend(chunk)
+        return bool(chunk)
+
+    def line() -> bytes | None:
+        while True:
+            end = buf.find(b"\n")
+            if end >= 0:
+                out = bytes(buf[:end])
+                del buf[: end + 1]
+                return out
+            if not fill():
+                out = bytes(buf)
+                buf.clear()
+                return out or None
+
+    def exact(n: int) -> bytes:
+        while (n < 0 or len(buf) < n) and fill():
+            pass
+        out = bytes(buf if n < 0 else buf[:n])
+        del buf[: len(out)]
+        return out
+
+    return line, exact
+
+
+def _next_call(line: Any) -> dict[str, Any] | None:
+    """The next call the grader sends (None once it has sent them all)."""
+    data = line()
+    if not data:
+        return None
+    try:
+        call = json.loads(data)
+    except ValueError:
+        return None
+    return call if isinstance(call, dict) else None
 
 
 def received(args: list[Any], asarray: Any, to_float: Any) -> list[Any]:
@@ -224,7 +294,7 @@ def as_numbers(value: Any, asarray: Any, to_float: Any) -> Any:
     return asarray(raw, dtype=to_float)
 
 
-def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
+def _run(job: dict[str, Any], sources: list[str], emit: Any, next_call: Any, asks: bool) -> None:
     """Execute the cells, then make the calls (see the module docstring)."""
     import numpy as np
 
@@ -236,15 +306,15 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
 
     timeout = float(job.get("timeout_cell", 10.0))
     max_size = int(job.get("max_size", MAX_SIZE))
-    cpu_now = _cpu_clock(job.get("cpu_clock"))
-    wall = float((job.get("cpu_clock") or {}).get("wall", timeout)) if cpu_now is not None else timeout
+    cpu_now = _cpu_clock(job.get("cpu_clock")) or _own_clock(job.get("wall"))
+    wall = float(job.get("wall") or (job.get("cpu_clock") or {}).get("wall", timeout))
     monotonic = time.monotonic
 
     def run_timed(fn: Any, *args: Any) -> Any:
         if cpu_now is None:  # no CPU time counter: the wall clock
             signal.signal(signal.SIGALRM, on_alarm)
             setitimer(ITIMER_REAL, timeout)
-        else:  # the notebook's CPU time, checked every TICK s, and the wall-clock backstop
+        else:  # the notebook's (or this process's) CPU time, checked every TICK s, and the wall-clock backstop
             signal.signal(signal.SIGALRM, _ticker(cpu_now, cpu_now(), timeout, wall, monotonic(), monotonic))
             setitimer(ITIMER_REAL, TICK, TICK)
         try:
@@ -285,7 +355,9 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
         emit(event)
 
     slow: set[str] = set()  # questions whose function already ran out of time: skip their other cases
-    for call in job["calls"]:
+    if asks:
+        emit({"kind": "cells"})  # the cells ran: the grader sends the first call
+    while (call := next_call()) is not None:
         event = {"kind": "call", "qid": call["qid"], "case": call["case"]}
         fn = ns.get(call["function"])
         if call["qid"] in slow:

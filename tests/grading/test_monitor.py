@@ -1,0 +1,154 @@
+"""The grader's monitor (grading/run/monitor.py, issue 30): limits a notebook cannot switch off or talk its way past.
+
+* the clocks: a call passes its CPU limit (beyond the grace) or its wall-clock backstop; the notebook its CPU
+  time or its own wall-clock time, which does not count the time it waited for a CPU others held;
+* the channel: a worker receives a call only once it has answered the one before (checked by the worker
+  itself), a line that answers another case does not stop the outstanding call's clock, and a call that never
+  answers is ended at its limit plus the grace, by CPU time (a fake worker, :func:`.child.run`);
+* the /proc meter: a process tree's CPU time, a forked child's included (by hand: the CPU a child burns).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import textwrap
+import time
+
+import pytest
+
+from puma_course.grading.run import child, limits, monitor
+
+
+class _Meter(monitor.Meter):
+    def __init__(self) -> None:
+        self.cpu = 0.0
+
+    def __call__(self) -> float | None:
+        return self.cpu
+
+
+def _watch(meter, cell=1.0, cpu_total=10.0, wall_total=10.0):
+    w = monitor.Watch(lambda pid: meter, cell, cpu_total, wall_total)
+    w.begin(100.0, 0)
+    return w
+
+
+def test_a_call_ends_on_its_cpu_time_past_the_grace_not_before():
+    m = _Meter()
+    w = _watch(m)
+    w.event("cells", 100.0)
+    w.sent(0, 100.0)
+    m.cpu = 1.0 + monitor.grace(1.0) - 0.01  # past the limit, within the grace: the worker's own timer acts
+    assert w.check(101.0) is None
+    m.cpu = 1.0 + monitor.grace(1.0) + 0.01
+    assert w.check(101.0) == monitor.Stop("call", "cpu", 0)
+    w.answered()
+    assert w.check(101.0) is None  # between calls: only the notebook's limits
+
+
+def test_a_call_that_waits_ends_on_the_backstop_and_the_notebook_on_its_totals():
+    m = _Meter()
+    w = _watch(m)
+    w.sent(3, 100.0)
+    backstop = limits.WALL_FACTOR * 1.0
+    assert w.check(100.0 + backstop + monitor.grace(backstop) - 0.01) is None
+    assert w.check(100.0 + backstop + monitor.grace(backstop) + 0.01) == monitor.Stop("call", "backstop", 3)
+    w.answered()
+    m.cpu = 10.5
+    assert w.check(101.0) == monitor.Stop("notebook", "cpu")
+    m.cpu = 0.0
+    assert w.check(110.5) == monitor.Stop("notebook", "backstop")
+
+
+def test_waiting_for_a_cpu_others_hold_is_not_the_notebooks_time():
+    m = _Meter()
+    w = _watch(m)
+    w.waits.pid, w.waits.last = -1, 0.0  # a worker found; its run delay set by hand below
+    w.waits.__class__ = type("FixedWaits", (monitor.Waits,), {"__call__": lambda self: self.last})
+    w.waits.last = 8.0  # 8 s of the 12 s it ran, it waited for a CPU
+    assert w.check(112.0) is None and w.own == pytest.approx(4.0)
+    assert w.check(118.5) == monitor.Stop("notebook", "backstop")  # 10.5 s of its own
+
+
+#: A fake worker: reads the job line, says ready and cells, then checks that each call comes alone.
+_WORKER = textwrap.dedent(
+    """
+    import json, os, select, sys, time
+    fd = 0
+    def line():
+        buf = b""
+        while not buf.endswith(b"\\n"):
+            c = os.read(fd, 1)
+            if not c:
+                return None
+            buf += c
+        return buf
+    def out(obj):
+        os.write(1, (json.dumps(obj) + "\\n").encode())
+    line()
+    out({"kind": "ready"})
+    out({"kind": "cells"})
+    while (got := line()) is not None:
+        call = json.loads(got)
+        time.sleep(0.2)
+        alone = not select.select([fd], [], [], 0)[0]  # nothing more was sent before this answer
+        if call["case"] == {burn}:
+            out({"kind": "call", "qid": "zz", "case": 9})  # not this call's answer: its clock runs on
+            end = time.process_time() + 30
+            while time.process_time() < end:
+                pass
+        out({"kind": "call", "qid": call["qid"], "case": call["case"], "value": [float(alone)]})
+    out({"kind": "done"})
+    """
+)
+
+
+def _calls(n):
+    return [f'{{"qid": "q1", "case": {i}, "function": "f", "args": []}}\n'.encode() for i in range(n)]
+
+
+def _run(burn, n=3, cell=1.0):
+    watch = monitor.Watch(lambda pid: monitor.meter_for(None, pid), cell, 60.0, 60.0)
+    code = _WORKER.replace("{burn}", str(burn))
+    return child.run([sys.executable, "-c", code], b"{}\n", cwd=None, env=dict(os.environ), timeout=60,
+                     calls=_calls(n), watch=watch)  # fmt: skip
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="no /proc here")
+def test_each_call_comes_alone_once_the_one_before_is_answered():
+    out = _run(burn=-1)
+    answers = [e for e in out.events if e.get("kind") == "call"]
+    assert [(e["case"], e["value"]) for e in answers] == [(0, [1.0]), (1, [1.0]), (2, [1.0])]
+    assert out.done and out.sent == 3 and out.stopped is None
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="no /proc here")
+def test_a_call_that_never_answers_is_ended_on_its_cpu_time_whatever_it_writes():
+    t0 = time.perf_counter()
+    out = _run(burn=1, cell=0.5)
+    assert out.stopped == monitor.Stop("call", "cpu", 1), out.stopped
+    assert out.sent == 2 and not out.done  # the third call was never sent
+    assert 0.5 + monitor.grace(0.5) <= out.cpu < 30, out.cpu
+    print(f"\na call burning CPU under a 0.5 s limit ended after {time.perf_counter() - t0:.1f} s, {out.cpu:.2f} s CPU")
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="no /proc here")
+def test_the_proc_meter_counts_a_forked_child():
+    import subprocess
+
+    code = (
+        "import os, time\nif os.fork() == 0:\n    e = time.process_time() + 1.0\n"
+        "    while time.process_time() < e: pass\n    time.sleep(30)\n    os._exit(0)\ntime.sleep(30)"
+    )
+    p = subprocess.Popen([sys.executable, "-c", code], start_new_session=True)
+    try:
+        meter = monitor.meter_for(None, p.pid)
+        assert isinstance(meter, monitor.TreeMeter)
+        end = time.monotonic() + 30
+        while (meter() or 0.0) < 0.9 and time.monotonic() < end:
+            time.sleep(0.05)
+        assert (meter() or 0.0) >= 0.9  # the child's second of CPU, not the parent's sleep
+    finally:
+        os.killpg(p.pid, 9)
+        p.wait()
