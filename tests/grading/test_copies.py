@@ -14,10 +14,12 @@ import io
 import json
 import random
 import zipfile
+from pathlib import Path
 
 import pytest
 
 from puma_course.grading import EXERCISES, grade
+from puma_course.grading.model import load_bank
 from puma_course.grading.output import copies as cp
 from puma_course.grading.output.fingerprints import WINDOW, K, fingerprint, similarity, tokens
 from puma_course.grading.output.payloads import payloads
@@ -28,8 +30,18 @@ from tests.fixtures.copies import EXERCISE, EXPECTED, build_class
 MARGIN = 0.05
 
 
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _this_course():
+    """The exercise's own cells come from the loaded course's release: load this repository's bank, whatever another
+    test run before in the same process loaded (tests/grading/test_gradescope.py loads one zip's bank at a time)."""
+    load_bank(ROOT)
+
+
 @pytest.fixture(scope="module")
-def klass(tmp_path_factory):
+def klass(tmp_path_factory, _this_course):
     folder = tmp_path_factory.mktemp("copies") / "submissions"
     names = build_class(folder)
     ex = EXERCISES[EXERCISE]
