@@ -227,11 +227,10 @@ EXERCISE = Exercise(
             public=(
                 (ref.mk3_rail_goal([0.4, 0.9, -1.2, 0.6, 0.3], [0.2, -0.5, 1.0], 0.9, 300.0), 300.0),
                 (ref.mk3_rail_goal([-0.6, 0.5, -0.9, 1.0, 0.7], [1.0, 0.3, 0.0], 0.5, -250.0), -250.0),
-                (ref.mk3_in_plane_goal([0.0, 0.7, -1.1, 0.4, 0.9], 150.0, across=True), 150.0),
             ),
-            # two public goals are unattainable (returning T unchanged fails them); the third public goal and one
-            # hidden goal are in the arm plane exactly (z × z' is the zero vector: normalising it unguarded gives
-            # NaN), one hidden goal is attainable up to rounding: each must come back unchanged
+            # every public goal is unattainable (returning T unchanged fails each); one hidden goal is attainable
+            # up to rounding and one is in the arm plane exactly (z × z' is the zero vector: normalising it
+            # unguarded gives NaN): each must come back unchanged, however the turn's axis is computed
             hidden=lambda rng: [
                 *ref.mk3_nearest_cases(rng, 4),
                 *ref.mk3_attainable_cases(rng, 1),

@@ -21,7 +21,8 @@ line::
 
     {"kind": "ready"}   (first, once the job is read: the worker started)
     {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
-    {"kind": "cell", "index": i, "status": "error" | "timeout", "detail": "...", "line": n}   (cells that ran: nothing)
+    {"kind": "cell", "index": i, "first": "its first line", "status": "error" | "timeout", "detail": "...", "line": n}
+                                                                                        (cells that ran: nothing)
     {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
     (a cell or call that ran out of time also says on which "clock": "cpu", "backstop" or "wall")
     {"kind": "done"}
@@ -202,6 +203,20 @@ def main() -> None:
     _run(job, sources, emit)
 
 
+def first_line(source: str, limit: int = 80) -> str:
+    """A code cell's first line that is not blank, at most ``limit`` characters: how the feedback names the cell
+    (JupyterLab shows no cell numbers, so "code cell 4" would leave the student counting).
+
+    >>> first_line("\\n  \\ndef f(x):\\n    return x"), first_line("")
+    ('def f(x):', '')
+    """
+    for line in source.splitlines():
+        if line.strip():
+            line = line.strip()
+            return line if len(line) <= limit else line[: limit - 1] + "…"
+    return ""
+
+
 def received(args: list[Any], asarray: Any, to_float: Any) -> list[Any]:
     """A call's arguments (JSON values) as the student's function receives them: each list an array of floats.
 
@@ -272,7 +287,7 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any) -> None:
 
     ns: dict[str, Any] = {"__name__": "__main__", "display": display}
     for index, source in enumerate(sources):
-        event: dict[str, Any] = {"kind": "cell", "index": index}
+        event: dict[str, Any] = {"kind": "cell", "index": index, "first": first_line(source)}
         try:
             code = compile(strip_magics(source), f"<cell {index + 1}>", "exec")
             run_timed(exec, code, ns)
