@@ -299,9 +299,10 @@ def turned_other_way(axis: str, angle: float) -> np.ndarray:
     return _axis_rotation(axis[-1], -sign * float(angle))
 
 
-def turned_about_unsigned_axis(axis: str, angle: float) -> np.ndarray:
-    """:func:`turned_other_way` on a negative axis only: R_e(+θ) for "-e", the axis's sign left out."""
-    return turned_other_way(axis, angle) if axis.startswith("-") else _NOWHERE
+def turned_about_unsigned_axis(axis: str, angle: float, only: str = "") -> np.ndarray:
+    """:func:`turned_other_way` on a negative axis only (``only``: that one, e.g. "-x"): R_e(+θ) for "-e", the axis's
+    sign left out."""
+    return turned_other_way(axis, angle) if axis.startswith("-") and axis == (only or axis) else _NOWHERE
 
 
 def turned_other_way_about_minus_y(axis: str, angle: float) -> np.ndarray:

@@ -9,12 +9,15 @@ print (it prints ZYZ and roll-pitch-yaw), gimbal lock included.
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 
 from puma_course.grading.judge.compare import compare_angles
 from puma_course.grading.judge.diagnose import (
     SIGN_FLIP,
     TRANSPOSED,
+    Mistake,
     angle_2pi,
     degrees_in,
     degrees_out,
@@ -98,6 +101,20 @@ def _xyz_cases(rng: np.random.Generator) -> list[tuple[np.ndarray]]:
     return out
 
 
+def _sign_left_out() -> tuple[Mistake, ...]:
+    """The axis's sign left out, one variant per negative axis (its message names that axis): R_e(+θ) for "-e"."""
+    return tuple(
+        matches(
+            "rotation_sense#sign",
+            f'this is the turn by +θ about {e}, not about -{e}: a turn about "-e" is a turn about e by -θ, so "-{e}" '
+            f"gives R_{e}(-θ). The axis's sign was left out (a positive turn about x carries y towards z; about y, "
+            "z towards x; about z, x towards y)",
+            partial(turned_about_unsigned_axis, only=f"-{e}"),
+        )
+        for e in "xyz"
+    )
+
+
 def _signed_axis_cases(rng: np.random.Generator) -> list[tuple[str, float]]:
     """Six turns, five about a negative axis (two about -y) and one about a positive one, by 0.3 to 2.9 rad either
     way: the three matrices looked up by name, the axis's sign dropped, are right on three cases of ten."""
@@ -153,12 +170,7 @@ EXERCISE = Exercise(
             mistakes=(
                 # variants of one mistake (key#variant): named only where every failing case is that variant, so a
                 # matrix transposed on every axis is not told that the axis's sign was left out
-                matches(
-                    "rotation_sense#sign",
-                    'this is the turn by +θ about e, not about -e: "-y" names the direction -e_y, and a turn about '
-                    "-e by θ is the turn about e by -θ. The axis's sign was left out",
-                    turned_about_unsigned_axis,
-                ),
+                *_sign_left_out(),
                 matches(
                     "rotation_sense#ry",
                     "R_y's sines are swapped: a positive turn about y carries z towards x, so R_y's top row ends in "
@@ -173,9 +185,10 @@ EXERCISE = Exercise(
                 ),
                 matches(
                     "rotation_sense",
-                    "your matrix is the transpose of the right one, which for a turn about a coordinate axis is the "
-                    'turn by -θ: column k must be where e_k goes. A turn about "-e" is a turn about e by -θ, and a '
-                    "positive turn about x carries y towards z (about y, z towards x; about z, x towards y)",
+                    "your matrix turns the wrong way: it is the transpose of the right one, which for a turn about a "
+                    'coordinate axis is the turn by -θ (column k must be where e_k goes). A turn about "-e" is a turn '
+                    "about e by -θ, and a positive turn about x carries y towards z (about y, z towards x; about z, "
+                    "x towards y)",
                     turned_other_way,
                 ),
                 degrees_in(1),

@@ -126,9 +126,10 @@ EXERCISE = Exercise(
                 ),
                 negated(
                     "sign_flip",
-                    "your det J is -det J (the rest is right). If you stacked J's rows as (ω, v), the angular rows "
-                    "first: the course's J has the linear velocity v on top, J = (J_v; J_ω), and swapping the two "
-                    "blocks of three rows flips the determinant's sign. Otherwise check the sign of each factor",
+                    "your det J has the wrong sign (the rest is right). If you stacked J's rows as (ω, v), the "
+                    "angular rows first: the course's J has the linear velocity v on top, J = (J_v; J_ω), and "
+                    "swapping the two blocks of three rows flips the determinant's sign. Otherwise check the sign "
+                    "of each factor",
                 ),
             ),  # fmt: skip
             hint="det J is a product of factors, each zero at one singularity (lecture 09 §9); check yours is 0 with "

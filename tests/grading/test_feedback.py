@@ -150,7 +150,7 @@ def test_every_key_of_the_graders_has_a_title():
     ("exercise", "qid", "name", "said", "never"),
     [
         ("ex01_rotations", "q1", "the whole matrix transposed", "transpose", "sign was left out"),
-        ("ex09_puma_ik", "q3", "J stacked (ω; v)", "(ω, v)", "check the sign of each factor, or of the columns"),
+        ("ex09_puma_ik", "q3", "J stacked (ω; v)", "(ω, v)", "or of the columns of your J"),
         ("ex04_mk3_fk", "q3", "row 2's d without c", "carriage's height c", "not the base frame"),
     ],
 )
