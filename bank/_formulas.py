@@ -154,6 +154,23 @@ def camera_head_frame(pan: float, tilt: float) -> np.ndarray:
     return _camera_at(rotz(pan) @ roty(tilt), np.eye(3))
 
 
+def camera_tilted_back(pan: float, tilt: float) -> np.ndarray:
+    """The mistake: the tilt turned the wrong way, Rz(pan) Ry(-tilt) (R_y's sines swapped, or the sign guessed)."""
+    return _camera_at(rotz(pan) @ roty(-tilt), CAMERA_IN_HEAD)
+
+
+def camera_panned_back(pan: float, tilt: float) -> np.ndarray:
+    """The mistake: the pan turned the wrong way, Rz(-pan) Ry(tilt)."""
+    return _camera_at(rotz(-pan) @ roty(tilt), CAMERA_IN_HEAD)
+
+
+def camera_offset_unturned(pan: float, tilt: float) -> np.ndarray:
+    """The mistake: the camera's offset c along the base's x0, not along the turned head's x."""
+    out = _camera_at(rotz(pan) @ roty(tilt), CAMERA_IN_HEAD)
+    out[:3, 3] = [PAN_TILT_C, 0.0, PAN_TILT_H]
+    return out
+
+
 def camera_fixed_axes(pan: float, tilt: float) -> np.ndarray:
     """The mistake: tilt about the base's fixed y0 after the pan (Ry(tilt) Rz(pan)), not about the turned head's y."""
     return _camera_at(roty(tilt) @ rotz(pan), CAMERA_IN_HEAD)

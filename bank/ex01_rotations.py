@@ -9,8 +9,6 @@ print (it prints ZYZ and roll-pitch-yaw), gimbal lock included.
 
 from __future__ import annotations
 
-from functools import partial
-
 import numpy as np
 
 from puma_course.grading.judge.compare import compare_angles
@@ -31,6 +29,9 @@ from . import _keys as keys
 from ._formulas import (
     camera_fixed_axes,
     camera_head_frame,
+    camera_offset_unturned,
+    camera_panned_back,
+    camera_tilted_back,
     carried_about_u,
     carried_arcsin,
     carried_back,
@@ -109,7 +110,7 @@ def _sign_left_out() -> tuple[Mistake, ...]:
             f'this is the turn by +θ about {e}, not about -{e}: a turn about "-e" is a turn about e by -θ, so "-{e}" '
             f"gives R_{e}(-θ). The axis's sign was left out (a positive turn about x carries y towards z; about y, "
             "z towards x; about z, x towards y)",
-            partial(turned_about_unsigned_axis, only=f"-{e}"),
+            lambda axis, angle, e=e: turned_about_unsigned_axis(axis, angle, f"-{e}"),
         )
         for e in "xyz"
     )
@@ -377,6 +378,24 @@ EXERCISE = Exercise(
                     "the tilt turned about the base's fixed y0 axis: the tilt axis turns with the "
                     "pan, so the tilt is about the head's own y axis (moving axes multiply on the right)",
                     camera_fixed_axes,
+                ),
+                matches(
+                    "rotation_sense",
+                    "your tilt turns the wrong way: a positive tilt about the head's y axis carries its z towards its "
+                    "x (R_y's top row ends in +sin θ), so a positive tilt points the camera down",
+                    camera_tilted_back,
+                ),
+                matches(
+                    "rotation_sense",
+                    "your pan turns the wrong way: a positive pan about z0 carries x0 towards y0 (counter-clockwise "
+                    "seen from above)",
+                    camera_panned_back,
+                ),
+                matches(
+                    "frame_coordinates",
+                    "the camera's offset c is along the base's x0: it is along the head's own x, which turns with "
+                    "the pan and the tilt (the offset is c times the turned head's first column)",
+                    camera_offset_unturned,
                 ),
                 TRANSPOSED,
                 degrees_in(0, 1),

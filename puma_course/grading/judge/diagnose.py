@@ -242,7 +242,7 @@ def _transposed(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference
     if close(ref, ref.T):
         return None
     if close(got, ref.T):
-        whole = " the whole 4×4 matrix" if ref.shape[0] == 4 else ""
+        whole = " of the whole 4×4 matrix" if ref.shape[0] == 4 else ""
         return f"you returned the transpose{whole}: column k of a rotation is where the k-th axis goes (lecture 01 §1)"
     if ref.shape[0] == 4 and not close(R, R.T) and close(got[:3, :3], R.T):
         return "the rotation part is transposed (Rᵀ for R): column k of R is where the k-th axis goes (lecture 01 §1)"
