@@ -300,6 +300,12 @@ def puma_world_expected(T_world: Any, B: Any, d6: float) -> dict[str, Any]:
             "you composed B on the wrong side: T_world = B ⁰T₆ Tz(d6), so ⁰T₆ = B⁻¹ T_world Tz(-d6)",
             B @ T_world @ Bi @ tz(-d6) @ tz(d6),
         ),
+        (
+            "order",
+            "you composed the tool on the wrong side: the tool is d6 along the hand's own z6, so Tz(d6) multiplies "
+            "⁰T₆ on the right: ⁰T₆ = B⁻¹ T_world Tz(-d6), not B⁻¹ Tz(-d6) T_world",
+            tz(-d6) @ T_world @ tz(d6),
+        ),
         ("tool_frame", "your configurations put frame {6}, not the tool tip, at the pose asked for", T_world @ tz(d6)),
         (
             "offset_sign",
