@@ -154,6 +154,23 @@ def camera_head_frame(pan: float, tilt: float) -> np.ndarray:
     return _camera_at(rotz(pan) @ roty(tilt), np.eye(3))
 
 
+def camera_tilted_back(pan: float, tilt: float) -> np.ndarray:
+    """The mistake: the tilt turned the wrong way, Rz(pan) Ry(-tilt) (R_y's sines swapped, or the sign guessed)."""
+    return _camera_at(rotz(pan) @ roty(-tilt), CAMERA_IN_HEAD)
+
+
+def camera_panned_back(pan: float, tilt: float) -> np.ndarray:
+    """The mistake: the pan turned the wrong way, Rz(-pan) Ry(tilt)."""
+    return _camera_at(rotz(-pan) @ roty(tilt), CAMERA_IN_HEAD)
+
+
+def camera_offset_unturned(pan: float, tilt: float) -> np.ndarray:
+    """The mistake: the camera's offset c along the base's x0, not along the turned head's x."""
+    out = _camera_at(rotz(pan) @ roty(tilt), CAMERA_IN_HEAD)
+    out[:3, 3] = [PAN_TILT_C, 0.0, PAN_TILT_H]
+    return out
+
+
 def camera_fixed_axes(pan: float, tilt: float) -> np.ndarray:
     """The mistake: tilt about the base's fixed y0 after the pan (Ry(tilt) Rz(pan)), not about the turned head's y."""
     return _camera_at(roty(tilt) @ rotz(pan), CAMERA_IN_HEAD)
@@ -217,15 +234,21 @@ def xyz_other_branch_all(Rs: Any) -> np.ndarray:
     return np.array([xyz_other_branch(R) for R in np.asarray(Rs, dtype=float)]).reshape(-1, 3)
 
 
-def xyz_angles(R: Any) -> np.ndarray:
+def xyz_threshold_all(Rs: Any, tol: float) -> np.ndarray:
+    """The mistake: :func:`xyz_angles` of a stack with another lock threshold ``tol`` (0: only cos b == 0 locks)."""
+    return np.array([xyz_angles(R, tol) for R in np.asarray(Rs, dtype=float)]).reshape(-1, 3)
+
+
+def xyz_angles(R: Any, tol: float = XYZ_LOCK_TOL) -> np.ndarray:
     """(a, b, c) with Rx(a) Ry(b) Rz(c) = R, b in [-π/2, π/2]; at the gimbal lock (cos b < 1e-9) c = 0.
 
     From the product: r13 = sin b, (r23, r33) = cos b (-sin a, cos a), (r12, r11) = cos b (-sin c, cos c);
     at b = ±π/2 the product is Rx(a ± c) Ry(±π/2), whose (r21, r22) = (±sin(a ± c), cos(a ± c)).
+    ``tol`` is the threshold (another one is a mistake: :func:`xyz_threshold_all`).
     """
     R = np.asarray(R, dtype=float)
     cb = float(np.hypot(R[0, 0], R[0, 1]))
-    if cb < XYZ_LOCK_TOL:
+    if cb < tol or (tol == 0.0 and cb == 0.0):
         up = R[0, 2] > 0
         a = np.arctan2(R[1, 0], R[1, 1]) if up else np.arctan2(-R[1, 0], R[1, 1])
         return np.array([a, np.pi / 2 if up else -np.pi / 2, 0.0])
@@ -293,6 +316,12 @@ def turned_other_way(axis: str, angle: float) -> np.ndarray:
     return _axis_rotation(axis[-1], -sign * float(angle))
 
 
+def turned_about_unsigned_axis(axis: str, angle: float, only: str = "") -> np.ndarray:
+    """:func:`turned_other_way` on a negative axis only (``only``: that one, e.g. "-x"): R_e(+θ) for "-e", the axis's
+    sign left out."""
+    return turned_other_way(axis, angle) if axis.startswith("-") and axis == (only or axis) else _NOWHERE
+
+
 def turned_other_way_about_minus_y(axis: str, angle: float) -> np.ndarray:
     """:func:`turned_other_way` on the axis "-y" only (there it is also R_y with its sines swapped, sign handled)."""
     return turned_other_way(axis, angle) if axis == "-y" else _NOWHERE
@@ -343,6 +372,59 @@ def carried_back(u: Any, v: Any) -> np.ndarray:
     a, b = _unit(v), _unit(u)
     axis = np.cross(a, b)
     return _turn(axis, math.atan2(float(np.linalg.norm(axis)), float(a @ b)))
+
+
+def _carried(u: Any, v: Any, how: str) -> np.ndarray:
+    """The mistakes of the turn carrying u onto v written as a student writes them: the angle in degrees, the angle
+    from arcsin |û × v̂| (never above 90°), Rodrigues' last term with a minus, the turn about u itself."""
+    if _parallel(u, v):
+        return np.eye(3)
+    a, b = _unit(u), _unit(v)
+    w = np.cross(a, b)
+    angle = math.atan2(float(np.linalg.norm(w)), float(a @ b))
+    if how == "degrees":
+        return _turn(w, math.degrees(angle))
+    if how == "arcsin":
+        return _turn(w, math.asin(min(1.0, float(np.linalg.norm(w)))))
+    if how == "about u":
+        return _turn(a, angle)
+    k = w / np.linalg.norm(w)
+    S = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + math.sin(angle) * S - (1.0 - math.cos(angle)) * (S @ S)
+
+
+def carried_in_degrees(u: Any, v: Any) -> np.ndarray:
+    """The mistake: the right axis, the angle converted to degrees before the sines and cosines."""
+    return _carried(u, v, "degrees")
+
+
+def carried_arcsin(u: Any, v: Any) -> np.ndarray:
+    """The mistake: the angle arcsin |û × v̂|, which is 180° - θ when u and v are more than 90° apart."""
+    return _carried(u, v, "arcsin")
+
+
+def carried_minus_square(u: Any, v: Any) -> np.ndarray:
+    """The mistake: Rodrigues' formula with its last term subtracted, I + sin θ [k]x - (1 - cos θ) [k]x²."""
+    return _carried(u, v, "minus")
+
+
+def carried_about_u(u: Any, v: Any) -> np.ndarray:
+    """The mistake: the turn about u itself by the angle between u and v (u does not move)."""
+    return _carried(u, v, "about u")
+
+
+def turn_the_other_way_round(R_a: Any, R_b: Any) -> np.ndarray:
+    """The mistake: (k, 2π - θ), the turn about k the long way round (it is the turn by -θ)."""
+    R_a, R_b = np.asarray(R_a, dtype=float), np.asarray(R_b, dtype=float)
+    out = _axis_angle_of(R_b @ R_a.T)
+    out[3] = 2.0 * math.pi - out[3]
+    return out
+
+
+def turn_b_then_a(R_a: Any, R_b: Any) -> np.ndarray:
+    """The mistake: the axis and angle of R_bᵀ R_a (the turn back from {B} to {A}, in {B}'s coordinates)."""
+    R_a, R_b = np.asarray(R_a, dtype=float), np.asarray(R_b, dtype=float)
+    return _axis_angle_of(R_b.T @ R_a)
 
 
 def _axis_angle_of(K: np.ndarray) -> np.ndarray:

@@ -15,6 +15,7 @@ from puma_course.grading.judge.compare import compare_angles
 from puma_course.grading.judge.diagnose import (
     SIGN_FLIP,
     TRANSPOSED,
+    Mistake,
     angle_2pi,
     degrees_in,
     degrees_out,
@@ -28,7 +29,14 @@ from . import _keys as keys
 from ._formulas import (
     camera_fixed_axes,
     camera_head_frame,
+    camera_offset_unturned,
+    camera_panned_back,
+    camera_tilted_back,
+    carried_about_u,
+    carried_arcsin,
     carried_back,
+    carried_in_degrees,
+    carried_minus_square,
     carried_unnormalised_angle,
     carried_unnormalised_axis,
     pose_base_difference,
@@ -37,13 +45,17 @@ from ._formulas import (
     pose_other_order,
     rpy_formula_all,
     turn_b_onto_a,
+    turn_b_then_a,
     turn_in_a_frame,
+    turn_the_other_way_round,
+    turned_about_unsigned_axis,
     turned_other_way,
     turned_other_way_about_minus_y,
     turned_other_way_about_y,
     xyz_angles_all,
     xyz_no_lock_all,
     xyz_other_branch_all,
+    xyz_threshold_all,
 )
 from ._reference import chains as ref
 
@@ -58,17 +70,50 @@ def _lock(a: float, sign: float) -> np.ndarray:
     return ref.elementary_rotation("x", a) @ Ry
 
 
+#: cos b of the two rotations beside the question's threshold cos b < 1e-9: 2⁻³³ ≈ 1.2e-10 (inside: the lock, c = 0)
+#: and 2⁻²⁶ ≈ 1.5e-8 (outside: the regular formula), each with sin b chosen so that sin²b + cos²b = 1 to 1e-20.
+NEAR_LOCK = ((2.0**-33, 1.0), (2.0**-26, 1.0 - 2.0**-53))
+
+
+def _near_lock(a: float, c: float, sign: float, inside: bool) -> np.ndarray:
+    """Rx(a) Ry(b) Rz(c) with cos b exactly :data:`NEAR_LOCK`'s: 1.2e-10 (``inside`` the threshold) or 1.5e-8.
+
+    The first row is (cos b cos c, -cos b sin c, ±sin b): its hypot is cos b to the last bit, and so is
+    sqrt(1 - r13²) (r13 = 1 exactly inside, 1 - 2⁻⁵³ outside), so every reading of cos b agrees which side it is.
+    """
+    cb, sb = NEAR_LOCK[0 if inside else 1]
+    Ry = np.array([[cb, 0.0, sign * sb], [0.0, 1.0, 0.0], [-sign * sb, 0.0, cb]])
+    return ref.elementary_rotation("x", a) @ Ry @ ref.elementary_rotation("z", c)
+
+
 def _xyz_cases(rng: np.random.Generator) -> list[tuple[np.ndarray]]:
-    """Four stacks, each of three general rotations, one exactly at the lock and one 1e-4 from it (not locked:
-    c is not 0 there), shuffled: a formula wrong in general or at the lock fails every case."""
+    """Four stacks, each of three general rotations, one exactly at the lock, one 1e-4 from it (not locked:
+    c is not 0 there) and one on each side of the threshold the question states (:data:`NEAR_LOCK`: a threshold
+    of 1e-6 or of exactly 0 fails one of them), shuffled: a formula wrong in general or at the lock fails every
+    case."""
     out = []
     for _ in range(4):
-        a, c, b = rng.uniform(-np.pi, np.pi, 4), rng.uniform(-np.pi, np.pi, 4), rng.uniform(-1.4, 1.4, 4)
+        a, c, b = rng.uniform(-np.pi, np.pi, 6), rng.uniform(-np.pi, np.pi, 6), rng.uniform(-1.4, 1.4, 4)
         b[3] = float(rng.choice([-1.0, 1.0])) * (np.pi / 2 - 1e-4)
         lock = _lock(float(rng.uniform(-np.pi, np.pi)), float(rng.choice([-1.0, 1.0])))
-        Rs = [_xyz(a[i], b[i], c[i]) for i in range(4)] + [lock]
-        out.append((np.stack([Rs[i] for i in rng.permutation(5)]),))
+        sides = [_near_lock(a[4 + k], c[4 + k], float(rng.choice([-1.0, 1.0])), k == 0) for k in range(2)]
+        Rs = [_xyz(a[i], b[i], c[i]) for i in range(4)] + [lock, *sides]
+        out.append((np.stack([Rs[i] for i in rng.permutation(7)]),))
     return out
+
+
+def _sign_left_out() -> tuple[Mistake, ...]:
+    """The axis's sign left out, one variant per negative axis (its message names that axis): R_e(+θ) for "-e"."""
+    return tuple(
+        matches(
+            "rotation_sense#sign",
+            f'this is the turn by +θ about {e}, not about -{e}: a turn about "-e" is a turn about e by -θ, so "-{e}" '
+            f"gives R_{e}(-θ). The axis's sign was left out (a positive turn about x carries y towards z; about y, "
+            "z towards x; about z, x towards y)",
+            lambda axis, angle, e=e: turned_about_unsigned_axis(axis, angle, f"-{e}"),
+        )
+        for e in "xyz"
+    )
 
 
 def _signed_axis_cases(rng: np.random.Generator) -> list[tuple[str, float]]:
@@ -119,27 +164,30 @@ EXERCISE = Exercise(
             "elementary_rotation",
             2,
             "rotation about a signed coordinate axis",
-            public=(("-y", 0.4), ("y", -1.2), ("-z", 2.0), ("z", np.pi / 2)),
+            public=(("-y", 0.4), ("y", -1.2), ("-z", 2.0), ("z", np.pi / 2), ("-x", 1.1)),
             hidden=_signed_axis_cases,
             reference=ref.signed_rotation,
             forbidden=keys.KEY_ROT,
             mistakes=(
+                # variants of one mistake (key#variant): named only where every failing case is that variant, so a
+                # matrix transposed on every axis is not told that the axis's sign was left out
+                *_sign_left_out(),
                 matches(
-                    "rotation_sense",
-                    'this is the turn by +θ about y, not about -y: "-y" is the direction -e_y, so the turn is '
-                    "R_y(-θ). Either the axis's sign was left out, or R_y's sines are swapped (a positive turn "
-                    "about y carries z towards x, so R_y's top row ends in +sin θ)",
+                    "rotation_sense#ry",
+                    "R_y's sines are swapped: a positive turn about y carries z towards x, so R_y's top row ends in "
+                    "+sin θ and its bottom row starts with -sin θ (about -y, turn about y by -θ)",
                     turned_other_way_about_minus_y,
                 ),
                 matches(
-                    "rotation_sense",
+                    "rotation_sense#ry",
                     "this is R_y(-θ): R_y's sines are swapped (a positive turn about y carries z towards x, so "
                     "R_y's top row ends in +sin θ and its bottom row starts with -sin θ)",
                     turned_other_way_about_y,
                 ),
                 matches(
                     "rotation_sense",
-                    'your matrix turns the wrong way (by -θ about the axis given): a turn about "-e" is a turn '
+                    "your matrix turns the wrong way: it is the transpose of the right one, which for a turn about a "
+                    'coordinate axis is the turn by -θ (column k must be where e_k goes). A turn about "-e" is a turn '
                     "about e by -θ, and a positive turn about x carries y towards z (about y, z towards x; about z, "
                     "x towards y)",
                     turned_other_way,
@@ -182,6 +230,31 @@ EXERCISE = Exercise(
                     "this turn carries v onto u (its transpose carries u onto v): turn about u × v, not v × u",
                     carried_back,
                 ),
+                matches(
+                    "degrees",
+                    "your axis is right but the angle went into the sines and cosines in degrees: np.sin and np.cos "
+                    "take radians (leave out np.degrees)",
+                    carried_in_degrees,
+                ),
+                matches(
+                    "angle_quadrant",
+                    "your angle is arcsin |u × v| / (|u||v|), which never exceeds 90°: these vectors are more than "
+                    "a right angle apart, so the turn is 180° minus yours. atan2(|u × v|, u · v) gives every angle",
+                    carried_arcsin,
+                ),
+                matches(
+                    "sign_flip",
+                    "Rodrigues' last term has the wrong sign: K(k, θ) = I + sin θ [k]x + (1 - cos θ) [k]x² "
+                    "(lecture 01 §3), with a plus",
+                    carried_minus_square,
+                ),
+                matches(
+                    "wrong_axis",
+                    "you turned about u itself, which leaves u where it is: the turn carrying u onto v is about "
+                    "u × v, perpendicular to both",
+                    carried_about_u,
+                ),
+                SIGN_FLIP,
             ),
             hint="Check by hand: R u must point along v, and R (u × v) = u × v. Is your angle right when u and v are "
             "more than a right angle apart?",
@@ -211,6 +284,18 @@ EXERCISE = Exercise(
                     "this turn carries R_b back onto R_a (the axis points the other way): K carries R_a onto R_b, "
                     "K = R_b R_aᵀ",
                     turn_b_onto_a,
+                ),
+                matches(
+                    "frame_coordinates",
+                    "this is the axis and angle of R_bᵀ R_a, the turn back from {B} to {A} written in {B}'s own "
+                    "coordinates: the question asks for K with R_b = K R_a, its axis in the base frame",
+                    turn_b_then_a,
+                ),
+                matches(
+                    "rotation_sense",
+                    "(k, 2π - θ) turns about k the long way round, which is the turn by -θ: the question asks for "
+                    "the angle θ in (0, π) of the turn about k",
+                    turn_the_other_way_round,
                 ),
                 degrees_out([3]),
                 angle_2pi([3], "(0, π)"),
@@ -294,6 +379,24 @@ EXERCISE = Exercise(
                     "pan, so the tilt is about the head's own y axis (moving axes multiply on the right)",
                     camera_fixed_axes,
                 ),
+                matches(
+                    "rotation_sense",
+                    "your tilt turns the wrong way: a positive tilt about the head's y axis carries its z towards its "
+                    "x (R_y's top row ends in +sin θ), so a positive tilt points the camera down",
+                    camera_tilted_back,
+                ),
+                matches(
+                    "rotation_sense",
+                    "your pan turns the wrong way: a positive pan about z0 carries x0 towards y0 (counter-clockwise "
+                    "seen from above)",
+                    camera_panned_back,
+                ),
+                matches(
+                    "frame_coordinates",
+                    "the camera's offset c is along the base's x0: it is along the head's own x, which turns with "
+                    "the pan and the tilt (the offset is c times the turned head's first column)",
+                    camera_offset_unturned,
+                ),
                 TRANSPOSED,
                 degrees_in(0, 1),
             ),
@@ -308,6 +411,7 @@ EXERCISE = Exercise(
             public=(
                 (np.stack([_xyz(0.4, 0.3, -1.2), _lock(0.7, 1.0), _xyz(-2.5, -1.2, 3.0)]),),
                 (np.stack([_lock(-2.0, -1.0), _xyz(3.0, 1.5, 0.1), _xyz(1.0, 0.2, 0.5)]),),
+                (np.stack([_near_lock(0.5, 1.0, 1.0, True), _xyz(-0.3, 0.9, 2.0), _near_lock(-1, 2.5, -1, False)]),),
             ),
             hidden=_xyz_cases,
             reference=xyz_angles_all,
@@ -319,6 +423,20 @@ EXERCISE = Exercise(
                     "these are lecture 01 §7's roll, pitch, yaw, the angles of Rz(c) Ry(b) Rx(a) (fixed axes): the "
                     "controller's set is Rx(a) Ry(b) Rz(c), turns about the moving axes x, new y, newest z",
                     rpy_formula_all,
+                ),
+                matches(
+                    "lock_threshold",
+                    "a rotation with cos b ≈ 1.5e-8 is treated as the gimbal lock: the question's threshold is "
+                    "cos b < 1e-9, so there the regular formula gives a, b and c (c is not 0); your threshold is "
+                    "larger than the question's",
+                    lambda Rs: xyz_threshold_all(Rs, 1e-5),
+                ),
+                matches(
+                    "lock_threshold",
+                    "a rotation with cos b ≈ 1.2e-10 is below the question's threshold cos b < 1e-9, so it counts "
+                    "as the gimbal lock (c = 0); your test for the lock (cos b == 0, or a smaller threshold) "
+                    "misses it",
+                    lambda Rs: xyz_threshold_all(Rs, 0.0),
                 ),
                 matches(
                     "gimbal_lock",

@@ -63,6 +63,12 @@ def _chain_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
 PLANAR = np.array([[0.0, 0.0, 0.0, 0.0, 0], [0.0, 1.0, 0.0, 0.0, 0], [0.0, 0.7, 0.0, 0.0, 0]])
 SLIDER = np.array([[0.0, 0.0, 0.3, 0.5, 0], [-H, 0.2, 0.0, 0.1, 1], [H, 0.0, -0.4, 0.0, 0]])
 
+def _one_link_too_few(table: Any, q: Any, k: int) -> np.ndarray:
+    """The mistake: the product of the link matrices from row k + 2 on (rows counted from 1), one link too few."""
+    rows, q = np.asarray(table, dtype=float), np.asarray(q, dtype=float)
+    return ref.table_fk(rows[int(k) + 1 :], q[int(k) + 1 :]) if int(k) + 1 < len(rows) else np.eye(4)
+
+
 EXERCISE = Exercise(
     "ex03_puma_fk",
     "Forward kinematics of a DH chain, and the PUMA-560's table from its picture",
@@ -82,6 +88,12 @@ EXERCISE = Exercise(
                     "this is ⁰Tₙ, the last frame in the base frame: the question asks it in frame {k}, the product "
                     "of the link matrices after frame k only (ᵏTₙ = ᵏT_(k+1) ... ⁿ⁻¹Tₙ)",
                     lambda table, q, k: ref.table_fk(table, q),
+                ),
+                matches(
+                    "off_by_one",
+                    "your product starts one link too late: ᵏTₙ = ᵏT_(k+1) ... ⁿ⁻¹Tₙ begins with row k + 1 of the "
+                    "table (rows count from 1; with Python's rows from 0 that is rows[k:])",
+                    _one_link_too_few,
                 ),
                 matches(
                     "standard_dh",

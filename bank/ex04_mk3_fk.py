@@ -229,8 +229,13 @@ EXERCISE = Exercise(
                 (ref.mk3_rail_goal([-0.6, 0.5, -0.9, 1.0, 0.7], [1.0, 0.3, 0.0], 0.5, -250.0), -250.0),
             ),
             # every public goal is unattainable (returning T unchanged fails each); one hidden goal is attainable
-            # (it must come back unchanged, however the turn's axis z × z' is computed)
-            hidden=lambda rng: [*ref.mk3_nearest_cases(rng, 4), *ref.mk3_attainable_cases(rng, 1)],
+            # up to rounding and one is in the arm plane exactly (z × z' is the zero vector: normalising it
+            # unguarded gives NaN): each must come back unchanged, however the turn's axis is computed
+            hidden=lambda rng: [
+                *ref.mk3_nearest_cases(rng, 4),
+                *ref.mk3_attainable_cases(rng, 1),
+                *ref.mk3_in_plane_cases(rng, 1),
+            ],
             reference=ref.mk3_rail_nearest,
             forbidden=(
                 "puma_course.kinematics.mk3:MK3.nearest_attainable",

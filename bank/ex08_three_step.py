@@ -80,7 +80,18 @@ EXERCISE = Exercise(
             hidden=lambda rng: [(c[0], c[5], c[6]) for c in _cases(rng, 4)],
             reference=ref.step_field("frame_step1"),
             forbidden=keys.KEY_THREE_STEP,
-            mistakes=(*_lecture("frame_step1")[2:], *_straight("frame_step1"), ORDER, TRANSPOSED),
+            mistakes=(
+                *_lecture("frame_step1")[2:],
+                matches(
+                    "joint_zero",
+                    "your base turned half a turn too far: this arm counts θ0 from e_y (at θ0 = 0 it points along "
+                    "e_y), so θ0 = γ0 - π/2, not γ0 + π/2",
+                    lambda w, tb, Fb: np.diag([-1.0, -1.0, 1.0]) @ ref.step_field("frame_step1")(w, tb, Fb),
+                ),
+                *_straight("frame_step1"),
+                ORDER,
+                TRANSPOSED,
+            ),
             hint="The base turns from its start to the direction of w and carries the wrist frame F̄ with it "
             "(lecture 08 §2, step 1); this arm reads θ0 from e_y, so by how much does it turn? A target behind "
             "the robot needs the right quadrant.",
@@ -123,6 +134,13 @@ EXERCISE = Exercise(
             forbidden=keys.KEY_THREE_STEP,
             mistakes=(
                 *_lecture("frame_step2"),
+                matches(
+                    "lecture_mechanism",
+                    "your forearm turned by Δ(θ1 + θ2), as lecture 08's elbow angle does; this arm's θ2 is the "
+                    "forearm's own elevation above the horizontal (its parallelogram), so the frame it carries turns "
+                    "by θ2 - θ̄2 alone",
+                    ref.elevations_added,
+                ),
                 *_straight("frame_step2"),
                 matches(
                     "branch", BRANCH.replace("angles", "frame"), ref.three_step_variant("frame_step2", other_elbow=True)

@@ -27,10 +27,12 @@ LECTURE = (0.4318, 0.0203, 0.15005, 0.4318)
 Q_LECTURE = np.radians([30.0, -50.0, 20.0, 40.0, 60.0, -30.0])  # lecture 09's example (the lecture's zero)
 Q_PUBLIC = ref.to_upright(Q_LECTURE[None])[0]  # the same arm in the controller's joint values
 T_PUBLIC = ref.puma_fk(Q_LECTURE, *LECTURE)
-B_PUBLIC = chains.pose(chains.elementary_rotation("z", np.pi / 2), [0.5, 0.0, 0.8])
+#: The public bases: near the cell's origin, so that each usual mistake (the base forgotten or on the wrong side,
+#: the tool left out or added) asks for a pose the arm reaches, and is named.
+B_PUBLIC = chains.pose(chains.elementary_rotation("z", np.pi / 2), [0.3, 0.0, 0.2])
 #: A second public pose and base (the robot hung upside down from a gantry).
 T_PUBLIC2 = ref.puma_fk(np.array([-1.2, -0.6, 0.4, -0.9, 1.1, 2.0]), *LECTURE)
-B_PUBLIC2 = chains.pose(chains.elementary_rotation("x", np.pi), [1.0, -0.5, 2.2])
+B_PUBLIC2 = chains.pose(chains.elementary_rotation("x", np.pi), [0.2, 0.1, 0.3])
 #: Two singular arms of lecture 09 §8 in the controller's joint values: the stretched elbow and the shoulder.
 Q_ELBOW = ref.to_upright(np.array([[0.5, -0.3, np.arctan2(-0.4318, 0.0203), 0.2, 1.0, 0.1]]))[0]
 Q_SHOULDER = ref.to_upright(np.array([[0.2, np.arctan2(0.4318 + 0.0203 * np.cos(0.4) - 0.4318 * np.sin(0.4),
@@ -116,10 +118,18 @@ EXERCISE = Exercise(
             forbidden=keys.KEY_JACOBIAN,
             mistakes=(
                 matches("joint_zero", ZERO, _lecture_det),
+                matches(
+                    "missing_factor",
+                    "this is det J_w, the arm's 3×3 block, alone: det J is det J_w times the wrist's factor "
+                    "sin θ5 (det [z4 z5 z6], lecture 09 §9), zero at the wrist singularity",
+                    lambda q, *L: ref.puma_det_j(q, *L) / np.sin(float(np.asarray(q, dtype=float)[4])),
+                ),
                 negated(
                     "sign_flip",
-                    "your det J has the wrong sign (the rest is right): check the sign of each "
-                    "factor, or of the columns of your J",
+                    "your det J has the wrong sign (the rest is right). If you stacked J's rows as (ω, v), the "
+                    "angular rows first: the course's J has the linear velocity v on top, J = (J_v; J_ω), and "
+                    "swapping the two blocks of three rows flips the determinant's sign. Otherwise check the sign "
+                    "of each factor",
                 ),
             ),  # fmt: skip
             hint="det J is a product of factors, each zero at one singularity (lecture 09 §9); check yours is 0 with "

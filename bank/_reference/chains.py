@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -340,9 +341,16 @@ def mk3_rail_fk(Q: Any, c: float, d1: float, a1: float, a2: float, a3: float, d5
     return out if Q.ndim > 1 else out[0]
 
 
+#: What a rail table that leaves a height out of row 2 (its d is c + d1) is told: every pose sits that much lower.
+MISSING_HEIGHT = (
+    "your chain moves like the MK3 on its rail, but every pose is {h:g} mm too low: row 2's d is the height of the "
+    "shoulder's axis above the rail frame, the carriage's height c plus the MK3's own d1 (d = c + d1); yours {what}"
+)
+
+
 def mk3_rail_expected(c: float, d1: float, a1: float, a2: float, a3: float, d5: float) -> dict[str, Any]:
-    """What the table judge needs for the MK3 on a rail of ex04 (strokes in mm)."""
-    return _table_expected(
+    """What the table judge needs for the MK3 on a rail of ex04 (strokes in mm), with the heights left out named."""
+    out = _table_expected(
         lambda Q: mk3_rail_fk(Q, c, d1, a1, a2, a3, d5),
         [False] + [True] * 5,
         c + d1 + a1 + a2 + a3 + d5,
@@ -354,6 +362,11 @@ def mk3_rail_expected(c: float, d1: float, a1: float, a2: float, a3: float, d5: 
         d5,
         stroke=(-800.0, 800.0),
     )
+    out["shifts"] = [
+        ("missing_offset", MISSING_HEIGHT.format(h=c, what="leaves out the carriage's height c"), [0.0, 0.0, -c]),
+        ("missing_offset", MISSING_HEIGHT.format(h=d1, what="leaves out the MK3's d1"), [0.0, 0.0, -d1]),
+    ]
+    return out
 
 
 def mk3_rail_nearest(T: Any, s: float) -> np.ndarray:
@@ -404,6 +417,39 @@ def mk3_attainable_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ..
             continue
         s = float(rng.choice([-1.0, 1.0]) * rng.uniform(100.0, 600.0))
         out.append((transforms.transl([0.0, s, 0.0]) @ T, s))
+    return out
+
+
+def mk3_in_plane_goal(q: Any, s: float, across: bool = False) -> np.ndarray:
+    """A goal for the MK3 on its rail whose approach lies in the arm plane *exactly*, not up to rounding.
+
+    The pose at ``q`` (θ1 replaced by 0, or by π/2 if ``across``) is rebuilt from its angles with exact zeros: the
+    tool point at (r, s, h) (or (0, s + r, h)) and R = Ry(β) Rz(γ) (or Rz(π/2) Ry(β) Rz(γ) written out), so the
+    plane's normal is a coordinate axis and the approach's component along it is 0.0: z × z' is the zero vector
+    and an answer that normalises it unguarded returns NaN. Its nearest pose is the goal itself.
+    """
+    F = MK3().fk(np.array([0.0, *np.asarray(q, dtype=float)[1:]]))  # in the x-z plane up to rounding
+    beta, gamma = math.atan2(F[0, 2], F[2, 2]), math.atan2(F[1, 0], F[1, 1])
+    cb, sb, cg, sg = math.cos(beta), math.sin(beta), math.cos(gamma), math.sin(gamma)
+    R = np.array([[cb * cg, -cb * sg, sb], [sg, cg, 0.0], [-sb * cg, sb * sg, cb]])  # Ry(β) Rz(γ), R[1, 2] = 0
+    p = np.array([F[0, 3], 0.0, F[2, 3]])
+    if across:  # turned a quarter about z0, exactly: (x, y, z) -> (-y, x, z)
+        R, p = np.array([-R[1], R[0], R[2]]), np.array([0.0, p[0], p[2]])
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, p + [0.0, float(s), 0.0]
+    return T
+
+
+def mk3_in_plane_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
+    """``n`` goals (T, s) already in the arm plane exactly (:func:`mk3_in_plane_goal`), the tool point at least
+    100 mm off the base axis, alternately along x0 and along y0 from it; the carriage 100 to 600 mm either way."""
+    out: list[tuple[Any, ...]] = []
+    while len(out) < n:
+        q = rng.uniform(-np.pi, np.pi, 5)
+        s = float(rng.choice([-1.0, 1.0]) * rng.uniform(100.0, 600.0))
+        T = mk3_in_plane_goal(q, s, across=len(out) % 2 == 1)
+        if float(np.hypot(T[0, 3], T[1, 3] - s)) >= 100.0:
+            out.append((T, s))
     return out
 
 

@@ -183,8 +183,18 @@ def to_upright(rows: Any) -> np.ndarray:
     return np.asarray(transforms.wrap_angle(R - PUMA_ZERO[: R.shape[-1]])) if R.size else R.reshape(-1, R.shape[-1])
 
 
+#: What rows in the lecture's joint values (θ2, θ3 counted from the arm stretched forward) are told.
+LECTURE_ZERO = (
+    "your rows are right in the lecture's joint values: this exercise counts θ2 and θ3 from the arm straight up "
+    "(the controller's zero of ex03 q2), so θ = θ_lecture + π/2 for joints 2 and 3"
+)
+
+
 def _upright(expected: dict[str, Any], fk: Callable[..., Any]) -> dict[str, Any]:
-    return {**expected, "solutions": to_upright(expected["solutions"]), "fk": fk}
+    """The expected set in the controller's joint values; rows in the lecture's (q + PUMA_ZERO) are named."""
+    n = np.asarray(expected["solutions"]).reshape(-1, len(expected["revolute"])).shape[1]
+    offsets = [("joint_zero", LECTURE_ZERO, PUMA_ZERO[:n])]
+    return {**expected, "solutions": to_upright(expected["solutions"]), "fk": fk, "offsets": offsets}
 
 
 def puma_ik_upright_expected(T: Any, a2: float, a3: float, d3: float, d4: float) -> dict[str, Any]:
@@ -290,6 +300,12 @@ def puma_world_expected(T_world: Any, B: Any, d6: float) -> dict[str, Any]:
             "you composed B on the wrong side: T_world = B ⁰T₆ Tz(d6), so ⁰T₆ = B⁻¹ T_world Tz(-d6)",
             B @ T_world @ Bi @ tz(-d6) @ tz(d6),
         ),
+        (
+            "order",
+            "you composed the tool on the wrong side: the tool is d6 along the hand's own z6, so Tz(d6) multiplies "
+            "⁰T₆ on the right: ⁰T₆ = B⁻¹ T_world Tz(-d6), not B⁻¹ Tz(-d6) T_world",
+            tz(-d6) @ T_world @ tz(d6),
+        ),
         ("tool_frame", "your configurations put frame {6}, not the tool tip, at the pose asked for", T_world @ tz(d6)),
         (
             "offset_sign",
@@ -309,13 +325,18 @@ def puma_world_expected(T_world: Any, B: Any, d6: float) -> dict[str, Any]:
 
 
 def puma_world_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
-    """Cases (T_world, B, d6): the robot on a random base (a pedestal turned and shifted, or hung upside down)."""
-    out = []
-    for k in range(n):
-        R = transforms.rotz(rng.uniform(-np.pi, np.pi)) @ (transforms.rotx(np.pi) if k % 2 else np.eye(3))
-        B, d6 = pose(R, rng.uniform(-1.0, 1.0, 3)), float(rng.uniform(0.05, 0.2))
+    """Cases (T_world, B, d6): the robot on a random base (a pedestal turned and shifted, or hung upside down),
+    drawn until every mistake of :func:`puma_world_expected` (the base forgotten or on the wrong side, the tool
+    left out or added) asks for a pose the arm reaches: an answer that makes one is then named on every case,
+    not only where its IK returns nothing (an IK that clips its square roots returns rows there, reaching nothing)."""
+    out: list[tuple[Any, ...]] = []
+    while len(out) < n:
+        R = transforms.rotz(rng.uniform(-np.pi, np.pi)) @ (transforms.rotx(np.pi) if len(out) % 2 else np.eye(3))
+        B, d6 = pose(R, rng.uniform(-0.4, 0.4, 3)), float(rng.uniform(0.05, 0.2))
         q = rng.uniform(-np.pi, np.pi, 6)
-        out.append((B @ Puma560().fk(q) @ tz(d6), B, d6))
+        T_world = B @ Puma560().fk(q) @ tz(d6)
+        if all(len(rows) for _, _, rows in puma_world_expected(T_world, B, d6)["wrong_sets"]):
+            out.append((T_world, B, d6))
     return out
 
 
@@ -522,6 +543,17 @@ def step_field(field: str) -> Callable[..., np.ndarray]:
         return _field(pallet_three_step(*_three_step_args(args)), field)
 
     return ref
+
+
+def elevations_added(w: Any, l1: float, l2: float, elbow: str, theta_bar: Any, F_bar: Any) -> np.ndarray:
+    """The mistake of step 2: this arm's θ2 read as lecture 08's elbow angle *in the step*, the forearm turned by
+    Δ(θ1 + θ2) = (θ1 + θ2) - (θ̄1 + θ̄2) where it turns by θ2 - θ̄2 (both readings this arm's): the right frame
+    turned further by θ1 - θ̄1 about the same axis a."""
+    sol = pallet_three_step(w, np.eye(3), l1, l2, elbow, theta_bar, F_bar)
+    g = math.atan2(float(np.asarray(w, dtype=float)[1]), float(np.asarray(w, dtype=float)[0]))
+    a = np.array([math.sin(g), -math.cos(g), 0.0])
+    extra = float(sol.theta1) - float(np.asarray(theta_bar, dtype=float)[1])
+    return np.asarray(transforms.rodrigues(a, extra) @ np.asarray(sol.frame_step2, dtype=float))
 
 
 def moved_wrong_way(field: str) -> Callable[..., np.ndarray]:

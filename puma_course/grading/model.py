@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from .judge.compare import Comparison, compare_close
-from .judge.diagnose import Mistake, diagnose_all
+from .judge.diagnose import Mistake, base_key, diagnose_all
 
 __all__ = [
     "Question",
@@ -109,7 +109,7 @@ def reconcile(verdicts: Sequence[Verdict]) -> list[Verdict]:
         v = out[i]
         if common:
             message = dict(v.candidates or ())[common[0]]
-            out[i] = replace(v, reason=message, mistake=common[0])
+            out[i] = replace(v, reason=message, mistake=base_key(common[0]))
         elif v.mistake is not None or v.candidates:
             plain = v.plain or "your value differs from the right answer here (no single mistake explains every case)"
             out[i] = replace(v, reason=plain, mistake=None)
@@ -210,7 +210,7 @@ class Question:
         found = diagnose_all(self.mistakes, got, expected, tuple(args), self.reference)
         if not found:
             return Verdict(reason, None, (), reason)
-        return Verdict(found[0][1], found[0][0], tuple(found), reason)
+        return Verdict(found[0][1], base_key(found[0][0]), tuple(found), reason)
 
     def right_answer(self, *args: Any) -> Any:
         """One right answer for ``args`` (``answer``, else ``reference``): what the tests feed the judge."""

@@ -25,6 +25,9 @@ __all__ = ["use_exercise", "check", "public_outcomes", "registry"]
 
 _current_exercise: list[str] = []
 
+#: What the self-check's points count: the public cases only (the grader adds hidden ones, and scores all alike).
+PUBLIC_SCOPE = "on the public cases"
+
 #: No time limit here: the words for one are never needed.
 LIMITS = "10 s"
 
@@ -144,16 +147,17 @@ def check(question: str, answer: Callable[..., Any]) -> None:
 
     ``question`` is ``"q2"`` (after :func:`use_exercise`) or ``"ex01_rotations:q2"``.
     Hidden cases used at grading time draw other inputs, so an answer that only
-    memorises these cases will not earn the points.
+    memorises these cases will not earn the points. The points printed are the grader's rule (points × cases
+    passed / cases) on the public cases, and say so.
 
     >>> check("ex01_rotations:q1", lambda axis, angle: np.eye(3))  # doctest: +ELLIPSIS
-    q1 elementary_rotation: 0 / 2 points - FAILED (0/4 cases pass; case 1 (elementary_rotation('-y', 0.4)): ...)
+    q1 elementary_rotation: 0 / 2 points on the public cases - FAILED (0/5 cases pass; case 1 (...('-y', 0.4)): ...)
       Hint: Point your right thumb ...
     """
     ex, q = _find_question(question)
     if not callable(answer):
         got = type(answer).__name__
-        print(format_question(q, 0.0, [f"expected your function {q.function}, got a {got}"]))
+        print(format_question(q, 0.0, [f"expected your function {q.function}, got a {got}"], scope=PUBLIC_SCOPE))
         return
-    earned, notes = score_question(q.points, public_outcomes(q, answer))
-    print(format_question(q, earned, notes))
+    earned, notes = score_question(q.points, public_outcomes(q, answer))  # the grader's rule, on these cases
+    print(format_question(q, earned, notes, scope=PUBLIC_SCOPE))

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from puma_course.grading import EXERCISES
-from puma_course.grading.judge.diagnose import TITLES, Mistake, close, diagnose, matches
+from puma_course.grading.judge.diagnose import TITLES, Mistake, base_key, close, diagnose, matches
 from puma_course.grading.model import Verdict
 
 
@@ -628,7 +628,7 @@ def test_a_path_that_jumps_or_starts_elsewhere():
 def test_every_emitted_key_has_a_title_and_a_mistake_with_an_unknown_key_is_refused():
     for ex in EXERCISES.values():
         for q in ex.questions:
-            assert all(m.key in TITLES for m in q.mistakes)
+            assert all(base_key(m.key) in TITLES for m in q.mistakes)  # "rotation_sense#sign": a variant
     with pytest.raises(ValueError, match="key: expected one of"):
         Mistake("typo", lambda *a: None)
 
@@ -806,3 +806,51 @@ def test_a_standard_table_returned_unchanged_is_sent_to_lecture_02_section_8():
     H, h, d2 = np.pi / 2, 0.8, 0.2
     standard = np.array([[H, 0.0, 0.0, h, 0], [H, 0.0, H, -d2, 0], [0.0, 0.0, 0.0, 0.0, 1]])
     assert_named(judge("ex02_dh_frames", "q3", standard, h, d2), "standard_dh", "lecture 02 §5")
+
+
+# ---------------------------------------------------------------- issue 31: the class's other typical mistakes
+def test_a_lock_threshold_other_than_the_question_s():
+    """ex01 q6 states cos b < 1e-9: rotations 1.2e-10 and 1.5e-8 from the lock, each side, name another threshold."""
+    q = EXERCISES["ex01_rotations"].question("q6")
+    (Rs,) = q.public[2]  # inside the threshold, a general rotation, outside it
+
+    def angles(R, tol):
+        cb = np.hypot(R[0, 0], R[0, 1])
+        if cb < tol or (tol == 0 and cb == 0):
+            s = np.sign(R[0, 2])
+            return [np.arctan2(s * R[1, 0], R[1, 1]), s * np.pi / 2, 0.0]
+        return [np.arctan2(-R[1, 2], R[2, 2]), np.arctan2(R[0, 2], cb), np.arctan2(-R[0, 1], R[0, 0])]
+
+    assert np.hypot(*Rs[0][0, :2]) < 1e-9 < np.hypot(*Rs[2][0, :2]) < 1e-7
+    assert judge("ex01_rotations", "q6", [angles(R, 1e-9) for R in Rs], Rs).passed
+    assert_named(judge("ex01_rotations", "q6", [angles(R, 1e-6) for R in Rs], Rs), "lock_threshold", "1.5e-8")
+    assert_named(judge("ex01_rotations", "q6", [angles(R, 0.0) for R in Rs], Rs), "lock_threshold", "1.2e-10")
+
+
+def test_the_arcsin_angle_and_other_turns_of_ex01_q2():
+    u, v = np.array([1.0, 0.0, 0.0]), np.array([-1.0, 1.0, 0.0])  # 135° apart, the turn about e_z
+    assert judge("ex01_rotations", "q2", rot("z", 3 * np.pi / 4), u, v).passed
+    assert_named(judge("ex01_rotations", "q2", rot("z", np.pi / 4), u, v), "angle_quadrant", "arcsin", "90°")
+    assert_named(judge("ex01_rotations", "q2", rot("x", 3 * np.pi / 4), u, v), "wrong_axis", "about u itself")
+    K = skew([0.0, 0.0, 1.0])
+    minus = np.eye(3) + np.sin(3 * np.pi / 4) * K - (1 - np.cos(3 * np.pi / 4)) * K @ K
+    assert_named(judge("ex01_rotations", "q2", minus, u, v), "sign_flip", "Rodrigues' last term")
+
+
+def test_a_height_left_out_of_a_table_a_factor_left_out_and_one_link_too_few():
+    # ex04 q3: the MK3's shoulder is c + d1 above the rail frame: d1 alone leaves every pose c lower
+    c, d1, a1, a2, a3, d5 = 450.0, 360.0, 135.0, 250.0, 215.0, 100.0
+    h = np.pi / 2
+    table = np.array([[-h, 0, 0, 0, 1], [h, 0, 0, c + d1, 0], [h, a1, 0, 0, 0], [0, a2, 0, 0, 0], [0, a3, 0, 0, 0],
+                      [h, 0, 0, d5, 0]])  # fmt: skip
+    assert judge("ex04_mk3_fk", "q3", table, c, d1, a1, a2, a3, d5).passed
+    table[1, 3] = d1
+    assert_named(judge("ex04_mk3_fk", "q3", table, c, d1, a1, a2, a3, d5), "missing_offset", "450 mm too low", "c")
+    # ex09 q3: det J without the wrist's factor sin θ5 is det J_w
+    L, q = (0.4318, 0.0203, 0.15005, 0.4318), np.array([0.3, 0.2, -0.4, 0.1, 0.9, 0.5])
+    det = right("ex09_puma_ik", "q3", q, *L)
+    assert_named(judge("ex09_puma_ik", "q3", det / np.sin(q[4]), q, *L), "missing_factor", "sin θ5")
+    # ex03 q1: the product from row k + 2 on (one link too few)
+    table, q, k = EXERCISES["ex03_puma_fk"].question("q1").public[0]
+    T = right("ex03_puma_fk", "q1", np.asarray(table)[k + 1 :], np.asarray(q)[k + 1 :], 0)
+    assert_named(judge("ex03_puma_fk", "q1", T, table, q, k), "off_by_one", "one link too late")

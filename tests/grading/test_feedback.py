@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from puma_course.grading import EXERCISES
+from puma_course.grading.judge.diagnose import base_key
 from puma_course.grading.model import Question, Verdict, reconcile
 from tests.fixtures.answers.generic import factory_name
 from tests.fixtures.answers.methods import METHODS
@@ -96,11 +97,11 @@ JUDGE_KEYS = {
 
 def recognised(q: Question) -> set[str]:
     """Every mistake key the grader of ``q`` can name: its diagnosis, its judge's, its reference's alternatives."""
-    keys = {m.key for m in q.mistakes}
+    keys = {base_key(m.key) for m in q.mistakes}  # a variant ("rotation_sense#sign") names its mistake
     if q.judge_with is not None:
         keys |= JUDGE_KEYS[factory_name(q.judge_with).split("_judge")[0]]
         expected = q.reference(*copy.deepcopy(q.public[0]))
-        for field in ("alternatives", "wrong_orders", "wrong_sets"):
+        for field in ("alternatives", "wrong_orders", "wrong_sets", "offsets", "shifts"):
             keys |= {entry[0] for entry in expected.get(field, ())}
         if expected.get("stroke") is not None:
             keys.add("negative_stroke")
@@ -142,3 +143,37 @@ def test_every_key_of_the_graders_has_a_title():
     keys = set().union(*(recognised(q) for ex in EXERCISES.values() for q in ex.questions))
     assert keys <= set(TITLES)
     assert np.isfinite(len(keys))
+
+
+# ---------------------------------------------------------------- issue 31: three messages that misled, the cell cited
+@pytest.mark.parametrize(
+    ("exercise", "qid", "name", "said", "never"),
+    [
+        ("ex01_rotations", "q1", "the whole matrix transposed", "transpose", "sign was left out"),
+        ("ex09_puma_ik", "q3", "J stacked (ω; v)", "(ω, v)", "or of the columns of your J"),
+        ("ex04_mk3_fk", "q3", "row 2's d without c", "carriage's height c", "not the base frame"),
+    ],
+)
+def test_the_answers_that_misled_are_told_their_mistake(exercise, qid, name, said, never):
+    from tests.fixtures.answers.promised import PROMISED
+
+    answer = next(a for a in PROMISED if (a.exercise, a.qid, a.name) == (exercise, qid, name))
+    for seed in SEEDS:
+        reasons = [v.reason or "" for v in grade(answer, seed).failing()]
+        assert reasons and all(said in r and never not in r for r in reasons), (seed, reasons[:1])
+
+
+def test_a_failing_cell_is_cited_by_what_the_student_sees(tmp_path):
+    """JupyterLab numbers no cells: the note names the cell by its first line, never "code cell 4"."""
+    import nbformat
+
+    from puma_course.grading.run.runner import grade_notebook
+
+    cells = ["import numpy as np", "def elementary_rotation(axis, angle):\n    return undefined_name"]
+    cells += ["# my scratch cell\nx = 1 / 0"]
+    nb = tmp_path / "ex01_rotations.ipynb"
+    nbformat.write(nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in cells]), nb)
+    graded = grade_notebook(nb, EXERCISES["ex01_rotations"], seed=0)
+    notes = [n for n in graded.notes if "ZeroDivisionError" in n]
+    assert notes and notes[0].startswith("the code cell starting `# my scratch cell`:"), graded.notes
+    assert not any(re.search(r"code cell \d", n) for n in graded.notes), graded.notes

@@ -30,6 +30,7 @@ from ..remake import made
 __all__ = [
     "Mistake",
     "TITLES",
+    "base_key",
     "diagnose",
     "diagnose_all",
     "close",
@@ -83,7 +84,7 @@ TITLES: dict[str, str] = {
     "lecture_mechanism": "the lecture's mechanism, not the variant the question describes",
     "joint_line": "a joint turning about a parallel line through the wrong point",
     "unsigned_angle": "the unsigned angle |v × w| instead of the signed one",
-    "wrong_axis": "an offset along the wrong axis of the frame",
+    "wrong_axis": "an offset along, or a turn about, the wrong axis",
     "offset_sign": "an offset with the wrong sign",
     "not_minimal": "not Porter's minimal stroke",
     "back_plane": "the arm plane entered from the back",
@@ -94,6 +95,11 @@ TITLES: dict[str, str] = {
     "not_smallest_turn": "a rotation that brings the approach into the plane, but not the smallest one",
     "joint_zero": "joint values counted from another zero than the one the question fixes",
     "gimbal_lock": "the regular Euler-angle formula used at the gimbal lock (atan2(0, 0))",
+    "missing_offset": "a length of the mechanism (a height, an offset) left out of the table",
+    "angle_quadrant": "an angle from arcsin or arccos alone, in the wrong quadrant",
+    "missing_factor": "a factor of a product left out",
+    "off_by_one": "a product of link matrices that starts or stops one link off",
+    "lock_threshold": "a gimbal-lock test with another threshold than the one the question states",
 }
 
 #: ``check(got, expected, args, reference)``: a message for the student if ``got`` is this mistake, else None.
@@ -113,13 +119,25 @@ class Mistake:
     check: Check
 
     def __post_init__(self) -> None:
-        if self.key not in TITLES:
-            raise ValueError(f"key: expected one of {sorted(TITLES)}, got {self.key!r}")
+        if base_key(self.key) not in TITLES:
+            raise ValueError(f"key: expected one of {sorted(TITLES)} (or 'KEY#variant'), got {self.key!r}")
 
     @property
     def title(self) -> str:
         """What the mistake is, for the instructor's summary."""
-        return TITLES[self.key]
+        return TITLES[base_key(self.key)]
+
+
+def base_key(key: str) -> str:
+    """The mistake a key names: ``"rotation_sense#sign"`` is a variant of ``"rotation_sense"``.
+
+    A variant is one way of making the mistake (the axis's sign dropped, R_y's sines swapped): the feedback names
+    a variant only where every failing case is that variant, and the class summary counts the mistake itself.
+
+    >>> base_key("rotation_sense#sign"), base_key("degrees")
+    ('rotation_sense', 'degrees')
+    """
+    return key.split("#", 1)[0]
 
 
 def _floats(value: Any) -> np.ndarray | None:
@@ -224,7 +242,7 @@ def _transposed(got: np.ndarray, expected: Any, args: tuple[Any, ...], reference
     if close(ref, ref.T):
         return None
     if close(got, ref.T):
-        whole = " the whole 4×4 matrix" if ref.shape[0] == 4 else ""
+        whole = " of the whole 4×4 matrix" if ref.shape[0] == 4 else ""
         return f"you returned the transpose{whole}: column k of a rotation is where the k-th axis goes (lecture 01 §1)"
     if ref.shape[0] == 4 and not close(R, R.T) and close(got[:3, :3], R.T):
         return "the rotation part is transposed (Rᵀ for R): column k of R is where the k-th axis goes (lecture 01 §1)"

@@ -72,12 +72,15 @@ def _wants_hint(q: Question, earned: float, notes: Sequence[str]) -> bool:
     return bool(q.hint) and verdict(q, earned, notes) in ("partly", "FAILED")
 
 
-def format_question(q: Question, earned: float, notes: Sequence[str], *, markdown: bool = False) -> str:
+def format_question(
+    q: Question, earned: float, notes: Sequence[str], *, markdown: bool = False, scope: str = ""
+) -> str:
     """The result of one question as a text line (plus an indented ``Hint:`` line), or with ``markdown`` a table row.
 
     ``notes`` are the question's notes ("k/n cases pass", then reasons); a not-attempted question
     shows its verdict only, without the hint (a hint comes after an attempt that fell short). The
-    Markdown row has the columns question | points | result.
+    Markdown row has the columns question | points | result. ``scope`` says which cases the points count
+    (the self-check: "on the public cases", the grader's points come from more).
 
     >>> from puma_course.grading import EXERCISES
     >>> q = EXERCISES["ex01_rotations"].question("q4")
@@ -95,7 +98,8 @@ def format_question(q: Question, earned: float, notes: Sequence[str], *, markdow
     if markdown:
         result = (f"{word}: {detail}" if detail else word).replace("|", r"\|")
         return f"| {q.qid} `{q.function}`{bonus} | {earned:g} / {q.points:g} | {result} |"
-    line = f"{q.qid} {q.function}{bonus}: {earned:g} / {q.points:g} points - {word}"
+    on = f" {scope}" if scope else ""
+    line = f"{q.qid} {q.function}{bonus}: {earned:g} / {q.points:g} points{on} - {word}"
     if detail:
         line += f" ({detail})"
     if _wants_hint(q, earned, notes):

@@ -117,14 +117,23 @@ def timeout_words(what: str, event: dict[str, Any], limits: str) -> str:
     return f"{what} ran longer than {limits}".strip()
 
 
+def cell_name(event: dict[str, Any]) -> str:
+    """How the student finds a cell: by its first line (JupyterLab numbers no cells), else by its place.
+
+    >>> cell_name({"index": 3, "first": "def f(x):"}), cell_name({"index": 3})
+    ('the code cell starting `def f(x):`', 'code cell 4')
+    """
+    first = _text(event.get("first")).strip()
+    return f"the code cell starting {quoted(first, 80)}" if first else f"code cell {_int(event.get('index')) + 1}"
+
+
 def cell_note(event: dict[str, Any], limits: str) -> str | None:
-    """The note for a code cell that raised or ran out of time (None for one that ran)."""
-    index = _int(event.get("index")) + 1
+    """The note for a code cell that raised or ran out of time (None for one that ran), naming it by its first line."""
     status = event.get("status")
     if status == "timeout":
-        return f"code cell {index}: " + timeout_words("", event, limits)
+        return f"{cell_name(event)}: " + timeout_words("", event, limits)
     if status == "error":
-        return f"code cell {index}: {quoted(_text(event.get('detail')))}{_where(event)}"
+        return f"{cell_name(event)}: {quoted(_text(event.get('detail')))}{_where(event)}"
     return None
 
 

@@ -42,6 +42,9 @@ def _not_reaching(arr: np.ndarray, expected: dict[str, Any], target: Any) -> Ver
     plain = f"{label} does not reach the pose: off by {_off(reached[i : i + 1], np.asarray(target))}"
     if np.all(pose_ok(fk(_radians(arr, rev)), target, scale)):
         return Verdict("your angles are in degrees: the course works in radians", "degrees", None, plain)
+    for key, message, offset in expected.get("offsets", ()):  # joint values counted from another zero
+        if np.all(pose_ok(fk(arr - np.asarray(offset, dtype=float)), target, scale)):
+            return Verdict(message, key, None, plain)
     for key, message, alt in expected.get("alternatives", ()):
         if np.all(pose_ok(reached, alt, scale)):
             return Verdict(message, key, None, plain)
@@ -52,7 +55,8 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
     """Judge a set of configurations: each reaches the pose, none twice, none of the reference's missing.
 
     The reference gives ``{"T", "solutions" (k, n), "labels", "fk", "revolute", "scale"}`` and may
-    add ``"alternatives"`` (``(key, message, pose)``: rows that all reach that pose made that
+    add ``"offsets"`` (``(key, message, offset)``: rows that reach the pose once ``offset`` is taken off them count
+    the joints from another zero), ``"alternatives"`` (``(key, message, pose)``: rows that all reach that pose made that
     mistake; ``"wrong_sets"``, ``(key, message, rows)``: the solutions a mistaken pose has, so that an empty
     answer is that mistake where the mistaken pose is out of reach), ``"stroke"`` (a column that must not be
     negative) and ``"ordered"`` (True: the rows

@@ -97,7 +97,9 @@ def table_judge(
     ``standard_fk(table, Q)`` with the standard (distal) ones, for joint values Q (N, n) (default: the
     engine's :func:`modified_table_fk` and :func:`standard_table_fk`, which a student edition carries). The
     reference gives ``{"fk": poses of Q, "Q": hidden joint values (N, n), "revolute": (n,) mask,
-    "scale": the mechanism's size}``; the table passes when its chain reaches every reference pose.
+    "scale": the mechanism's size}`` and may add ``"shifts"`` (``(key, message, t)``: a chain whose every pose is
+    the reference's moved by t in frame {0} made that mistake); the table passes when its chain reaches every
+    reference pose.
     ``standard_section`` is where a standard-DH table is sent to read (the question's own lecture section).
     """
 
@@ -130,6 +132,9 @@ def table_judge(
         if np.all(pose_ok(T_got, T_ref, scale)):
             return Verdict(None)
         try:
+            named = _named_shift(T_got, T_ref, scale, expected.get("shifts", ()))
+            if named is not None:
+                return named
             return _table_mistake(table, T_got, T_ref, fk, Q, rev, scale, chain_fk, standard_fk, standard_section)
         except LookupError:  # a student edition without a recorded pose: say what differs, name nothing
             return Verdict(
@@ -138,6 +143,18 @@ def table_judge(
             )
 
     return made(judge, table_judge, chain_fk, standard_fk, standard_section)
+
+
+def _named_shift(T_got: np.ndarray, T_ref: np.ndarray, scale: float, shifts: Any) -> Verdict | None:
+    """The question's own named shift (``(key, message, t)`` of the reference's ``"shifts"``): every pose moved by the
+    same translation t in frame {0}, the rotations right (a length of the mechanism left out of the table), or None."""
+    M = T_got @ np.linalg.inv(T_ref)
+    if not _constant(M, scale) or np.max(np.abs(M[0, :3, :3] - np.eye(3))) > 1e-6:
+        return None
+    for key, message, t in shifts:
+        if np.max(np.abs(M[0, :3, 3] - np.asarray(t, dtype=float))) <= POS_TOL * scale:
+            return Verdict(str(message), str(key))
+    return None
 
 
 def _table_mistake(

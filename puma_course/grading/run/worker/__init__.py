@@ -23,7 +23,8 @@ and streams JSON lines back on the original stdout, one event per line::
 
     {"kind": "ready"}   (first, once the job is read: the worker started)
     {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
-    {"kind": "cell", "index": i, "status": "error" | "timeout", "detail": "...", "line": n}   (cells that ran: nothing)
+    {"kind": "cell", "index": i, "first": "its first line", "status": "error" | "timeout", "detail": "...", "line": n}
+                                                                                        (cells that ran: nothing)
     {"kind": "cells"}   (the cells ran: the grader sends the first call; not with a "calls" list)
     {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
     (a cell or call that ran out of time also says on which "clock": "cpu", "backstop" or "wall")
@@ -272,6 +273,20 @@ def _next_call(line: Any) -> dict[str, Any] | None:
     return call if isinstance(call, dict) else None
 
 
+def first_line(source: str, limit: int = 80) -> str:
+    """A code cell's first line that is not blank, at most ``limit`` characters: how the feedback names the cell
+    (JupyterLab shows no cell numbers, so "code cell 4" would leave the student counting).
+
+    >>> first_line("\\n  \\ndef f(x):\\n    return x"), first_line("")
+    ('def f(x):', '')
+    """
+    for line in source.splitlines():
+        if line.strip():
+            line = line.strip()
+            return line if len(line) <= limit else line[: limit - 1] + "…"
+    return ""
+
+
 def received(args: list[Any], asarray: Any, to_float: Any) -> list[Any]:
     """A call's arguments (JSON values) as the student's function receives them: each list an array of floats.
 
@@ -342,7 +357,7 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any, next_call: Any, ask
 
     ns: dict[str, Any] = {"__name__": "__main__", "display": display}
     for index, source in enumerate(sources):
-        event: dict[str, Any] = {"kind": "cell", "index": index}
+        event: dict[str, Any] = {"kind": "cell", "index": index, "first": first_line(source)}
         try:
             code = compile(strip_magics(source), f"<cell {index + 1}>", "exec")
             run_timed(exec, code, ns)
