@@ -212,6 +212,7 @@ html_theme_options = {{
     "show_toc_level": 2,
 }}
 html_css_files = ["puma.css"]
+html_js_files = ["puma-a11y.js"]
 html_show_sourcelink = False
 html_copy_source = True
 myst_enable_extensions = ["dollarmath", "amsmath", "html_image", "html_admonition"]
@@ -235,6 +236,15 @@ myst_update_mathjax = False  # the configuration above is complete
 suppress_warnings = ["myst.header", "mystnb.unknown_mime_type"]
 """
 
+
+#: the theme's search button is named "Search" but shows "Search Ctrl+K": WCAG 2.5.3 (label in name) wants the
+#: name to hold the visible text, so the button is named by its content instead
+_JS = """document.addEventListener("DOMContentLoaded", () => {
+  document.querySelectorAll("button.search-button__button[aria-label]").forEach((b) => {
+    if (b.textContent.trim()) b.removeAttribute("aria-label");
+  });
+});
+"""
 
 #: the site's own style: on a wide screen the sidebar holds the search field, so the theme's top bar
 #: (a second search field and nothing else) is hidden; below 960 px it stays (it opens the sidebar)
@@ -289,6 +299,7 @@ def build_site(
         (src / "conf.py").write_text(_CONF.format(mathjax=MATHJAX_FILE), encoding="utf-8")
         _copy_mathjax(base / "assets" / "mathjax")
         (base / "assets" / "puma.css").write_text(_CSS, encoding="utf-8")
+        (base / "assets" / "puma-a11y.js").write_text(_JS, encoding="utf-8")
         if edition is not None:  # `puma-course site` hands in the edition's writer
             _edition_archive(root, base / "extra", edition)
         warnings = io.StringIO()
