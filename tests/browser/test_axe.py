@@ -30,18 +30,6 @@ pytestmark = pytest.mark.browser
 
 TAGS = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"]
 
-#: TEMPORARY, for the lead to delete after merging branch s35-anim (helper ``anim`` names the animation
-#: sliders in puma_course/viz/animation.py): (kind, page name prefix, rule) violations tolerated until then.
-EXPECTED_UNTIL_ANIM_MERGE: frozenset[tuple[str, str, str]] = frozenset(
-    {
-        ("site", "notebooks/08_", "label"),
-        ("site", "notebooks/10_", "label"),
-        ("slides", "08_", "label"),
-        ("slides", "10_", "label"),
-    }
-)
-
-
 def axe_script() -> Path | None:
     """axe.min.js: ``$PUMA_AXE``, else ``.ci/node_modules`` (where ``.ci/run`` installs it), else npm's global root."""
     candidates = [Path(os.environ["PUMA_AXE"])] if os.environ.get("PUMA_AXE") else []
@@ -163,12 +151,8 @@ def _check(kind: str, results: dict[str, list[dict[str, Any]]], artifacts: Path)
     assert results, f"no {kind} page was found"
     failures = []
     for rel, violations in results.items():
-        left = [
-            v for v in violations
-            if not any(k == kind and rel.startswith(p) and v["id"] == rule for k, p, rule in EXPECTED_UNTIL_ANIM_MERGE)
-        ]  # fmt: skip
-        if left:
-            failures.append(f"{kind}/{rel}: " + ", ".join(f"{v['id']} x{v['nodes']} ({v['first']})" for v in left))
+        if violations:
+            failures.append(f"{kind}/{rel}: " + ", ".join(f"{v['id']} x{v['nodes']} ({v['first']})" for v in violations))
     assert not failures, f"WCAG 2.1 A/AA violations on {len(failures)} of {len(results)} pages:\n" + "\n".join(failures)
 
 

@@ -23,8 +23,7 @@ and streams JSON lines back on the original stdout, one event per line::
 
     {"kind": "ready"}   (first, once the job is read: the worker started)
     {"kind": "malformed", "code": "json" | "encoding" | "nesting" | "no-cells" | "cell" | "too-much-code", ...}
-    {"kind": "cell", "index": i, "first": "its first line", "status": "error" | "timeout", "detail": "...", "line": n}
-                                                                                        (cells that ran: nothing)
+    {"kind": "cell", "index": i, "first": "its 1st line", "status": "error" | "timeout", "detail": "...", "line": n}
     {"kind": "cells"}   (the cells ran: the grader sends the first call; not with a "calls" list)
     {"kind": "call", "qid": "q1", "case": 0, "value": [...]}  or  "error": CODE, "detail": "..."
     (a cell or call that ran out of time also says on which "clock": "cpu", "backstop" or "wall")
