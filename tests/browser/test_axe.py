@@ -30,6 +30,7 @@ pytestmark = pytest.mark.browser
 
 TAGS = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"]
 
+
 def axe_script() -> Path | None:
     """axe.min.js: ``$PUMA_AXE``, else ``.ci/node_modules`` (where ``.ci/run`` installs it), else npm's global root."""
     candidates = [Path(os.environ["PUMA_AXE"])] if os.environ.get("PUMA_AXE") else []
@@ -152,7 +153,9 @@ def _check(kind: str, results: dict[str, list[dict[str, Any]]], artifacts: Path)
     failures = []
     for rel, violations in results.items():
         if violations:
-            failures.append(f"{kind}/{rel}: " + ", ".join(f"{v['id']} x{v['nodes']} ({v['first']})" for v in violations))
+            failures.append(
+                f"{kind}/{rel}: " + ", ".join(f"{v['id']} x{v['nodes']} ({v['first']})" for v in violations)
+            )
     assert not failures, f"WCAG 2.1 A/AA violations on {len(failures)} of {len(results)} pages:\n" + "\n".join(failures)
 
 
