@@ -72,7 +72,10 @@ def build_parser() -> argparse.ArgumentParser:
         prog="puma-course", usage="%(prog)s [-h] COMMAND ...", formatter_class=argparse.RawDescriptionHelpFormatter
     )
     # the commands are listed by _command_list (students' first), not in argparse's one list
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", help=argparse.SUPPRESS)
+    # prog given: each command's usage reads "puma-course check ...", not the top usage line with "check" after it
+    sub = parser.add_subparsers(
+        dest="command", required=True, metavar="COMMAND", help=argparse.SUPPRESS, prog="puma-course"
+    )
 
     course = argparse.ArgumentParser(add_help=False)
     course.add_argument("--course", type=Path, default=None, metavar="DIR", help=_COURSE_HELP)
@@ -345,6 +348,8 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
+    if not (sys.argv[1:] if argv is None else list(argv)):
+        parser.print_help(sys.stderr)  # no command: the list of commands before argparse's one-line complaint
     args, extra = parser.parse_known_args(argv)
     if extra and args.command != "lab":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")

@@ -44,6 +44,20 @@ def test_a_command_line_with_no_command_still_names_what_is_missing(capsys):
     assert info.value.code == 2 and "required: COMMAND" in capsys.readouterr().err
 
 
+def test_no_command_lists_the_commands_and_each_command_names_itself_in_its_usage(capsys):
+    with pytest.raises(SystemExit):
+        main([])
+    assert "Commands for students:" in capsys.readouterr().err
+    for name in ("check", "grade", "collect-written"):
+        with pytest.raises(SystemExit) as info:
+            main([name, "--help"])
+        assert info.value.code == 0
+        assert capsys.readouterr().out.startswith(f"usage: puma-course {name} [-h]")
+    with pytest.raises(SystemExit):
+        main(["check"])
+    assert "puma-course check: error:" in capsys.readouterr().err
+
+
 def _closed_pipe(*args: str, cwd=ROOT) -> subprocess.CompletedProcess[str]:
     """Run ``puma-course ARGS`` with its output read by nobody (as ``| head`` leaves it once it has its lines)."""
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
