@@ -33,11 +33,11 @@ __all__ = ["puma560_jacobian_rows"]
 
 def puma560_jacobian_rows(
     o: Any, q: list[Any], a2: float, a3: float, d3: float, d4: float
-) -> tuple[tuple[Any, ...], ...]:
-    """The six rows of J (v then ω), each six entries: floats or (N,) arrays (``0.0``/``1.0`` stay floats).
+) -> tuple[Any, ...]:
+    """The 36 entries of J row by row (v then ω): floats or (N,) arrays (the constant ``0.0``/``1.0`` stay floats).
 
-    >>> rows = puma560_jacobian_rows(SCALAR, [0.0] * 6, 0.4318, 0.0203, 0.15005, 0.4318)
-    >>> [round(x, 5) + 0.0 for x in rows[0]]  # at qz the wrist centre is (a2 + a3, d3, -d4)
+    >>> J = puma560_jacobian_rows(SCALAR, [0.0] * 6, 0.4318, 0.0203, 0.15005, 0.4318)
+    >>> [round(x, 5) + 0.0 for x in J[:6]]  # at qz the wrist centre is (a2 + a3, d3, -d4)
     [-0.15005, -0.4318, -0.4318, 0.0, 0.0, 0.0]
     """
     c1, s1, c2, s2 = o.cos(q[0]), o.sin(q[0]), o.cos(q[1]), o.sin(q[1])
@@ -51,12 +51,12 @@ def puma560_jacobian_rows(
     g = c23 * c4 * s5 + s23 * c5
     c23s4 = c23 * s4
     return (
-        (-wy, c1 * wz, c1 * h, 0.0, 0.0, 0.0),
-        (wx, s1 * wz, s1 * h, 0.0, 0.0, 0.0),
-        (0.0, -u, -v, 0.0, 0.0, 0.0),
-        (0.0, -s1, -s1, -c1 * s23, c1 * c23s4 - s1 * c4, -c1 * g - s1 * s4 * s5),
-        (0.0, c1, c1, -s1 * s23, s1 * c23s4 + c1 * c4, -s1 * g + c1 * s4 * s5),
-        (1.0, 0.0, 0.0, -c23, -s23 * s4, s23 * c4 * s5 - c23 * c5),
+        -wy, c1 * wz, c1 * h, 0.0, 0.0, 0.0,
+        wx, s1 * wz, s1 * h, 0.0, 0.0, 0.0,
+        0.0, -u, -v, 0.0, 0.0, 0.0,
+        0.0, -s1, -s1, -c1 * s23, c1 * c23s4 - s1 * c4, -c1 * g - s1 * s4 * s5,
+        0.0, c1, c1, -s1 * s23, s1 * c23s4 + c1 * c4, -s1 * g + c1 * s4 * s5,
+        1.0, 0.0, 0.0, -c23, -s23 * s4, s23 * c4 * s5 - c23 * c5,
     )  # fmt: skip
 
 
@@ -66,10 +66,9 @@ def puma560_jacobian(cols: list[Any], batch: int | None, lengths: tuple[float, f
     ``cols`` comes validated (:func:`~.dh.split_q`); nothing here checks it again.
     """
     if batch is None:
-        return np.array(puma560_jacobian_rows(SCALAR, cols, *lengths))
+        return np.fromiter(puma560_jacobian_rows(SCALAR, cols, *lengths), float, 36).reshape(6, 6)
     J = np.zeros((batch, 6, 6))
-    for i, row in enumerate(puma560_jacobian_rows(ARRAY, cols, *lengths)):
-        for k, value in enumerate(row):
-            if not isinstance(value, float) or value != 0.0:  # the constant zeros are already there
-                J[:, i, k] = value
+    for k, value in enumerate(puma560_jacobian_rows(ARRAY, cols, *lengths)):
+        if not isinstance(value, float) or value != 0.0:  # the constant zeros are already there
+            J[:, k // 6, k % 6] = value
     return J

@@ -114,8 +114,8 @@ def test_the_closed_form_is_sympys_jacobian_symbolically():
     for m in mats:
         F.append(F[-1] * m)
     S = sp.Matrix.vstack(F[6][:3, 3].jacobian(sp.Matrix(thetas)), sp.Matrix.hstack(*(F[i][:3, 2] for i in range(1, 7))))
-    C = sp.Matrix(puma560_jacobian_rows(SimpleNamespace(cos=sp.cos, sin=sp.sin), list(thetas),
-                                        *symbolic.PUMA560_LENGTHS))  # fmt: skip
+    o = SimpleNamespace(cos=sp.cos, sin=sp.sin)
+    C = sp.Matrix(6, 6, puma560_jacobian_rows(o, list(thetas), *symbolic.PUMA560_LENGTHS))
     for i in range(6):
         for k in range(6):
             assert sp.expand(sp.expand_trig(S[i, k] - C[i, k])) == 0, (i, k)
