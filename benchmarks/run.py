@@ -4,10 +4,13 @@ Run from the repository root::
 
     python benchmarks/run.py            # everything, including executing every lecture (~1-2 min)
     python benchmarks/run.py --quick    # skip the notebooks and the 10^6-pose memory run
+    python benchmarks/run.py --kinematics  # only the one-pose fk, Jacobian and ik rows, side by side
 
 Robotics Toolbox for Python is measured side by side when it is installed
 (``pip install ".[bench]"``): its DH model (``DHRobot.fkine``), its compiled ETS path
-(``ETS.eval``) and its analytic PUMA inverse (``ikine_a``). Figures are the best of a few repeats;
+(``ETS.eval``), its Jacobians (``ETS.jacob0``, compiled; ``DHRobot.jacob0``) and its analytic PUMA
+inverse (``ikine_a``, run for all eight configurations as ours gives all eight solutions); the same
+poses for both, and the ratio peer/ours printed. Figures are the best of a few repeats;
 per-pose times for batches divide the batch time by its size. Nothing here is asserted: tests
 never check timings (shared, noisy machines); quote ratios, and rerun on an idle machine.
 """
@@ -69,6 +72,10 @@ def _ns_per(seconds: float, n: int) -> str:
     return f"{seconds / n * 1e9:.0f} ns/pose"
 
 
+#: Robotics Toolbox's eight arm configurations (left/right, up/down, noflip/flip): ikine_a gives one per call.
+CONFIGS = tuple(s + e + w for s in "lr" for e in "ud" for w in "nf")
+
+
 def _rtb_puma():  # noqa: ANN202 - an optional dependency
     import roboticstoolbox as rtb
 
@@ -87,7 +94,7 @@ def _qs(robot, n: int, seed: int = 0) -> np.ndarray:  # noqa: ANN001
 
 
 # ---------------------------------------------------------------- forward kinematics
-def fk_rows(n: int) -> None:
+def fk_rows(n: int, batch: bool = True) -> None:
     for name, arm in robots().items():
         q1 = _qs(arm, 1)[0]
         Q = _qs(arm, n)
@@ -107,34 +114,79 @@ def fk_rows(n: int) -> None:
 
         target1 = "≤ 5 µs" if name == "PUMA-560" else "≤ 15 µs"
         row(f"fk {name}, one pose", target1, lambda arm=arm, q1=q1: _us(best(lambda: arm.fk(q1), 5, 5000)), peer1)
-        row(f"fk {name}, batch of {n:,}", "≤ 1.5x 0.3-0.5 µs/pose" if name == "PUMA-560" else "",
-            lambda arm=arm, Q=Q: _ns_per(best(lambda: arm.fk(Q), 3), n), peerN)  # fmt: skip
+        if batch:
+            row(f"fk {name}, batch of {n:,}", "≤ 1.5x 0.3-0.5 µs/pose" if name == "PUMA-560" else "",
+                lambda arm=arm, Q=Q: _ns_per(best(lambda: arm.fk(Q), 3), n), peerN)  # fmt: skip
 
 
 # ---------------------------------------------------------------- inverse kinematics
-def ik_rows(n: int) -> None:
+def _ik_peer(arm, q: np.ndarray, T: np.ndarray) -> str:  # noqa: ANN001
+    """``ikine_a`` run for the eight configurations of 20 poses against our ``ik`` (all eight) of the same poses."""
+    p = _rtb_puma()
+    Ts = [p.fkine(qq) for qq in q[:20]]  # its own poses of the same joint vectors (its table differs from ours)
+    rtb = best(lambda: [p.ikine_a(t, c) for t in Ts for c in CONFIGS], 3) / len(Ts)
+    ours = best(lambda: [arm.ik(t) for t in T[:20]], 5) / len(Ts)
+    return f"`ikine_a` for the 8 configurations {_us(rtb)} ({rtb / ours:.1f}x ours)"
+
+
+def ik_rows(n: int, batch: bool = True) -> None:
     for name, arm in robots().items():
+        if not batch and name != "PUMA-560":
+            continue
         q = _qs(arm, 200, 1)
         T = arm.fk(q)
         Tb = arm.fk(_qs(arm, n, 2))
         peer = None
         if name == "PUMA-560":
 
-            def peer(q: np.ndarray = q) -> str:
-                p = _rtb_puma()
-                Ts = [p.fkine(qq) for qq in q[:20]]
-                return f"ikine_a {_us(best(lambda: [p.ikine_a(t) for t in Ts], 3) / len(Ts))} (one solution per call)"
+            def peer(arm=arm, q: np.ndarray = q, T: np.ndarray = T) -> str:  # noqa: ANN001
+                return _ik_peer(arm, q, T)
 
         def one(arm=arm, T=T) -> str:  # noqa: ANN001
             return _us(best(lambda: [arm.ik(t) for t in T], 5) / len(T))
 
         target = "≤ 1.5x 23-28 µs" if name == "PUMA-560" else ""
         row(f"ik {name}, every solution of one pose", target, one, peer)
+        if not batch:
+            continue
         row(
             f"ik_batch {name}, {n:,} poses",
             "",
             lambda arm=arm, Tb=Tb: f"{best(lambda: arm.ik_batch(Tb), 2) / n * 1e6:.2f} µs/pose",
         )
+
+
+# ---------------------------------------------------------------- Jacobian
+def jacobian_rows() -> None:
+    """The geometric Jacobian of one pose (per pose, the same 200 poses for both) and of a batch.
+
+    Robotics Toolbox's ``jacob0`` is the Jacobian of the last frame of its standard-DH PUMA, whose origin
+    is the wrist centre as ours is (its table adds a base height and puts the joint zeros elsewhere, so
+    the numbers differ; the work is the same 6 x 6 of a spherical-wrist arm); ``ETS.jacob0`` is its
+    compiled C path, ``DHRobot.jacob0`` its Python one.
+    """
+    arm = robots()["PUMA-560"]
+    Q = _qs(arm, 200, 3)
+    Qb = _qs(arm, 100_000, 4)
+    from puma_course.kinematics.jacobian import geometric_jacobian
+
+    def ours() -> float:
+        return best(lambda: [arm.jacobian(q) for q in Q], 7) / len(Q)
+
+    def peer() -> str:
+        p = _rtb_puma()
+        ets = p.ets()
+        c = best(lambda: [ets.jacob0(q) for q in Q], 7) / len(Q)
+        dh = best(lambda: [p.jacob0(q) for q in Q[:20]], 3) / 20
+        mine = ours()
+        return (f"ETS.jacob0 (C) {_us(c)} ({c / mine:.1f}x ours), DHRobot.jacob0 {_us(dh)} "
+                f"({dh / mine:.0f}x ours)")  # fmt: skip
+
+    row("Jacobian PUMA-560, one pose (closed form)", "≤ ETS.jacob0", lambda: _us(ours()), peer)
+    row("Jacobian PUMA-560, one pose, generic DH walk (`geometric_jacobian`)", "",
+        lambda: _us(best(lambda: [geometric_jacobian(arm, q) for q in Q], 7) / len(Q)))  # fmt: skip
+    row(f"Jacobian PUMA-560, batch of {len(Qb):,}", "",
+        lambda: _ns_per(best(lambda: arm.jacobian(Qb), 3), len(Qb)))  # fmt: skip
 
 
 def ik_memory_row(n: int) -> None:
@@ -220,12 +272,20 @@ def notebook_rows() -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip the notebooks and the 10^6-pose memory run")
+    parser.add_argument("--kinematics", action="store_true", help="only the one-pose fk, Jacobian and ik rows")
     parser.add_argument("--n", type=int, default=100_000, help="batch size for the per-pose figures")
     args = parser.parse_args()
     os.chdir(ROOT)
     print(f"machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
           f"numpy {np.__version__}", file=sys.stderr)  # fmt: skip
+    if args.kinematics:
+        fk_rows(0, batch=False)
+        jacobian_rows()
+        ik_rows(0, batch=False)
+        _print_table()
+        return
     fk_rows(args.n)
+    jacobian_rows()
     ik_rows(args.n)
     if not args.quick:
         ik_memory_row(1_000_000)
@@ -233,6 +293,10 @@ def main() -> None:
     import_row()
     if not args.quick:
         notebook_rows()
+    _print_table()
+
+
+def _print_table() -> None:
     print("| quantity | puma_course | Robotics Toolbox | target |")
     print("| --- | --- | --- | --- |")
     for what, ours, peer, target in rows:

@@ -67,15 +67,55 @@ def jacobian_from_axes(axes: np.ndarray, points: np.ndarray, pe: np.ndarray, rev
             raise ValueError(f"{name}: expected finite numbers of magnitude at most {MAX_MAGNITUDE:g}, got {arr!r}")
     if np.any(np.abs(np.linalg.norm(z, axis=-1) - 1.0) > 1e-9):
         raise ValueError(f"axes: expected unit vectors (the joint axes' directions), got {z.tolist()}")
+    return _from_axes(z, p, e, rev)
+
+
+def _from_axes(z: np.ndarray, p: np.ndarray, e: np.ndarray, rev: np.ndarray) -> np.ndarray:
+    """:func:`jacobian_from_axes` for arrays the package built itself (nothing checked again)."""
     r = rev[:, None]
     Jv = np.where(r, np.cross(z, e[..., None, :] - p), z)
     Jw = np.where(r, z, 0.0)
     return np.concatenate([np.swapaxes(Jv, -1, -2), np.swapaxes(Jw, -1, -2)], axis=-2)
 
 
+def _walk_columns(F: list[tuple[Any, ...]], revolute: list[bool]) -> list[tuple[Any, ...]]:
+    """Column i of J from the 12-number frames of the column walk (:func:`~.dh._walk`, frames 0..n).
+
+    Frame i+1 holds joint i+1: its axis z (entries 2, 6, 10) and origin p (3, 7, 11); the reference
+    point is the last frame's origin. The cross product is written out, as ``np.cross`` computes it:
+    floats for one pose, (N,) arrays for a batch.
+    """
+    e = F[-1]
+    ex, ey, ez = e[3], e[7], e[11]
+    out = []
+    for f, r in zip(F[1:], revolute, strict=True):
+        zx, zy, zz = f[2], f[6], f[10]
+        if r:
+            dx, dy, dz = ex - f[3], ey - f[7], ez - f[11]
+            out.append((zy * dz - zz * dy, zz * dx - zx * dz, zx * dy - zy * dx, zx, zy, zz))
+        else:
+            out.append((zx, zy, zz, 0.0, 0.0, 0.0))
+    return out
+
+
+def columns_to_array(cols: list[tuple[Any, ...]], batch: int | None) -> np.ndarray:
+    """n columns of six entries as J (6, n), or (N, 6, n) when the entries are (N,) arrays."""
+    if batch is None:
+        return np.array(list(zip(*cols, strict=True)), dtype=float)
+    J = np.zeros((batch, 6, len(cols)))
+    for i, col in enumerate(cols):
+        for k, value in enumerate(col):
+            J[:, k, i] = value
+    return J
+
+
 def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
     """The 6 x n geometric Jacobian of a DH chain at q (n,), or (N, 6, n) for q (N, n); the end
     effector is the origin of the last DH frame (the tool transform, if any, is not included).
+
+    One column walk of the chain (the frames as plain numbers, never as 4 x 4 arrays), then the
+    columns of :func:`jacobian_from_axes` written out: the same formula, floats for one pose.
+    Arms with a closed form (:class:`~.puma560.Puma560`) override ``jacobian`` with it.
 
     >>> from puma_course.kinematics import DHChain, Link
     >>> planar = DHChain([Link(0, 0), Link(0, 1.0), Link(0, 1.0)])  # two unit links and a last frame
@@ -88,9 +128,5 @@ def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
 
     if not isinstance(chain, DHChain):
         raise ValueError(f"chain: expected a DH chain (Puma560(), MK3(), DHChain(...)), got {type(chain).__name__}")
-    F = chain.frames(q)
-    n = chain.n
-    F = F[..., : n + 1, :, :]  # drop a tool frame, if any
-    z = F[..., 1:, :3, 2]  # joint axes z_1..z_n: (..., n, 3)
-    p = F[..., 1:, :3, 3]  # points on them
-    return jacobian_from_axes(z, p, F[..., n, :3, 3], np.asarray(chain.revolute, dtype=bool))
+    F, batch = chain._frames12(q, keep=True)  # q checked once here; the frames are the package's own
+    return columns_to_array(_walk_columns(F, chain._rev), batch)

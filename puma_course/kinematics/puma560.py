@@ -47,6 +47,7 @@ from ._ops import ARRAY, SCALAR
 from .dh import DHChain, Link, split_q
 from .ik import IKBatch, IKSolutions
 from .joint_limits import FROM_CORKE_DEG, JOINT_LIMITS, PUBLISHED_QLIM_DEG
+from .puma560_jacobian import puma560_jacobian
 
 __all__ = ["Puma560", "BRANCH_LABELS", "FLAG_KEYS", "MESSAGES", "DEFAULTS", "PUBLISHED_QLIM_DEG", "FROM_CORKE_DEG",
            "JOINT_LIMITS"]  # fmt: skip
@@ -283,6 +284,10 @@ class Puma560(DHChain):
             T[:, k // 4, k % 4] = v
         T[:, 3, 3] = 1.0
         return T
+
+    def jacobian(self, q: Any) -> np.ndarray:
+        """The geometric Jacobian (6, 6) or (N, 6, 6) in closed form: :mod:`~.puma560_jacobian`."""
+        return puma560_jacobian(*split_q(q, 6, self.check_q), self._L)
 
     def points(self, q: Any) -> np.ndarray:
         """Six points drawing the arm with its shoulder offset visible: (6, 3) or (N, 6, 3).

@@ -122,13 +122,13 @@ class Porter(Robot):
         >>> J[:, 2] + 0.0  # the stroke q2 moves p5 along x2 = x0 and turns nothing
         array([1., 0., 0., 0., 0., 0.])
         """
-        from ..jacobian import jacobian_from_axes
+        from ..jacobian import _from_axes
 
-        F = self.frames(q)
+        F = self.frames(q)  # q checked here, once; the frames are the package's own
         pick = [(1, 2), (2, 1), (2, 0), (3, 1), (4, 2), (5, 0)]  # (frame, column) of each joint's axis
         axes = np.stack([F[..., k, :3, c] for k, c in pick], axis=-2)
         points = np.stack([F[..., k, :3, 3] for k, _ in pick], axis=-2)
-        return jacobian_from_axes(axes, points, F[..., 5, :3, 3], np.asarray(self.revolute, dtype=bool))
+        return _from_axes(axes, points, F[..., 5, :3, 3], self.revolute)
 
     # ---- inverse problem ------------------------------------------------------------------
     def classify(self, T: Any, *, tol: float = TOL) -> tuple[str, ...]:
