@@ -246,7 +246,7 @@ EXERCISE = Exercise(
                     "base_frame",
                     "your arm plane passes through the rail frame's z0 axis: the MK3's base axis stands on the "
                     "carriage, at x = 0, y = s (question 3's picture)",
-                    lambda T, s: ref.mk3_rail_nearest(T, 0.0),
+                    lambda T, s: ref.mk3_rail_projected(T, 0.0),
                 ),
                 matches(
                     "rotation_sense",

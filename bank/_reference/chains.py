@@ -378,6 +378,26 @@ def mk3_rail_nearest(T: Any, s: float) -> np.ndarray:
     return B @ near
 
 
+def mk3_rail_projected(T: Any, s: float) -> np.ndarray:
+    """The goal T (rail frame, mm) turned the least so its approach lies in the vertical plane through the base
+    axis at (0, s) and the tool point, position kept, and never turned further along the plane: what a student
+    who projects computes (a mistaken plane's wrist point may be out of reach, where ``nearest_attainable``
+    turns on; this is the mistake's rebuild, not the reference)."""
+    T = np.asarray(T, dtype=float)
+    px, py = T[0, 3], T[1, 3] - float(s)
+    h = math.hypot(px, py)
+    out = T.copy()
+    if h == 0.0:
+        return out
+    m = np.array([-py / h, px / h, 0.0])
+    z = T[:3, 2]
+    k = np.cross(z, z - (m @ z) * m)
+    if np.linalg.norm(k) < 1e-12:
+        return out
+    out[:3, :3] = transforms.rodrigues(k / np.linalg.norm(k), math.asin(min(1.0, abs(float(m @ z))))) @ T[:3, :3]
+    return out
+
+
 def mk3_rail_goal(q: Any, axis: Any, angle: float, s: float) -> np.ndarray:
     """A goal for the MK3 on its rail: the pose at ``q`` (carriage at ``s``) with its orientation turned by
     ``angle`` about ``axis`` (rail frame; 0 leaves it attainable)."""

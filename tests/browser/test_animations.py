@@ -40,12 +40,23 @@ def _wheel_to(page: Any, locator: Any, limit: int = 200) -> None:
     """Scroll the notebook with the mouse wheel (as a student does) until ``locator`` is in the middle of the view."""
     view = page.viewport_size
     page.mouse.move(view["width"] * 0.55, view["height"] * 0.5)
+    last, still = None, 0
     for _ in range(limit):
         box = locator.bounding_box()
+        # the wheel at the end of the notebook's scroll range (JupyterLab's windowed list still sizing the cells
+        # below from estimates): let the browser scroll the element itself into view, as a link to it would
+        still = still + 1 if box is not None and last is not None and abs(box["y"] - last) < 1 else 0
+        last = None if box is None else box["y"]
+        if still >= 5:
+            locator.scroll_into_view_if_needed()
+            page.wait_for_timeout(300)
+            box, still = locator.bounding_box(), 0
         if box is not None and 80 <= box["y"] and box["y"] + min(box["height"], 400) <= view["height"] - 80:
             page.wait_for_timeout(300)  # the windowed notebook lays the cell out
             return
-        step = 350 if box is None or box["y"] > view["height"] / 2 else -350
+        # towards y = 120 by at most 350 px a notch: a fixed 350 could step over the band and back for ever
+        step = 350 if box is None else max(-350.0, min(350.0, box["y"] - 120))
+        step = step if abs(step) >= 40 else (40 if step > 0 else -40)
         page.mouse.wheel(0, step)
         page.wait_for_timeout(60)
     raise AssertionError("the wheel did not bring the animation into view")
