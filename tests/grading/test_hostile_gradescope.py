@@ -80,11 +80,13 @@ def test_gradescope_attack_gains_nothing(fx, mode, caps, images, tmp_path):
     assert "exit code 97" not in r["output"], r["output"]  # no leak signalled
     if fx.expect == "earned":  # riding on the solution: the grader finishes normally, in no longer than a grading
         full = sum(q.points for q in EXERCISES[exercise].questions)
-        assert "autograder failed" not in r["output"] and time.monotonic() - start < 120, r["output"]
+        took = time.monotonic() - start
+        assert "autograder failed" not in r["output"], r["output"]
         if caps == "all":  # in a PID namespace of its own, the worker's end ends the daemon: the solution's marks
-            assert r["score"] == full and "status: ok" in r["output"], r["output"]
-        else:  # without one, the daemon also stops the student's own worker: it harms only its own marks
+            assert r["score"] == full and "status: ok" in r["output"] and took < 120, (took, r["output"])
+        else:  # without one, the daemon also stops the student's own worker (its 60 s total limit): its own marks
             assert r["score"] <= full and "were still running after it ended: they were stopped" in r["output"]
+            assert took < 200, took  # the notebook's limit and the grading, not a kill helper's timeout on top
         return
     assert "forged" not in r and r["score"] == 0, r["output"]
     assert all(t.get("score", 0) == 0 for t in r["tests"]), r["tests"]
