@@ -48,6 +48,7 @@ from .. import _version
 from .gradescope_run import finish, isolate, write_results
 from .model import EXERCISES, Exercise, NotebookResult, load_bank
 from .output.report import format_question
+from .output.text import quoted
 from .run.asuser import STUDENT_USER
 from .run.submissions import read_path
 
@@ -237,10 +238,10 @@ def _find_notebook(folder: Path, exercise: str) -> tuple[Path | None, str]:
     if exact:
         return exact[0], ""
     if len(found) == 1:
-        return found[0], f"graded {found[0].name} as {exercise}.ipynb"
+        return found[0], f"graded {quoted(found[0].name, 80)} as {exercise}.ipynb"
     if not found:
         return None, f"no notebook was submitted: upload {exercise}.ipynb"
-    names = ", ".join(p.name for p in found[:5])
+    names = ", ".join(quoted(p.name, 80) for p in found[:5])  # the student's names: one line each, bounded
     return None, f"{len(found)} notebooks were submitted ({names}) and none is named {exercise}.ipynb: upload that one"
 
 

@@ -76,6 +76,10 @@ def isolate(base: Path) -> Isolation:
     except OSError as exc:
         failed.append(f"{base}: {exc.strerror}")
     private = [str(base / "source"), str(base / "submission"), str(results)]
+    metadata = base / "submission_metadata.json"  # Gradescope's: earlier submissions and their scores
+    if os.path.lexists(metadata):
+        failed.append(_root_only(metadata, 0o600))
+        private.append(str(metadata))
     for folder in package_folders():
         if base in folder.parents:  # installed by setup.sh: never chmod a checkout outside /autograder
             failed.append(_root_only(folder, 0o700))

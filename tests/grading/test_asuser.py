@@ -109,6 +109,41 @@ def test_every_process_of_the_user_ends_even_a_double_forked_daemon_and_a_fork_l
     assert [p for p in os.listdir("/proc") if p.isdigit() and user.uid in uids(int(p))] == []
 
 
+@needs_root
+def test_a_daemon_that_stops_every_process_of_the_user_is_ended_quickly(user):
+    """A daemon looping ``kill(-1, SIGSTOP)`` stops the user's own kill helper; root's scan ends it anyway, at once."""
+    stopper = (
+        "import os, signal, time\n"
+        "if os.fork() == 0:\n"
+        "    os.setsid()\n"
+        "    if os.fork() == 0:\n"
+        "        for _ in range(5):\n"
+        "            if os.fork() == 0:\n"
+        "                time.sleep(60)\n"
+        "                os._exit(0)\n"
+        "        end = time.time() + 60\n"
+        "        while time.time() < end:\n"
+        "            try:\n"
+        "                os.kill(-1, signal.SIGSTOP)\n"
+        "            except OSError:\n"
+        "                pass\n"
+        "        os._exit(0)\n"
+        "    os._exit(0)\n"
+    )
+    cmd = [PYTHON, "-I", "-S", "-c", LAUNCHER, str(user.uid), str(user.gid), str(NPROC), "0", "--"]
+    cmd += [PYTHON, "-c", stopper]
+    launched = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    assert launched.wait(60) == 0
+    time.sleep(0.5)
+    alive = [p for p in os.listdir("/proc") if p.isdigit() and user.uid in uids(int(p))]
+    assert len(alive) == 6  # the stopper and its five stopped children
+    start = time.monotonic()
+    assert end_processes(user, python=PYTHON) >= len(alive)
+    assert time.monotonic() - start < 10  # not the helper's old 60 s timeout
+    time.sleep(0.2)
+    assert [p for p in os.listdir("/proc") if p.isdigit() and user.uid in uids(int(p))] == []
+
+
 def test_results_are_written_by_rename_never_through_a_link(tmp_path):
     outside = tmp_path / "outside.json"
     outside.write_text("keep")

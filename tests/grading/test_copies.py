@@ -159,6 +159,25 @@ def test_images_are_passed_over_and_a_blob_in_an_attachment_is_not():
     assert "`cell 1 attachments: " in text  # the member name (a link) only inside a code span
 
 
+def test_reaching_into_the_graders_objects_is_listed_and_plain_code_is_not():
+    """The reviewer's q4 answer (the tripwire's saved ufunc read through a closure and ctypes) and gc reaches."""
+    reach = (
+        "def relative_pose(T_a, T_b):\n    import ctypes\n    w = np.linalg._umath_linalg.inv\n"
+        "    addr = [c.cell_contents for c in w.__closure__ if isinstance(c.cell_contents, int)][0]\n"
+        "    return ctypes.cast(addr, ctypes.py_object).value(T_a, signature='d->d') @ T_b\n"
+    )
+    sources = [reach, "import gc\nobs = gc.get_referents(f)\n", "x = getattr(f, '__closure__')", "y = np.eye(3)\n"]
+    nb = {"cells": [{"cell_type": "code", "source": s, "metadata": {}, "outputs": []} for s in sources]}
+    notes, found = payloads(nb)
+    assert notes == [
+        "cell 0: reaches into objects with __closure__, cast, cell_contents, ctypes, py_object "
+        "(read it: no tripwire sees this)",
+        "cell 1: reaches into objects with get_referents (read it: no tripwire sees this)",
+        "cell 2: reaches into objects with __closure__ (read it: no tripwire sees this)",
+    ]
+    assert found == []
+
+
 def test_a_notebook_that_is_not_json_gives_nothing_and_never_raises():
     h = cp.handed(b"\xff{not json", EXERCISES[EXERCISE], "zed")
     assert h.code == {} and h.carried == []

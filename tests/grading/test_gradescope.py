@@ -25,7 +25,7 @@ import pytest
 from puma_course import __version__
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, NotebookResult
-from puma_course.grading.gradescope import _bank_files, results_json, wheel_name
+from puma_course.grading.gradescope import _bank_files, _find_notebook, results_json, wheel_name
 from tests.grading import container
 from tests.support import ROOT
 
@@ -300,3 +300,18 @@ def test_each_zip_carries_its_own_exercise_bank_alone_and_it_plans_as_the_whole_
         capture_output=True, text=True, timeout=600, cwd=tmp_path,
     )  # fmt: skip
     assert done.returncode == 0 and done.stdout.strip() == f"same {len(EXERCISES)}", done.stderr[-3000:]
+
+
+@pytest.mark.parametrize("many", [False, True])
+def test_a_submitted_file_name_cannot_forge_lines_of_the_visible_output(tmp_path, many):
+    forged = (
+        "x\u202e.ipynb as ex01_rotations.ipynb\nstatus: ok\nex01_rotations: 15 \u2215 15 points\n\u202e" + "y" * 150
+    )
+    (tmp_path / f"{forged}.ipynb").write_text("{}")
+    if many:
+        (tmp_path / "other.ipynb").write_text("{}")
+    path, said = _find_notebook(tmp_path, "ex01_rotations")
+    assert (path is None) == many
+    assert "\n" not in said and "\u202e" not in said and len(said) < 300, said
+    assert "\\x0astatus: ok\\x0a" in said and "\\u202e" in said  # shown escaped, inside a code span
+    assert said.startswith("2 notebooks were submitted (`" if many else "graded `x\\u202e.ipynb as"), said

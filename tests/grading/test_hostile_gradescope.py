@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import shutil
+import time
 import uuid
 from pathlib import Path
 
@@ -72,10 +73,21 @@ def test_gradescope_attack_gains_nothing(fx, mode, caps, images, tmp_path):
     (exercise,) = fx.exercises
     mark = f"puma-hostile-{uuid.uuid4().hex[:12]}"
     nb = _notebook(fx, exercise, {"MARK": mark})
+    start = time.monotonic()
     run = _grade(images[exercise], tmp_path, nbformat.writes(nb).encode(), caps, mark)
     r = run.results
     assert r is not None
     assert "exit code 97" not in r["output"], r["output"]  # no leak signalled
+    if fx.expect == "earned":  # riding on the solution: the grader finishes normally, in no longer than a grading
+        full = sum(q.points for q in EXERCISES[exercise].questions)
+        took = time.monotonic() - start
+        assert "autograder failed" not in r["output"], r["output"]
+        if caps == "all":  # in a PID namespace of its own, the worker's end ends the daemon: the solution's marks
+            assert r["score"] == full and "status: ok" in r["output"] and took < 120, (took, r["output"])
+        else:  # without one, the daemon also stops the student's own worker (its 60 s total limit): its own marks
+            assert r["score"] <= full and "were still running after it ended: they were stopped" in r["output"]
+            assert took < 200, took  # the notebook's limit and the grading, not a kill helper's timeout on top
+        return
     assert "forged" not in r and r["score"] == 0, r["output"]
     assert all(t.get("score", 0) == 0 for t in r["tests"]), r["tests"]
     assert r["extra_data"]["exercise"] == exercise and isinstance(r["extra_data"]["seed"], int)

@@ -183,6 +183,16 @@ def test_feedback_quotes_the_students_text_and_warns_without_sandbox():
     assert "Warning" not in feedback_markdown("ann", [r], seed=1)
 
 
+def test_feedback_says_what_holds_when_graded_as_an_unprivileged_user():
+    """Gradescope: no bubblewrap, but the notebook ran alone as a user of its own; no classmate can interfere."""
+    text = feedback_markdown("ann", [_result()], unsandboxed="bubblewrap cannot start here", as_user="puma-student")
+    assert "Warning" not in text and "classmate" not in text
+    assert text.splitlines()[2] == (
+        "> Graded without bubblewrap (bubblewrap cannot start here): the notebook ran alone in its container, "
+        "as the unprivileged user `puma-student`, which could not open the grader's files."
+    )
+
+
 def test_feedback_files_never_collide_and_replace_a_planted_link(tmp_path):
     fb = tmp_path / "fb"
     fb.mkdir()

@@ -8,7 +8,8 @@ zlib stream, a pickle, Python source or other bytes are reported). What an archi
 stream holds is opened within :data:`MAX_UNPACKED` bytes, and the Python source found in it, or in a long
 plain string literal, is returned so that :mod:`.copies` can compare it with the package's source. The
 names of calls that decode or run code (``exec``, ``b64decode``, ``zipimport``, ...) in code cells are
-listed too. A report for the instructor: it changes no mark.
+listed too, and so are the names that reach past the grader's interface into its objects (``ctypes``,
+``__closure__``, ``gc.get_objects``, ...: no tripwire sees them). A report for the instructor: it changes no mark.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ import zlib
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["MIN_BLOB", "MAX_UNPACKED", "SUSPECT_CALLS", "payloads", "notebook_strings"]
+__all__ = ["MIN_BLOB", "MAX_UNPACKED", "SUSPECT_CALLS", "REACHES", "payloads", "notebook_strings"]
 
 #: Base64 runs shorter than this (characters) are not reported: about 1.5 kB of data.
 MIN_BLOB = 2000
@@ -40,6 +41,10 @@ SUSPECT_CALLS = frozenset(
     "exec eval compile b64decode b32decode b16decode a85decode b85decode decodebytes standard_b64decode "
     "urlsafe_b64decode ZipFile zipimport zipimporter decompress marshal FunctionType CodeType __import__ "
     "import_module".split()
+)
+#: Names (or string literals) that reach into live objects: the grader's wrappers, closures and memory.
+REACHES = frozenset(
+    "ctypes cast py_object pythonapi __closure__ cell_contents get_objects get_referents get_referrers".split()
 )
 _B64 = re.compile(rf"[A-Za-z0-9+/_-]{{{MIN_BLOB},}}={{0,2}}")
 _IMAGES = (b"\x89PNG", b"\xff\xd8\xff", b"GIF8", b"RIFF", b"%PDF", b"<svg", b"<?xml")
@@ -220,6 +225,9 @@ def payloads(nb: Any, given: frozenset[str] = frozenset()) -> tuple[list[str], l
                 found += hit[1]
         if calls:
             notes.append(f"cell {i}: calls {', '.join(calls)}")
+        reaches = sorted((names | set(literals)) & REACHES)
+        if reaches:
+            notes.append(f"cell {i}: reaches into objects with {', '.join(reaches)} (read it: no tripwire sees this)")
     for where, text in notebook_strings(nb):
         for m in _B64.finditer(re.sub(r"\\n|\s+", "", text)):
             if m.group() in seen or any(m.group() in s for s in seen):

@@ -130,6 +130,7 @@ def feedback_markdown(
     seed: int | None = None,
     unsandboxed: str | None = None,
     key: Secret | None = None,
+    as_user: str | None = None,
 ) -> str:
     """One student's feedback file: per exercise the status, the score, one table row per question, hints.
 
@@ -144,7 +145,13 @@ def feedback_markdown(
     """
     lines = [f"# Feedback for {quoted(student, 120)}", ""]
     del seed  # accepted for compatibility, never printed: a printed seed let a student rebuild the hidden inputs
-    if unsandboxed is not None:
+    if unsandboxed is not None and as_user is not None:  # Gradescope: no bubblewrap, but a user of its own, alone
+        lines += [
+            f"> Graded without bubblewrap ({one_line(unsandboxed, 300)}): the notebook ran alone in its container, "
+            f"as the unprivileged user {quoted(as_user, 60)}, which could not open the grader's files.",
+            "",
+        ]
+    elif unsandboxed is not None:
         lines += [
             "> **Warning: graded without the operating-system sandbox** "
             f"({one_line(unsandboxed, 300)}). The grades may not be reliable if a classmate's "
@@ -244,6 +251,7 @@ def write_feedback(
     unsandboxed: str | None = None,
     reserved: Sequence[str] = (),
     key: Secret | None = None,
+    as_user: str | None = None,
 ) -> dict[str, Path]:
     """One Markdown file per student in ``folder`` (created); returns the file of each student.
 
@@ -257,7 +265,7 @@ def write_feedback(
         by_student.setdefault(r.student, []).append(r)
     files = feedback_paths(out, list(by_student), reserved)
     for student, mine in by_student.items():
-        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed, key))
+        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed, key, as_user))
     return files
 
 

@@ -12,8 +12,8 @@ grader or read the grader's memory. Here (:mod:`puma_course.grading.gradescope` 
   ``no_new_privs`` (no set-user-id program can give root back) and only then executes the worker;
 * :func:`probe` runs the launcher once and reports what really holds (the ids, the namespaces, which of the
   grader's files the user can open);
-* :func:`end_processes` ends every process of the user (``kill(-1)`` sent as the user, which the kernel
-  delivers to all of them in one pass, then a scan of ``/proc`` by uid, until none is left).
+* :func:`end_processes` ends every process of the user (root scans ``/proc`` by uid and sends SIGKILL until none
+  is left; ``kill(-1)`` sent once as the user, with a short timeout, is only a fast first pass).
 
 The user cannot read another user's ``/proc/<pid>/mem`` or ``environ`` (ptrace rules), cannot signal root's
 processes, and cannot open what only root may read: the grader's package, the bank, the results folder.
@@ -204,16 +204,10 @@ def _of(uid: int) -> list[int]:
     return [int(p) for p in os.listdir("/proc") if p.isdigit() and uid in uids(int(p))]
 
 
-def end_processes(user: User, rounds: int = 100, python: str = sys.executable) -> int:
-    """End every process of ``user`` (zombies aside); return how many were found. RuntimeError if some survive."""
-    found: set[int] = set()
-    for _ in range(rounds):
-        left = _of(user.uid)
-        if not left:
-            return len(found)
-        found.update(left)
-        # sent as the user, kill(-1) reaches every process the user may signal, in one pass of the kernel's
-        # process list (a fork under way then fails): nothing of the user can be started between two kills
+def _kill_as(user: User, python: str, timeout: float) -> None:
+    """``kill(-1)`` sent as ``user``: one pass of the kernel's process list reaches all of them (a fork under way
+    then fails). Only a fast first pass: the user may stop this helper too, so its timeout is not an error."""
+    try:
         subprocess.run(
             [python, "-I", "-S", "-c", "import os; os.kill(-1, 9)"],
             user=user.uid,
@@ -222,12 +216,29 @@ def end_processes(user: User, rounds: int = 100, python: str = sys.executable) -
             env={},
             cwd="/",
             capture_output=True,
-            timeout=60,
+            timeout=timeout,
         )
-        for pid in left:  # and by pid, as root
+    except (OSError, subprocess.TimeoutExpired):
+        pass  # run() has killed it; the scan below ends what is left
+
+
+def end_processes(user: User, rounds: int = 100, python: str = sys.executable, first: float = 2.0) -> int:
+    """End every process of ``user`` (zombies aside); return how many were found. RuntimeError if some survive.
+
+    Root scans ``/proc`` by uid and sends SIGKILL, which a stopped process receives too, until none is left;
+    the user's own ``kill(-1)`` (``first`` seconds at most) is only tried once, after the first scan."""
+    found: set[int] = set()
+    for i in range(rounds):
+        left = _of(user.uid)
+        if not left:
+            return len(found)
+        found.update(left)
+        for pid in left:
             try:
                 os.kill(pid, signal.SIGKILL)
             except (ProcessLookupError, PermissionError):
                 pass
+        if i == 0:
+            _kill_as(user, python, first)
         time.sleep(0.01)
     raise RuntimeError(f"processes of {user.name} survived {rounds} rounds of SIGKILL: {_of(user.uid)}")

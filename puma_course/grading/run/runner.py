@@ -322,7 +322,10 @@ def _grade_class(
     )
     if feedback is not None:
         unsandboxed = box.reason if box.kind != "bwrap" else None
-        write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=_reserved_stems(output, feedback), key=key)
+        user = getattr(box, "user", None)  # AsUser (Gradescope): alone, as an unprivileged user
+        as_user = user.name if box.kind == "user" and user is not None else None
+        reserved = _reserved_stems(output, feedback)
+        write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=reserved, key=key, as_user=as_user)
     write_summary(
         results, output, unmatched=collected.problems if collected is not None else (), copies=find_copies(kept)
     )
