@@ -570,6 +570,9 @@ EXEMPT = {
     "three_step.ThreeStepSolution": "a result type built by three_step()",
     "three_step.Motion": "a result type built by motion()",
     "mk3.Attainable": "a result type built by MK3.nearest_attainable()",
+    "puma560_jacobian.puma560_jacobian_rows": (
+        "the closed form's kernel, handed the ops namespace and q already checked: Puma560.jacobian, swept, checks q"
+    ),
     "numerical.DLSResult": "a result type built by ik_dls()",
     "robot.Robot": "the abstract base class of the arms (not instantiable); its methods are swept on each arm",
     "dh.DHChain.ik": "raises NotImplementedError: a general chain has no closed form (the arms' own ik are swept)",
