@@ -121,6 +121,7 @@ def test_a_daemon_that_stops_every_process_of_the_user_is_ended_quickly(user):
         "            if os.fork() == 0:\n"
         "                time.sleep(60)\n"
         "                os._exit(0)\n"
+        "        time.sleep(2.0)\n"  # its parents have exited (else it stops them too, and the launch never returns)
         "        end = time.time() + 60\n"
         "        while time.time() < end:\n"
         "            try:\n"
@@ -134,7 +135,7 @@ def test_a_daemon_that_stops_every_process_of_the_user_is_ended_quickly(user):
     cmd += [PYTHON, "-c", stopper]
     launched = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     assert launched.wait(60) == 0
-    time.sleep(0.5)
+    time.sleep(3.0)  # the daemon is stopping every process of the user by now
     alive = [p for p in os.listdir("/proc") if p.isdigit() and user.uid in uids(int(p))]
     assert len(alive) == 6  # the stopper and its five stopped children
     start = time.monotonic()
