@@ -10,8 +10,8 @@ import sys
 
 import pytest
 
-from puma_course.cli import lab as cli_lab
 from puma_course.cli import build_parser, main
+from puma_course.cli import lab as cli_lab
 from puma_course.cli.help import BROKEN_PIPE, STUDENT_COMMANDS
 from tests.support import ROOT
 
