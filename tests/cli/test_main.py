@@ -59,6 +59,7 @@ def test_every_command_is_dispatched_by_the_one_table(monkeypatch, capsys):
     """Each command the parser knows is run by its entry of COMMANDS, and by nothing else."""
     parser = build_parser()
     assert list(_commands(parser)) == list(COMMANDS)  # the same commands, in the same order
+    assert list(COMMANDS)[:2] == ["lab", "check"]  # a student's commands first, the instructor's after
     for name, sub in _commands(parser).items():
         assert sub.get_default("run") is None, name  # no second way in (a set_defaults(run=...))
     minimal = {
