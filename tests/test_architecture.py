@@ -38,8 +38,6 @@ def layer_of(parts: tuple[str, ...]) -> str:
         return "base"
     if head in ("kinematics", "symbolic", "viz", "grading", "site", "instructor", "cli"):
         return head
-    if head.startswith("cli_") or head == "lab_contents":  # the command's parts: the cli layer
-        return "cli"
     raise AssertionError(f"module {'.'.join(parts)} is in no layer: add it to docs/architecture.md and here")
 
 

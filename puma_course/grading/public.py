@@ -33,7 +33,16 @@ from .judge.judges.tables import record_diagnosis, table_judge
 from .model import BANK_MODULE, Exercise, Question
 from .remake import Made, remake
 
-__all__ = ["DATA_FILE", "Replay", "public_exercise", "dumps", "exercises", "available", "no_hidden"]
+__all__ = [
+    "DATA_FILE",
+    "Replay",
+    "public_exercise",
+    "public_cases_only",
+    "dumps",
+    "exercises",
+    "available",
+    "no_hidden",
+]
 
 #: The edition's self-check data (absent from the instructor's course).
 DATA_FILE = Path(__file__).resolve().parent / "public_data" / "exercises.pickle"
@@ -42,6 +51,16 @@ DATA_FILE = Path(__file__).resolve().parent / "public_data" / "exercises.pickle"
 def no_hidden(rng: np.random.Generator) -> list[tuple[Any, ...]]:
     """The hidden cases of a public question: none (the self-check runs the public cases only)."""
     return []
+
+
+def public_cases_only(ex: Exercise) -> Exercise:
+    """``ex`` as ``puma-course check`` grades a student's own notebook: on its public cases only.
+
+    Only the hidden cases go (:func:`no_hidden`); every other field (the reference, the answer-key tripwires,
+    the bonus flags) stays as graded, so a check passes and fails exactly as grading does on those cases.
+    Unlike :func:`public_exercise`, nothing else is replaced: ``ex`` comes from a course's bank or an edition's data.
+    """
+    return dataclasses.replace(ex, questions=tuple(dataclasses.replace(q, hidden=no_hidden) for q in ex.questions))
 
 
 def _key(value: Any) -> Any:

@@ -91,7 +91,7 @@ def test_the_cli_report_is_the_same_formatter_indented():
         for line in format_question(q, _result().scores[q.qid], _result().question_notes[q.qid]).splitlines():
             assert f"  {line}" in lines
     # the CLI's check prints through it and words nothing itself
-    source = inspect.getsource(cli._check)
+    source = inspect.getsource(cli.check.run)
     assert "format_check_report" in source and "q.points" not in source and "hint" not in source
 
 

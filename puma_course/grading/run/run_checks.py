@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..model import EXERCISES
 
-__all__: list[str] = []
+__all__ = ["reserved_stems"]
 
 
 def _positive(name: str, value: float) -> float:
@@ -64,7 +64,7 @@ def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[
         _positive(key, value)
 
 
-def _reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
+def reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
     """The file stems in the feedback folder that belong to the grader's own files (the CSV, the class summary)."""
     from ..output.summary import summary_path
 

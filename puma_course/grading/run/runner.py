@@ -31,7 +31,7 @@ from ..secret import Secret, choose_key
 from . import limits
 from .collect import Collected
 from .notebook_run import LIMITS, _grade_data, _job, _run_worker  # noqa: F401 - _job, _run_worker: their old home
-from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
+from .run_checks import _check_args, _stop_note, _undumpable, package_digest, reserved_stems
 from .sandbox import Sandbox, choose
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
@@ -324,7 +324,7 @@ def _grade_class(
         unsandboxed = box.reason if box.kind != "bwrap" else None
         user = getattr(box, "user", None)  # AsUser (Gradescope): alone, as an unprivileged user
         as_user = user.name if box.kind == "user" and user is not None else None
-        reserved = _reserved_stems(output, feedback)
+        reserved = reserved_stems(output, feedback)
         write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=reserved, key=key, as_user=as_user)
     write_summary(
         results, output, unmatched=collected.problems if collected is not None else (), copies=find_copies(kept)

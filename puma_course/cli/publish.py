@@ -1,6 +1,6 @@
 """The ``puma-course`` commands that publish the course: ``site`` (its website) and ``edition`` (what students get).
 
-Split from :mod:`puma_course.cli` (the thin argparse layer), which registers them with :func:`add_publish_parsers`.
+Part of the ``cli`` layer: the builders are imported only when a command runs.
 """
 
 from __future__ import annotations
@@ -10,14 +10,16 @@ import sys
 from pathlib import Path
 from typing import Any
 
-__all__ = ["add_publish_parsers", "site", "edition"]
+from .options import course
+
+__all__ = ["add_parser", "run_site", "run_edition"]
 
 
-def add_publish_parsers(sub: Any, course: argparse.ArgumentParser) -> None:
-    """The ``site`` and ``edition`` sub-commands (``course``: the shared ``--course`` option)."""
+def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
+    """The ``site`` and ``edition`` sub-commands (``common``: the shared ``--course`` option)."""
     site = sub.add_parser(
         "site",
-        parents=[course],
+        parents=[common],
         help="build the course's website (lectures, exercises, notation) into _site/",
         description="Build the course as a static website from the committed notebooks, without running them "
         "and without the network. Open <output>/index.html in a browser.",
@@ -34,7 +36,7 @@ def add_publish_parsers(sub: Any, course: argparse.ArgumentParser) -> None:
     )
     ed = sub.add_parser(
         "edition",
-        parents=[course],
+        parents=[common],
         help="write the student edition (the course without its answer key) into DIR",
         description="Write the student edition into DIR: lectures, exercises, figures, the package, the self-check's "
         "public cases; no solution, bank, hidden test or seed. Again: updates DIR in place, its .git untouched.",
@@ -42,25 +44,26 @@ def add_publish_parsers(sub: Any, course: argparse.ArgumentParser) -> None:
     ed.add_argument("out", type=Path, metavar="DIR", help="where the edition goes (e.g. ../class-edition)")
 
 
-def edition(args: argparse.Namespace, course: Path) -> int:
-    """``puma-course edition DIR``: the student edition of ``course`` written into DIR."""
-    from .grading.edition import write_edition
+def run_edition(args: argparse.Namespace) -> int:
+    """``puma-course edition DIR``: the student edition of the course written into DIR."""
+    from ..grading.edition import write_edition
 
-    ed = write_edition(args.out, course)
+    ed = write_edition(args.out, course(args))
     print(f"wrote the student edition ({len(ed.exercises)} exercises, {len(ed.files)} files) to {ed.root}")
     return 0
 
 
-def site(args: argparse.Namespace, course: Path) -> int:
+def run_site(args: argparse.Namespace) -> int:
     """``puma-course site``: the course's website built (lectures, exercises, notation, the edition's archive)."""
+    root = course(args)
     try:
-        from .site import build_site
+        from ..site import build_site
     except ImportError as exc:  # pragma: no cover - the extra is missing
         print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
         return 2
-    from .grading.edition import write_edition
+    from ..grading.edition import write_edition
 
-    report = build_site(course, args.output, repo_url=args.repo_url, edition=write_edition)
+    report = build_site(root, args.output, repo_url=args.repo_url, edition=write_edition)
     print(
         f"built {len(report.pages)} pages in {report.seconds:.1f} s, {report.size_bytes / 1e6:.1f} MB: "
         f"open {report.out / 'index.html'} in a browser"

@@ -4,8 +4,8 @@
     puma-course limits delegate --user NAME         (root) a control-group subtree for NAME's grader
     puma-course limits delegate --user NAME --undo  (root) remove it, and every group under it
 
-Registered by :func:`puma_course.cli_platform.add_gradescope_parser` (``cli.py`` stays within its size);
-see :mod:`puma_course.grading.run.delegation`.
+See :mod:`puma_course.grading.run.delegation`. Part of the ``cli`` layer: the grader is imported only when the
+command runs.
 """
 
 from __future__ import annotations
@@ -14,11 +14,12 @@ import argparse
 import os
 from typing import Any
 
-__all__ = ["add_limits_parser", "limits_command"]
+__all__ = ["add_parser", "run"]
 
 
-def add_limits_parser(sub: Any) -> None:
-    """The ``limits`` sub-command and its ``show`` and ``delegate`` actions."""
+def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
+    """The ``limits`` sub-command and its ``show`` and ``delegate`` actions (about this machine: no ``--course``,
+    so ``common`` is not its parent)."""
     lim = sub.add_parser(
         "limits",
         help="show the grader's per-notebook limits here; (root) delegate a control-group subtree to a grading user",
@@ -26,7 +27,6 @@ def add_limits_parser(sub: Any) -> None:
         "Root can delegate a control-group subtree to the grading user once; the grader run by that user then "
         "makes a control group per notebook under it ('per notebook (cgroup v1, delegated)').",
     )
-    lim.set_defaults(run=limits_command)
     actions = lim.add_subparsers(dest="action", required=True, metavar="ACTION", help="show or delegate")
     actions.add_parser("show", help="the limits a grading run here would get, and why")
     dg = actions.add_parser("delegate", help="(root) give USER a control-group subtree for its grader")
@@ -34,9 +34,9 @@ def add_limits_parser(sub: Any) -> None:
     dg.add_argument("--undo", action="store_true", help="remove the subtree and every group under it")
 
 
-def limits_command(args: argparse.Namespace) -> int:
+def run(args: argparse.Namespace) -> int:
     """``puma-course limits show|delegate``; raises ValueError (exit code 2) on bad input or without root."""
-    from .grading.run import delegation, limits
+    from ..grading.run import delegation, limits
 
     if args.action == "show":
         run = limits.open_run()

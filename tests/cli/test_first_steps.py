@@ -1,4 +1,4 @@
-"""A student's and an instructor's first steps with ``puma-course`` (issue 31): the help, root, a closed pipe."""
+"""A student's and an instructor's first steps with ``puma-course`` (issue 31): the help, a closed pipe."""
 
 from __future__ import annotations
 
@@ -10,9 +10,8 @@ import sys
 
 import pytest
 
-from puma_course import cli_lab
 from puma_course.cli import build_parser, main
-from puma_course.cli_help import BROKEN_PIPE, STUDENT_COMMANDS
+from puma_course.cli.help import BROKEN_PIPE, STUDENT_COMMANDS
 from tests.support import ROOT
 
 
@@ -101,73 +100,3 @@ def test_grade_into_a_closed_pipe_grades_the_class_all_the_same(tmp_path):
     assert "Traceback" not in done.stderr and "BrokenPipeError" not in done.stderr, done.stderr
     assert done.returncode in (0, BROKEN_PIPE), done.stderr
     assert "ann" in out.read_text(encoding="utf-8")  # graded and written: the progress lines went nowhere
-
-
-@pytest.fixture
-def no_exec(monkeypatch):
-    """``lab`` records the command it would replace this process with, instead of starting JupyterLab."""
-    started: list[list[str]] = []
-
-    def fake_execv(path, argv):
-        started.append(list(argv))
-        raise SystemExit(0)
-
-    monkeypatch.setattr(cli_lab.os, "execv", fake_execv)
-    return started
-
-
-def test_lab_as_root_outside_a_container_says_what_to_do_and_starts_nothing(monkeypatch, capsys, no_exec):
-    monkeypatch.setattr(cli_lab, "running_as_root", lambda: True)
-    monkeypatch.setattr(cli_lab, "in_container", lambda: False)
-    assert main(["lab", "--course", str(ROOT)]) == 2
-    err = capsys.readouterr().err
-    assert "as root" in err and "without sudo" in err and "puma-course lab --allow-root" in err
-    assert no_exec == []
-    with pytest.raises(SystemExit):  # asked for on purpose: JupyterLab is started, given the option once
-        main(["lab", "--course", str(ROOT), "--allow-root"])
-    assert no_exec[-1].count("--allow-root") == 1
-
-
-def test_lab_as_root_in_a_container_allows_root_and_says_so(monkeypatch, capsys, no_exec):
-    monkeypatch.setattr(cli_lab, "running_as_root", lambda: True)
-    monkeypatch.setattr(cli_lab, "in_container", lambda: True)
-    with pytest.raises(SystemExit):
-        main(["lab", "--course", str(ROOT), "--port", "8898"])
-    (argv,) = no_exec
-    assert argv.count("--allow-root") == 1 and argv[-2:] == ["--port", "8898"]
-    assert "running as root in a container" in capsys.readouterr().err
-    for given in ("--allow-root", "--ServerApp.allow_root=True"):
-        with pytest.raises(SystemExit):
-            main(["lab", "--course", str(ROOT), given])
-        assert "--allow-root" not in no_exec[-1][:-1]  # not added when the student gave it
-    assert main(["lab", "--course", str(ROOT), "--print-command"]) == 0
-    assert "--allow-root" in capsys.readouterr().out  # the command shown is the one run
-
-
-def test_lab_as_a_user_is_given_no_allow_root(monkeypatch, capsys, no_exec):
-    monkeypatch.setattr(cli_lab, "running_as_root", lambda: False)
-    monkeypatch.setattr(cli_lab, "in_container", lambda: pytest.fail("no need to ask"))
-    with pytest.raises(SystemExit):
-        main(["lab", "--course", str(ROOT)])
-    assert "--allow-root" not in no_exec[0] and capsys.readouterr().err == ""
-
-
-def test_a_container_is_told_by_the_marks_its_runtime_leaves(monkeypatch, tmp_path):
-    for name in ("container", "KUBERNETES_SERVICE_HOST"):
-        monkeypatch.delenv(name, raising=False)
-    real_exists = os.path.exists
-    monkeypatch.setattr(
-        cli_lab.os.path, "exists", lambda p: False if p.startswith(("/.dockerenv", "/run/")) else real_exists(p)
-    )
-    groups = tmp_path / "cgroup"
-    monkeypatch.setattr(cli_lab, "PROC1_CGROUP", str(groups))
-    assert not cli_lab.in_container()  # no file: not known to be one
-    groups.write_text("12:pids:/init.scope\n1:name=systemd:/init.scope\n", encoding="utf-8")
-    assert not cli_lab.in_container()  # a machine's own
-    groups.write_text("12:pids:/docker/0123abcd\n", encoding="utf-8")
-    assert cli_lab.in_container()
-    groups.write_text("0::/kubepods/besteffort/pod1\n", encoding="utf-8")
-    assert cli_lab.in_container()
-    groups.unlink()
-    monkeypatch.setenv("container", "podman")
-    assert cli_lab.in_container()

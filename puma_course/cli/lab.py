@@ -4,7 +4,7 @@ JupyterLab refuses to start as root unless given ``--allow-root``. Root in a con
 Kubernetes: often the only user there) is not a mistake, so ``lab`` passes ``--allow-root`` itself and says so;
 root on a machine of its own is usually ``sudo`` by mistake, so ``lab`` stops with a message saying what to do
 (run it as yourself, or add ``--allow-root`` on purpose) instead of JupyterLab's bare refusal.
-Split from :mod:`puma_course.cli` (the thin argparse layer), which registers it with :func:`add_lab_parser`.
+JupyterLab is given the course's file manager (:mod:`puma_course.cli.lab_contents`) by its dotted path.
 """
 
 from __future__ import annotations
@@ -18,12 +18,13 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .course import INDEX, course_root
+from ..course import INDEX
+from .options import course
 
-__all__ = ["lab_command", "add_lab_parser", "lab", "CONTENTS_MANAGER", "running_as_root", "in_container"]
+__all__ = ["lab_command", "add_parser", "run", "CONTENTS_MANAGER", "running_as_root", "in_container"]
 
-#: notebooks open unmodified whatever the student's Python (see :mod:`puma_course.lab_contents`)
-CONTENTS_MANAGER = "--ServerApp.contents_manager_class=puma_course.lab_contents.CourseContentsManager"
+#: notebooks open unmodified whatever the student's Python (see :mod:`puma_course.cli.lab_contents`)
+CONTENTS_MANAGER = "--ServerApp.contents_manager_class=puma_course.cli.lab_contents.CourseContentsManager"
 
 #: where the first process's control groups are listed (a container's runtime names itself there)
 PROC1_CGROUP = "/proc/1/cgroup"
@@ -65,11 +66,11 @@ def lab_command(
     return cmd
 
 
-def add_lab_parser(sub: Any, course: argparse.ArgumentParser) -> None:
-    """The ``lab`` sub-command (``course``: the shared ``--course`` option)."""
+def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
+    """The ``lab`` sub-command (``common``: the shared ``--course`` option)."""
     lab_parser = sub.add_parser(
         "lab",
-        parents=[course],
+        parents=[common],
         allow_abbrev=False,  # an abbreviation of a JupyterLab option must reach JupyterLab, not match ours
         usage="puma-course lab [-h] [--course DIR] [--no-browser] [--print-command] [JUPYTER-OPTIONS ...]",
         help="open JupyterLab on the course (lectures and exercises), START_HERE.ipynb first",
@@ -126,7 +127,7 @@ def _exec(cmd: list[str]) -> int:
                 continue  # JupyterLab got the Ctrl-C as well and handles it
 
 
-def lab(args: argparse.Namespace) -> int:
+def run(args: argparse.Namespace) -> int:
     """``puma-course lab``: exit code 2 (with what to do) as root outside a container without ``--allow-root``.
 
     ``--print-command`` prints the command (with ``--allow-root`` added as running it would add it) and refuses
@@ -134,7 +135,7 @@ def lab(args: argparse.Namespace) -> int:
     """
     root = running_as_root() and not _allows_root(args.jupyter_args)
     add_root = root and in_container()
-    cmd = lab_command(course_root(args.course), args.jupyter_args, no_browser=args.no_browser, allow_root=add_root)
+    cmd = lab_command(course(args), args.jupyter_args, no_browser=args.no_browser, allow_root=add_root)
     if args.print_command:  # only shown: never refused
         print(shlex.join(cmd))
         return 0

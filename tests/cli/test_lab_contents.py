@@ -12,7 +12,7 @@ from typing import Any
 
 import pytest
 
-from puma_course.lab_contents import CourseContentsManager, kernel_language_info, with_running_python
+from puma_course.cli.lab_contents import CourseContentsManager, kernel_language_info, with_running_python
 from tests.support import ROOT
 
 pytest.importorskip("jupyter_server")

@@ -1,0 +1,58 @@
+"""The options more than one command takes, declared once: ``--course``, ``--layout``, ``--exercise``, the timeouts.
+
+Every command's parser is given :func:`course_option` as a parent (``--course DIR``), and its run function
+finds the course with :func:`course` (``--course DIR``, else the nearest course at or above the current folder).
+Standard library only (cli layer).
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ..course import course_root
+
+__all__ = ["LAYOUT_SHAPES", "course_option", "course", "add_layout", "add_exercises", "add_timeouts"]
+
+COURSE_HELP = (
+    "the course folder (default: the nearest folder, at or above the current one, that holds solutions/ or notebooks/)"
+)
+
+#: how a hand-in folder may be laid out (``--layout``), and what each layout looks like
+LAYOUT_SHAPES = {
+    "folders": "<student>/<exercise>.ipynb",
+    "canvas": "flat files <name>[_LATE]_<user id>_<file id>_<exercise>.ipynb",
+    "moodle": "<Full Name>_<participant id>_assignsubmission_file_/<exercise>.ipynb",
+}
+
+
+def course_option() -> argparse.ArgumentParser:
+    """The parent parser of every command: ``--course DIR``."""
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("--course", type=Path, default=None, metavar="DIR", help=COURSE_HELP)
+    return common
+
+
+def course(args: argparse.Namespace) -> Path:
+    """The course the command works on: ``--course DIR``, else found from the current directory."""
+    return course_root(args.course)
+
+
+def add_layout(parser: argparse.ArgumentParser, help: str) -> None:
+    """``--layout folders|canvas|moodle``: how SUBMISSIONS is laid out (``grade``, ``collect-written``)."""
+    parser.add_argument("--layout", choices=tuple(LAYOUT_SHAPES), default="folders", help=help)
+
+
+def add_exercises(parser: argparse.ArgumentParser, help: str) -> None:
+    """``--exercise NAME`` (repeatable): the exercises a class command works on (``grade``, ``collect-written``)."""
+    parser.add_argument("--exercise", action="append", default=None, metavar="NAME", help=help)
+
+
+def add_timeouts(parser: argparse.ArgumentParser) -> None:
+    """``--timeout-cell S`` and ``--timeout-total S``: how long one notebook may run (``grade``, ``check``)."""
+    parser.add_argument(
+        "--timeout-cell", type=float, default=10.0, metavar="S", help="seconds per cell and per call (default 10)"
+    )
+    parser.add_argument(
+        "--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)"
+    )

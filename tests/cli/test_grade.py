@@ -1,0 +1,115 @@
+"""``puma-course grade``: a class graded into the CSV and the feedback (tests/grading has the rest)."""
+
+from __future__ import annotations
+
+import csv
+import shutil
+
+from puma_course.cli import main
+from tests.support import ROOT
+
+
+def test_grade_grades_the_exercises_the_course_hands_out(course_copy, capsys, monkeypatch):
+    (course_copy / "exercises" / "ex99_mine.ipynb").write_text("{}", encoding="utf-8")
+    (course_copy / "subs" / "ann").mkdir(parents=True)
+    (course_copy / "subs" / "ben").mkdir(parents=True)
+    (course_copy / "subs" / "ben" / "ex01_rotations.ipynb").write_text("{}", encoding="utf-8")
+    monkeypatch.chdir(course_copy)
+    # ann's folder is empty: graded (the CSV says missing); ben handed ex01 in, so only ex01 is graded
+    assert main(["grade", "subs", "-o", "g.csv", "--quiet", "--seed", "1"]) == 0
+    with open(course_copy / "g.csv", newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [(r["student"], r["exercise"], r["status"]) for r in rows] == [
+        ("ann", "ex01_rotations", "missing"),
+        ("ben", "ex01_rotations", "malformed"),
+    ]
+    err = capsys.readouterr().err
+    assert "not graded" in err and "ex99_mine" in err
+
+
+def test_grade_of_a_class_that_handed_in_no_exercise_exits_2(course_copy, capsys, monkeypatch):
+    (course_copy / "subs" / "ann").mkdir(parents=True)
+    (course_copy / "subs" / "ann" / "ex1.ipynb").write_text("{}", encoding="utf-8")
+    monkeypatch.chdir(course_copy)
+    assert main(["grade", "subs", "-o", "g.csv", "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "named after the course's exercises" in err and "ex01_rotations" in err
+    assert not (course_copy / "g.csv").exists()
+
+
+def test_grade_writes_csv_and_feedback(tmp_path, capsys):
+    subs = tmp_path / "subs"
+    (subs / "ann").mkdir(parents=True)
+    (subs / "ben").mkdir()
+    shutil.copy(ROOT / "solutions" / "ex01_rotations.ipynb", subs / "ann")
+    out, fb = tmp_path / "grades.csv", tmp_path / "fb"
+    code = main(
+        [
+            "grade",
+            str(subs),
+            "-o",
+            str(out),
+            "--feedback",
+            str(fb),
+            "--jobs",
+            "2",
+            "--timeout-cell",
+            "10",
+            "--timeout-total",
+            "30",
+            "--seed",
+            "5",
+            "--exercise",
+            "ex01_rotations",
+            "--quiet",
+        ]
+    )
+    assert code == 0
+    with open(out, newline="", encoding="utf-8") as fh:
+        rows = {r["student"]: r for r in csv.DictReader(fh)}
+    assert rows["ann"]["score"] == "15" and rows["ann"]["status"] == "ok"
+    assert rows["ben"]["score"] == "0" and rows["ben"]["status"] == "missing"
+    assert (fb / "ann.md").exists() and (fb / "ben.md").exists()
+    assert "graded 2 notebook(s)" in capsys.readouterr().out
+
+
+def test_grade_rejects_a_missing_folder(tmp_path, capsys):
+    assert main(["grade", str(tmp_path / "nope"), "-o", str(tmp_path / "g.csv")]) == 2
+    assert "submissions" in capsys.readouterr().err
+
+
+def test_grade_warns_and_exits_3_when_the_package_changes_during_grading(tmp_path, monkeypatch, capsys):
+    from puma_course.grading.run import runner
+
+    digests = iter([{"a.py": b"1"}, {"a.py": b"2"}])
+    monkeypatch.setattr(runner, "package_digest", lambda *_: next(digests))
+    (tmp_path / "subs" / "ann").mkdir(parents=True)
+    code = main(
+        ["grade", str(tmp_path / "subs"), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations", "--quiet"]
+    )
+    assert code == 3
+    assert "changed while grading" in capsys.readouterr().err
+
+
+def test_missing_notebook_feedback_names_misnamed_files(tmp_path):
+    subs = tmp_path / "subs"
+    (subs / "cat").mkdir(parents=True)
+    shutil.copy(ROOT / "solutions" / "ex01_rotations.ipynb", subs / "cat" / "ex01_rotations (1).ipynb")
+    assert (
+        main(
+            [
+                "grade",
+                str(subs),
+                "-o",
+                str(tmp_path / "g.csv"),
+                "--feedback",
+                str(tmp_path / "fb"),
+                "--exercise",
+                "ex01_rotations",
+                "--quiet",
+            ]
+        )
+        == 0
+    )
+    text = (tmp_path / "fb" / "cat.md").read_text(encoding="utf-8")
+    assert "missing" in text and "ex01_rotations (1).ipynb" in text
