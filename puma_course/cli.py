@@ -41,9 +41,9 @@ from .cli_platform import (
     add_grade_arguments,
     add_gradescope_parser,
     choose_and_collect,
+    grade_settings,
     gradescope,
-    open_limits,
-    write_gradebooks,
+    report_written,
 )
 from .cli_publish import add_publish_parsers, edition, site
 from .cli_written import collect_written
@@ -195,35 +195,16 @@ def _release(args: argparse.Namespace) -> int:
 def _grade(args: argparse.Namespace) -> int:
     import warnings
 
-    from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade, load_bank
-    from .grading.output.summary import run_outcome, summary_note
-    from .grading.run.runner import LimitsWarning
-    from .grading.run.sandbox import choose
-    from .grading.secret import command_key
+    from .grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, load_bank
+    from .grading.output.summary import run_outcome
+    from .grading.run.runner import LimitsWarning, grade_run
 
     root = _course(args)
     load_bank(root)  # the questions of the course being graded (its bank/, beside solutions/)
     names, collected = choose_and_collect(args, root, list(EXERCISES))
     if names is None:
         return 2
-    # the whole course folder (bank/, solutions/, .git) stays out of the sandbox wherever the course is
-    private = [root]
-    key, said = command_key(args.secret, args.seed, root)  # each student's hidden inputs
-    print(said, file=sys.stderr)
-    box = choose(args.sandbox)
-    if box.kind == "bwrap":
-        print(f"sandbox: bubblewrap ({box.binary}); {box.mounts}", file=sys.stderr)
-    else:
-        print(
-            f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
-            "WARNING: a hostile notebook can read and change what this user can (solutions/, classmates' "
-            "files, the grades) and outlive its notebook; every feedback file says so. Install bubblewrap "
-            "(apt install bubblewrap, or the grader's extra: pip install 'puma-course[grader]') "
-            "or see README.md, Safety.",
-            file=sys.stderr,
-        )
-    groups = open_limits(box, args.timeout_cell)  # a control group per notebook: limits for its whole process tree
-
+    settings, box, groups = grade_settings(args, root, names, collected)
     lock = threading.Lock()
 
     def progress(r: Any) -> None:
@@ -243,26 +224,11 @@ def _grade(args: argparse.Namespace) -> int:
         warnings.simplefilter("always", GradingIntegrityWarning)
         warnings.simplefilter("ignore", SandboxWarning)  # said above, once
         warnings.simplefilter("ignore", LimitsWarning)  # said above, once
-        results = grade(
-            args.submissions,
-            args.output,
-            feedback=args.feedback,
-            jobs=args.jobs,
-            timeout_cell=args.timeout_cell,
-            timeout_total=args.timeout_total,
-            secret=key,
-            exercises=names,
-            progress=progress,
-            sandbox=box,
-            timeout_student=args.timeout_student,
-            private=private,
-            cgroups=groups,
-            collected=collected,
-        )
+        graded = grade_run(dataclasses.replace(settings, progress=progress))
+    results = graded.results
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")
-    print(summary_note(results, args.output))  # grade() wrote the CSV, the feedback and this summary
-    write_gradebooks(args, results, names, collected)
+    report_written(args, graded.files, collected)  # the summary, the marks, the gradebooks: all written by grade
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
         print(f"WARNING: {w.message}", file=sys.stderr)

@@ -20,9 +20,16 @@ from pathlib import Path
 from typing import Any
 
 from .cli_limits import add_limits_parser
-from .cli_written import add_marks_argument, add_written_parser, check_marks, merge_marks
+from .cli_written import add_marks_argument, add_written_parser, say_marks
 
-__all__ = ["add_grade_arguments", "add_gradescope_parser", "collect_or_explain", "write_gradebooks", "gradescope"]
+__all__ = [
+    "add_grade_arguments",
+    "add_gradescope_parser",
+    "collect_or_explain",
+    "grade_settings",
+    "report_written",
+    "gradescope",
+]
 
 LAYOUT_SHAPES = {
     "folders": "<student>/<exercise>.ipynb",
@@ -140,7 +147,6 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
             names = [n for n in names if n not in absent]
     if absent:
         print(f"not graded (nobody handed them in; --exercise grades them): {', '.join(absent)}", file=sys.stderr)
-    check_marks(args, names, collected)  # a bad marks file stops the command before anything is graded
     return list(names), collected
 
 
@@ -187,17 +193,62 @@ def _suggest_layout(seen: Sequence[str]) -> None:
         print("note: SUBMISSIONS looks like Canvas's download: grade it with --layout canvas", file=sys.stderr)
 
 
-def write_gradebooks(args: argparse.Namespace, results: Sequence[Any], names: Sequence[str], collected: Any) -> None:
-    """Write each ``--gradebook`` next to the CSV, and say where, and what an import will lack."""
-    from .grading.output.gradebook import read_roster, write_gradebook
+def grade_settings(
+    args: argparse.Namespace, course: Path, names: Sequence[str], collected: Any
+) -> tuple[Any, Any, Any]:
+    """``puma-course grade``'s :class:`~puma_course.grading.settings.GradeSettings`, with the sandbox and the
+    control groups it chose (each once, said on stderr, as is the key): grade() uses them as they are."""
+    from .grading.run.sandbox import choose
+    from .grading.secret import command_key
+    from .grading.settings import GradeSettings
 
+    key, said = command_key(args.secret, args.seed, course)  # each student's hidden inputs
+    print(said, file=sys.stderr)
+    box = choose(args.sandbox)
+    if box.kind == "bwrap":
+        print(f"sandbox: bubblewrap ({box.binary}); {box.mounts}", file=sys.stderr)
+    else:
+        print(
+            f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
+            "WARNING: a hostile notebook can read and change what this user can (solutions/, classmates' "
+            "files, the grades) and outlive its notebook; every feedback file says so. Install bubblewrap "
+            "(apt install bubblewrap, or the grader's extra: pip install 'puma-course[grader]') "
+            "or see README.md, Safety.",
+            file=sys.stderr,
+        )
+    groups = open_limits(box, args.timeout_cell)  # a control group per notebook: limits for its whole process tree
+    settings = GradeSettings(
+        args.submissions,
+        args.output,
+        feedback=args.feedback,
+        jobs=args.jobs,
+        timeout_cell=args.timeout_cell,
+        timeout_total=args.timeout_total,
+        timeout_student=args.timeout_student,
+        secret=key,
+        sandbox=box,
+        # the whole course folder (bank/, solutions/, .git) stays out of the sandbox wherever the course is
+        private=[course],
+        cgroups=groups,
+        exercises=names,
+        layout=args.layout,
+        collected=collected,
+        gradebooks=args.gradebook or (),
+        roster=args.roster,
+        marks=getattr(args, "marks", None) or (),
+        bank=course,
+    )
+    return settings, box, groups
+
+
+def report_written(args: argparse.Namespace, files: Any, collected: Any) -> None:
+    """Say what grade() wrote besides the CSV: the summary, the written marks merged, each gradebook (and what
+    an import of it will lack)."""
+    print(files.summary_note)
     if collected is not None and collected.problems:
         print(f"{len(collected.problems)} file(s) of the download not graded (listed above and in the summary)")
-    written = merge_marks(args, results)  # --marks: into the CSV and the feedback; the points for the gradebooks
-    roster = read_roster(args.roster) if args.roster is not None else None
-    for fmt in dict.fromkeys(args.gradebook or []):
-        people = collected.by_key() if collected is not None else None
-        path, notes = write_gradebook(fmt, args.output, results, names, people, roster, written)
+    say_marks(args, files)
+    for fmt, path, notes in files.gradebooks:
         print(f"gradebook ({fmt}): {path}")
         for note in notes:
             print(f"  {note}", file=sys.stderr)

@@ -5,9 +5,10 @@
     puma-course grade SUBMISSIONS -o grades.csv --marks FILE [--marks FILE ...] [--feedback DIR] ...
 
 ``collect-written`` writes, per written question, a marking document and a marks template into DIR
-(:mod:`puma_course.grading.output.marking`); ``grade --marks`` checks the filled-in files before grading
-(exit code 2, naming the file, row and column of the first problem) and merges them into the grades CSV,
-the gradebooks and the feedback once grading is done (:mod:`puma_course.grading.output.marks`).
+(:mod:`puma_course.grading.output.marking`); ``grade --marks`` hands the filled-in files to the grading
+run (:class:`puma_course.grading.settings.GradeSettings`), which checks them before grading (exit code 2,
+naming the file, row and column of the first problem) and merges them into the results before it writes
+the grades CSV, the feedback, the summary and the gradebooks (:mod:`puma_course.grading.output.writer`).
 Part of the ``cli`` layer: the grader is imported only when a command runs.
 """
 
@@ -15,11 +16,10 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["add_written_parser", "add_marks_argument", "collect_written", "check_marks", "merge_marks"]
+__all__ = ["add_written_parser", "add_marks_argument", "collect_written", "say_marks"]
 
 
 def add_written_parser(sub: Any, course: argparse.ArgumentParser) -> None:
@@ -82,35 +82,9 @@ def collect_written(args: argparse.Namespace, course: Path) -> int:
     return 0
 
 
-def _students(args: argparse.Namespace, collected: Any) -> list[str]:
-    if collected is not None:
-        return [s.key for s in collected.students]
-    from .grading.run.submissions import scan
-
-    return [s.name for s in scan(args.submissions)]
-
-
-def check_marks(args: argparse.Namespace, names: Sequence[str], collected: Any) -> None:
-    """Read and check ``--marks`` before grading (ValueError naming file, row and column); kept on ``args``."""
-    args.written_marks = None
-    if getattr(args, "marks", None):
-        from .grading.output.marks import read_marks
-
-        args.written_marks = read_marks(args.marks, _students(args, collected), list(names))
-
-
-def merge_marks(args: argparse.Namespace, results: Sequence[Any]) -> Any:
-    """Merge the checked marks into the CSV and the feedback; the written points for the gradebooks (or None)."""
-    marks = getattr(args, "written_marks", None)
-    if marks is None:
-        return None
-    from .grading.output.marks import merge_csv, merge_feedback, written_by_student
-    from .grading.run.run_checks import _reserved_stems
-
-    merge_csv(args.output, marks, results)
-    if args.feedback is not None:
-        merge_feedback(args.feedback, results, marks, reserved=_reserved_stems(args.output, args.feedback))
-    marked = sum(1 for m in marks.marks.values() if m.points is not None)
-    print(f"written marks: {marked} answer(s) marked, merged into {args.output}" + (
-        f" and the feedback in {args.feedback}" if args.feedback is not None else ""))  # fmt: skip
-    return written_by_student(marks, results)
+def say_marks(args: argparse.Namespace, files: Any) -> None:
+    """Say how many written answers grade() merged (``--marks``), and where (the grading wrote them)."""
+    if files.marked is None:
+        return
+    where = f" and the feedback in {args.feedback}" if args.feedback is not None else ""
+    print(f"written marks: {files.marked} answer(s) marked, merged into {args.output}{where}")
