@@ -51,9 +51,10 @@ def student_totals(
 
     >>> from puma_course.grading import EXERCISES
     >>> r = NotebookResult.blank("ann", EXERCISES["ex01_rotations"])
-    >>> r.score = 9.5
-    >>> student_totals([r], {"ann": (2.5, 4.0)})["ann"].total
-    12.0
+    >>> r.scores["q1"] = 2.0
+    >>> t = student_totals([r], {"ann": (2.5, 4.0)})["ann"]
+    >>> t.auto, t.total, t.top
+    (2.0, 4.5, 19.0)
     """
     auto: dict[str, list[float]] = {}
     for r in results:
