@@ -8,8 +8,9 @@
 
 Without ``--exercise`` it grades the course's exercises that some student handed in. ``--marks`` (the filled-in
 files of ``collect-written``) are checked before grading (exit code 2, naming the file, row and column of the
-first problem) and merged into the CSV, the gradebooks and the feedback once grading is done
-(:mod:`puma_course.grading.output.marks`). Exit code 3 when the package changed during grading.
+first problem) and merged into the results before anything is written, so the CSV, the feedback, the summary
+and every gradebook give the same totals (:class:`puma_course.grading.settings.GradeSettings`,
+:mod:`puma_course.grading.output.writer`). Exit code 3 when the package changed during grading.
 Part of the ``cli`` layer (light to import: the grader is imported only when the command runs).
 See :mod:`puma_course.grading.run.collect`, :mod:`puma_course.grading.output.gradebook`.
 """
@@ -18,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import os
 import sys
 import threading
@@ -34,9 +36,8 @@ __all__ = [
     "collect_or_explain",
     "choose_and_collect",
     "open_limits",
-    "write_gradebooks",
-    "check_marks",
-    "merge_marks",
+    "grade_settings",
+    "report_written",
 ]
 
 
@@ -109,35 +110,16 @@ def run(args: argparse.Namespace) -> int:
     """``puma-course grade``: 0, 1 (a notebook could not be graded), 2 (bad input) or 3 (the package changed)."""
     import warnings
 
-    from ..grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, grade, load_bank
-    from ..grading.output.summary import run_outcome, summary_note
-    from ..grading.run.runner import LimitsWarning
-    from ..grading.run.sandbox import choose
-    from ..grading.secret import command_key
+    from ..grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, load_bank
+    from ..grading.output.summary import run_outcome
+    from ..grading.run.runner import LimitsWarning, grade_run
 
     root = course(args)
     load_bank(root)  # the questions of the course being graded (its bank/, beside solutions/)
     names, collected = choose_and_collect(args, root, list(EXERCISES))
     if names is None:
         return 2
-    marks = check_marks(args, names, collected)  # a bad marks file stops the command before anything is graded
-    # the whole course folder (bank/, solutions/, .git) stays out of the sandbox wherever the course is
-    private = [root]
-    key, said = command_key(args.secret, args.seed, root)  # each student's hidden inputs
-    print(said, file=sys.stderr)
-    box = choose(args.sandbox)
-    if box.kind == "bwrap":
-        print(f"sandbox: bubblewrap ({box.binary}); {box.mounts}", file=sys.stderr)
-    else:
-        print(
-            f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
-            "WARNING: a hostile notebook can read and change what this user can (solutions/, classmates' "
-            "files, the grades) and outlive its notebook; every feedback file says so. Install bubblewrap "
-            "(apt install bubblewrap, or the grader's extra: pip install 'puma-course[grader]') "
-            "or see README.md, Safety.",
-            file=sys.stderr,
-        )
-    groups = open_limits(box, args.timeout_cell)  # a control group per notebook: limits for its whole process tree
+    settings, box, groups = grade_settings(args, root, names, collected)
 
     lock = threading.Lock()
 
@@ -158,26 +140,11 @@ def run(args: argparse.Namespace) -> int:
         warnings.simplefilter("always", GradingIntegrityWarning)
         warnings.simplefilter("ignore", SandboxWarning)  # said above, once
         warnings.simplefilter("ignore", LimitsWarning)  # said above, once
-        results = grade(
-            args.submissions,
-            args.output,
-            feedback=args.feedback,
-            jobs=args.jobs,
-            timeout_cell=args.timeout_cell,
-            timeout_total=args.timeout_total,
-            secret=key,
-            exercises=names,
-            progress=progress,
-            sandbox=box,
-            timeout_student=args.timeout_student,
-            private=private,
-            cgroups=groups,
-            collected=collected,
-        )
+        graded = grade_run(dataclasses.replace(settings, progress=progress))
+    results = graded.results
     students = len({r.student for r in results})
     print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")
-    print(summary_note(results, args.output))  # grade() wrote the CSV, the feedback and this summary
-    write_gradebooks(args, results, names, collected, marks)
+    report_written(args, graded.files, collected)  # the summary, the marks, the gradebooks: all written by grade
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
         print(f"WARNING: {w.message}", file=sys.stderr)
@@ -300,53 +267,62 @@ def _suggest_layout(seen: Sequence[str]) -> None:
         print("note: SUBMISSIONS looks like Canvas's download: grade it with --layout canvas", file=sys.stderr)
 
 
-def write_gradebooks(
-    args: argparse.Namespace, results: Sequence[Any], names: Sequence[str], collected: Any, marks: Any
-) -> None:
-    """Write each ``--gradebook`` next to the CSV, and say where, and what an import will lack (``marks``: the
-    checked ``--marks``, or None)."""
-    from ..grading.output.gradebook import read_roster, write_gradebook
+def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], collected: Any) -> tuple[Any, Any, Any]:
+    """``puma-course grade``'s :class:`~puma_course.grading.settings.GradeSettings`, with the sandbox and the
+    control groups it chose (each once, said on stderr, as is the key): grade() uses them as they are."""
+    from ..grading.run.sandbox import choose
+    from ..grading.secret import command_key
+    from ..grading.settings import GradeSettings
 
+    key, said = command_key(args.secret, args.seed, root)  # each student's hidden inputs
+    print(said, file=sys.stderr)
+    box = choose(args.sandbox)
+    if box.kind == "bwrap":
+        print(f"sandbox: bubblewrap ({box.binary}); {box.mounts}", file=sys.stderr)
+    else:
+        print(
+            f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
+            "WARNING: a hostile notebook can read and change what this user can (solutions/, classmates' "
+            "files, the grades) and outlive its notebook; every feedback file says so. Install bubblewrap "
+            "(apt install bubblewrap, or the grader's extra: pip install 'puma-course[grader]') "
+            "or see README.md, Safety.",
+            file=sys.stderr,
+        )
+    groups = open_limits(box, args.timeout_cell)  # a control group per notebook: limits for its whole process tree
+    settings = GradeSettings(
+        args.submissions,
+        args.output,
+        feedback=args.feedback,
+        jobs=args.jobs,
+        timeout_cell=args.timeout_cell,
+        timeout_total=args.timeout_total,
+        timeout_student=args.timeout_student,
+        secret=key,
+        sandbox=box,
+        # the whole course folder (bank/, solutions/, .git) stays out of the sandbox wherever the course is
+        private=[root],
+        cgroups=groups,
+        exercises=names,
+        layout=args.layout,
+        collected=collected,
+        gradebooks=args.gradebook or (),
+        roster=args.roster,
+        marks=args.marks or (),
+        bank=root,
+    )
+    return settings, box, groups
+
+
+def report_written(args: argparse.Namespace, files: Any, collected: Any) -> None:
+    """Say what grade() wrote besides the CSV: the summary, the written marks merged, each gradebook (and what
+    an import of it will lack)."""
+    print(files.summary_note)
     if collected is not None and collected.problems:
         print(f"{len(collected.problems)} file(s) of the download not graded (listed above and in the summary)")
-    written = merge_marks(args, results, marks)  # --marks: into the CSV and the feedback; the points for the gradebooks
-    roster = read_roster(args.roster) if args.roster is not None else None
-    for fmt in dict.fromkeys(args.gradebook or []):
-        people = collected.by_key() if collected is not None else None
-        path, notes = write_gradebook(fmt, args.output, results, names, people, roster, written)
+    if files.marked is not None:
+        where = f" and the feedback in {args.feedback}" if args.feedback is not None else ""
+        print(f"written marks: {files.marked} answer(s) marked, merged into {args.output}{where}")
+    for fmt, path, notes in files.gradebooks:
         print(f"gradebook ({fmt}): {path}")
         for note in notes:
             print(f"  {note}", file=sys.stderr)
-
-
-def _students(args: argparse.Namespace, collected: Any) -> list[str]:
-    if collected is not None:
-        return [s.key for s in collected.students]
-    from ..grading.run.submissions import scan
-
-    return [s.name for s in scan(args.submissions)]
-
-
-def check_marks(args: argparse.Namespace, names: Sequence[str], collected: Any) -> Any:
-    """Read and check ``--marks`` before grading (ValueError naming file, row and column); None without them."""
-    if not args.marks:
-        return None
-    from ..grading.output.marks import read_marks
-
-    return read_marks(args.marks, _students(args, collected), list(names))
-
-
-def merge_marks(args: argparse.Namespace, results: Sequence[Any], marks: Any) -> Any:
-    """Merge the checked ``marks`` into the CSV and the feedback; the written points for the gradebooks (or None)."""
-    if marks is None:
-        return None
-    from ..grading.output.marks import merge_csv, merge_feedback, written_by_student
-    from ..grading.run.run_checks import reserved_stems
-
-    merge_csv(args.output, marks, results)
-    if args.feedback is not None:
-        merge_feedback(args.feedback, results, marks, reserved=reserved_stems(args.output, args.feedback))
-    marked = sum(1 for m in marks.marks.values() if m.points is not None)
-    print(f"written marks: {marked} answer(s) marked, merged into {args.output}" + (
-        f" and the feedback in {args.feedback}" if args.feedback is not None else ""))  # fmt: skip
-    return written_by_student(marks, results)

@@ -270,7 +270,12 @@ def test_the_round_trip_collect_mark_merge(handed_in, tmp_path, capsys):
     assert float(wide["bob"][f"{EX} written"]) == 1 and float(wide["bob"]["total"]) == 1
 
     ann = (feedback / "ann.md").read_text(encoding="utf-8")
-    assert f"Total: **{AUTO} / {AUTO}** points." in ann  # the auto-graded total, as before
+    # the total counts the written points, as the gradebooks do (it said the auto-graded total alone: issue 32);
+    # the auto-graded part is still said, as before
+    assert (
+        f"Total: **{AUTO + 2.5:g} / {AUTO + 4}** points (auto-graded {AUTO} / {AUTO}, written questions 2.5 / 4)."
+        in ann
+    )
     assert "## Written questions (marked by your instructor)" in ann and "Written: **2.5 / 4** points" in ann
     assert "**2.5 / 4** points." in ann and "> Good sketch; x2 is missing." in ann
     assert "- 0.5 / 1 · origin 2\n" in ann and "- 0 / 1 · x axes\n" in ann

@@ -18,7 +18,8 @@ Once grading is done the marks go into
   points) and ``written_max``; ``score`` and ``max_score`` stay the auto-graded ones;
 * each gradebook (``--gradebook``): one column ``<exercise> written`` per exercise with written questions,
   with its points possible, counted in the total (:func:`puma_course.grading.output.gradebook.gradebook_rows`);
-* each student's feedback file: a section "Written questions" with, per question, the points, the rubric
+* each student's feedback file: the total counts the written points (as the gradebooks do), and a section
+  "Written questions" with, per question, the points, the rubric
   criteria by name with the points awarded on each (never their texts, which are the marker's key), and the
   marker's comment.
 """
@@ -48,6 +49,9 @@ __all__ = [
     "merge_feedback",
     "written_by_student",
     "written_points",
+    "written_totals",
+    "written_columns",
+    "feedback_section",
 ]
 
 
@@ -197,10 +201,34 @@ def written_by_student(marks: Marks, results: Sequence[NotebookResult]) -> dict[
     return out
 
 
+def written_totals(
+    written: Mapping[str, Mapping[str, float]], results: Sequence[NotebookResult]
+) -> dict[str, tuple[float, float]]:
+    """student -> (marked written points, written points possible) over the exercises graded for them.
+
+    ``written`` is :func:`written_by_student`'s: the same numbers the gradebooks add to the total.
+    """
+    out: dict[str, tuple[float, float]] = {}
+    for r in results:
+        earned, most = out.get(r.student, (0.0, 0.0))
+        top = sum(w.points for w in written_questions(r.exercise))
+        got = float((written.get(r.student) or {}).get(r.exercise, 0.0)) if top else 0.0
+        out[r.student] = (round(earned + got, 2), round(most + top, 2))
+    return out
+
+
 def merge_csv(output: str | os.PathLike[str], marks: Marks, results: Sequence[NotebookResult]) -> None:
     """Add the written columns to the grades CSV ``output`` that ``grade`` wrote (see the module docstring)."""
     with open(output, newline="", encoding="utf-8") as fh:
         rows = list(csv.reader(fh))
+    buffer = io.StringIO()
+    csv.writer(buffer).writerows(written_columns(rows, marks, results))
+    replace_atomically(Path(output), buffer.getvalue())
+
+
+def written_columns(rows: list[list[str]], marks: Marks, results: Sequence[NotebookResult]) -> list[list[str]]:
+    """The grades CSV's ``rows`` (header first, as :func:`.report.csv_rows` makes them) with the written columns
+    added (see the module docstring); the rows are extended in place and returned."""
     head, body = rows[0], rows[1:]
     col = {name: i for i, name in enumerate(head)}
     graded = {csv_safe(r.student): r.student for r in results}
@@ -220,9 +248,7 @@ def merge_csv(output: str | os.PathLike[str], marks: Marks, results: Sequence[No
         total = written_points(marks, student, exercise)
         top = sum(w.points for w in mine.values())
         row += cells + ["" if total is None else f"{total:g}", f"{top:g}" if mine else ""]
-    buffer = io.StringIO()
-    csv.writer(buffer).writerows([head, *body])
-    replace_atomically(Path(output), buffer.getvalue())
+    return [head, *body]
 
 
 def feedback_section(marks: Marks, student: str, exercises: Sequence[str]) -> str:
@@ -254,7 +280,7 @@ def feedback_section(marks: Marks, student: str, exercises: Sequence[str]) -> st
     intro = [
         "## Written questions (marked by your instructor)",
         "",
-        f"Written: **{sum(earned):g} / {top:g}** points, beside the auto-graded total above.",
+        f"Written: **{round(sum(earned), 2):g} / {top:g}** points, counted in the total above.",
         "",
     ]
     return "\n".join(intro + lines)

@@ -21,7 +21,7 @@ import io
 import os
 import re
 import tempfile
-from collections.abc import Collection, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from pathlib import Path
 
 from ..model import EXERCISES, Exercise, NotebookResult, Question
@@ -131,6 +131,8 @@ def feedback_markdown(
     unsandboxed: str | None = None,
     key: Secret | None = None,
     as_user: str | None = None,
+    written: tuple[float, float] | None = None,
+    section: str = "",
 ) -> str:
     """One student's feedback file: per exercise the status, the score, one table row per question, hints.
 
@@ -138,7 +140,10 @@ def feedback_markdown(
     code, so the file shows them literally (no headings, links or table rows of the student's
     making). ``unsandboxed`` is the reason the notebooks ran without the operating-system sandbox,
     if they did: the file then says so first. ``key`` is the grading run's key: the file ends by
-    saying where the hidden inputs came from (:func:`hidden_inputs_note`).
+    saying where the hidden inputs came from (:func:`hidden_inputs_note`). ``written`` is the student's marked
+    written points and their maximum (``grade --marks``): the total then counts them, as the gradebooks do, and
+    says how it is made up; ``section`` (the written questions' marks, :func:`.marks.feedback_section`) follows
+    the exercises.
 
     >>> feedback_markdown("x\\n# Total: 56 / 56", [], seed=1).splitlines()[0]
     '# Feedback for `x\\\\x0a# Total: 56 / 56`'
@@ -158,9 +163,17 @@ def feedback_markdown(
             "notebook interfered with the grading.",
             "",
         ]
-    total = sum(r.score for r in results)
-    top = sum(r.max_score for r in results)
-    lines += [f"Total: **{total:g} / {top:g}** points.", ""]
+    total = round(sum(r.score for r in results), 2)
+    top = round(sum(r.max_score for r in results), 2)
+    if written is None:
+        lines += [f"Total: **{total:g} / {top:g}** points.", ""]
+    else:
+        earned, most = written
+        lines += [
+            f"Total: **{round(total + earned, 2):g} / {round(top + most, 2):g}** points "
+            f"(auto-graded {total:g} / {top:g}, written questions {earned:g} / {most:g}).",
+            "",
+        ]
     for r in results:
         ex = EXERCISES[r.exercise]
         lines += [
@@ -185,6 +198,8 @@ def feedback_markdown(
         if failing:
             lines += ["", "Hints:"] + [f"- {q.qid}: {q.hint}" for q in failing]
         lines.append("")
+    if section:
+        lines += [section.rstrip("\n"), ""]
     note = hidden_inputs_note(key)
     lines += ["", note] if note else []
     return "\n".join(lines) + "\n"
@@ -252,11 +267,14 @@ def write_feedback(
     reserved: Sequence[str] = (),
     key: Secret | None = None,
     as_user: str | None = None,
+    written: Mapping[str, tuple[float, float]] | None = None,
+    sections: Mapping[str, str] | None = None,
 ) -> dict[str, Path]:
     """One Markdown file per student in ``folder`` (created); returns the file of each student.
 
     ``reserved`` are file stems no student gets (the grades file's and the class summary's, when they are
-    written into the same folder): a student whose folder has such a name gets ``NAME_2.md``.
+    written into the same folder): a student whose folder has such a name gets ``NAME_2.md``. ``written`` and
+    ``sections`` give each student's written points and marks (see :func:`feedback_markdown`).
     """
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
@@ -265,7 +283,17 @@ def write_feedback(
         by_student.setdefault(r.student, []).append(r)
     files = feedback_paths(out, list(by_student), reserved)
     for student, mine in by_student.items():
-        replace_atomically(files[student], feedback_markdown(student, mine, seed, unsandboxed, key, as_user))
+        text = feedback_markdown(
+            student,
+            mine,
+            seed,
+            unsandboxed,
+            key,
+            as_user,
+            written=None if written is None else written.get(student, (0.0, 0.0)),
+            section=(sections or {}).get(student, ""),
+        )
+        replace_atomically(files[student], text)
     return files
 
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import os
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -22,7 +22,8 @@ from ..judge.diagnose import TITLES
 from ..model import EXERCISES, NotebookResult, Question
 from .copies import CopyReport, copies_section
 from .report import replace_atomically, verdict
-from .text import one_line
+from .text import one_line, quoted
+from .totals import StudentTotal
 
 __all__ = [
     "QuestionSummary",
@@ -32,6 +33,7 @@ __all__ = [
     "summary_note",
     "summary_path",
     "run_outcome",
+    "totals_section",
 ]
 
 #: Statuses of notebooks that were not graded at all (they count as "not submitted").
@@ -105,10 +107,14 @@ def _mistakes_cell(s: QuestionSummary) -> str:
 
 
 def class_summary(
-    results: Sequence[NotebookResult], unmatched: Sequence[str] = (), copies: CopyReport | None = None
+    results: Sequence[NotebookResult],
+    unmatched: Sequence[str] = (),
+    copies: CopyReport | None = None,
+    totals: Mapping[str, StudentTotal] | None = None,
 ) -> str:
-    """The class summary as Markdown: one table per exercise, one row per question; then the copy report
-    (:func:`~.copies.copies_section`), when one was made.
+    """The class summary as Markdown: one table per exercise, one row per question; then each student's total
+    (``totals``, :func:`~.totals.student_totals`: auto-graded, written, total, as the feedback and the gradebooks
+    give it), when given; then the copy report (:func:`~.copies.copies_section`), when one was made.
 
     >>> from puma_course.grading import EXERCISES
     >>> r = NotebookResult.blank("ann", EXERCISES["ex01_rotations"])
@@ -145,12 +151,34 @@ def class_summary(
                 f"| {s.failed} | {s.not_attempted} | {s.mean:.2f} | {_mistakes_cell(s)} |"
             )
         lines.append("")
+    if totals:
+        lines += totals_section(totals)
     if unmatched:
         lines += [f"## Files not graded ({len(unmatched)})", ""]
         lines += [f"- {one_line(u, 400)}" for u in unmatched]
         lines.append("")
     lines += copies_section(copies)
     return "\n".join(lines) + "\n"
+
+
+def totals_section(totals: Mapping[str, StudentTotal]) -> list[str]:
+    """The summary's table of students: auto-graded points, written points (– without marks), total.
+
+    >>> print("\\n".join(totals_section({"ann": StudentTotal(27, 27, 2.5, 4)})[4:]))
+    | `ann` | 27 / 27 | 2.5 / 4 | **29.5 / 31** |
+    """
+    lines = [
+        "## Totals per student",
+        "",
+        "| student | auto-graded | written | total |",
+        "| --- | --- | --- | --- |",
+    ]
+    for student in sorted(totals):
+        t = totals[student]
+        written = "–" if t.written is None else f"{t.written:g} / {t.written_max:g}"
+        total = f"**{t.total:g} / {t.top:g}**"
+        lines.append(f"| {quoted(student, 120)} | {t.auto:g} / {t.auto_max:g} | {written} | {total} |")
+    return [*lines, ""]
 
 
 def summary_path(output: str | os.PathLike[str]) -> Path:
@@ -169,6 +197,7 @@ def write_summary(
     lines: int = 8,
     unmatched: Sequence[str] = (),
     copies: CopyReport | None = None,
+    totals: Mapping[str, StudentTotal] | None = None,
 ) -> tuple[Path, str]:
     """Write :func:`class_summary` next to the grades file ``output``; return its path and a short text.
 
@@ -180,7 +209,7 @@ def write_summary(
     copy report: near-copies of the package, a lecture or a classmate, and hidden code; it changes no mark.
     """
     path = summary_path(output)
-    text = class_summary(results, unmatched, copies)
+    text = class_summary(results, unmatched, copies, totals)
     replace_atomically(path, text)  # whole or not at all; a planted link is replaced
     return path, summary_note(results, output, lines)
 

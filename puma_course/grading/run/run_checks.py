@@ -5,14 +5,13 @@ and its memory kept out of its workers' reach (split from :mod:`.runner`, which 
 from __future__ import annotations
 
 import contextlib
-import os
 import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from ..model import EXERCISES
 
-__all__ = ["reserved_stems"]
+__all__ = ["package_digest"]
 
 
 def _positive(name: str, value: float) -> float:
@@ -62,15 +61,6 @@ def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[
         raise ValueError(f"jobs: expected a whole number of notebooks at a time, at least 1, got {jobs!r}")
     for key, value in times.items():
         _positive(key, value)
-
-
-def reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
-    """The file stems in the feedback folder that belong to the grader's own files (the CSV, the class summary)."""
-    from ..output.summary import summary_path
-
-    folder = os.path.realpath(feedback)
-    own = [Path(output), summary_path(output)]
-    return [p.stem for p in own if p.suffix.lower() == ".md" and os.path.realpath(p.parent) == folder]
 
 
 def package_digest(package: Path, course: Path | None = None) -> dict[str, bytes]:

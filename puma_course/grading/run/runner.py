@@ -19,19 +19,22 @@ import concurrent.futures
 import os
 import warnings
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 from ...course import is_course
 from ..model import EXERCISES, Exercise, NotebookResult
 from ..output.copies import Handed, find_copies, handed
-from ..output.report import write_csv, write_feedback
-from ..output.summary import write_summary
+from ..output.gradebook import read_roster
+from ..output.marks import read_marks
+from ..output.writer import RunFacts, Written, write_run
 from ..plan import Plan, make_plan
 from ..secret import Secret, choose_key
+from ..settings import GradeSettings, use_bank
 from . import limits
-from .collect import Collected
+from .collect import Collected, collect
 from .notebook_run import LIMITS, _grade_data, _job, _run_worker  # noqa: F401 - _job, _run_worker: their old home
-from .run_checks import _check_args, _stop_note, _undumpable, package_digest, reserved_stems
+from .run_checks import _check_args, _stop_note, _undumpable, package_digest
 from .sandbox import Sandbox, choose
 from .stage import Stage
 from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
@@ -43,6 +46,8 @@ __all__ = [
     "make_plan",
     "grade_notebook",
     "grade",
+    "grade_run",
+    "Graded",
     "MAX_NOTEBOOK_BYTES",
     "PACKAGE_PARENT",
 ]
@@ -122,9 +127,35 @@ def _blank(student: str, ex: Exercise, state: str, note: str | None) -> Notebook
     return NotebookResult.blank(student, ex, state if state != "read" else "grader-error", note)
 
 
+@dataclass
+class Graded:
+    """A grading run's outcome: the results (sorted by student, exercise), the files written (each student's
+    total among them: :class:`~..output.writer.Written`), and the sandbox and key the run used."""
+
+    results: list[NotebookResult]
+    files: Written
+    box: Sandbox
+    key: Secret
+
+
+@dataclass(frozen=True)
+class _Run:
+    """What :func:`grade_run` chose once for the run, handed to :func:`_grade_class` with the settings."""
+
+    key: Secret
+    box: Sandbox
+    names: list[str]
+    groups: limits.Run
+    students: list[StudentFolder]
+    collected: Collected | None
+
+
+_DEFAULTS = (None, None, 2, 10.0, 60.0, None, None, None, "auto", 120.0, (), True, None, None)
+
+
 def grade(
-    submissions: str | os.PathLike[str],
-    output: str | os.PathLike[str],
+    submissions: GradeSettings | str | os.PathLike[str],
+    output: str | os.PathLike[str] | None = None,
     feedback: str | os.PathLike[str] | None = None,
     jobs: int = 2,
     timeout_cell: float = 10.0,
@@ -141,6 +172,11 @@ def grade(
     collected: Collected | None = None,
 ) -> list[NotebookResult]:
     """Grade ``submissions/<student>/<exercise>.ipynb`` for every student folder and exercise.
+
+    ``grade(settings)`` takes a :class:`~..settings.GradeSettings` (everything a run needs, the written marks,
+    gradebooks and question bank among them); the keyword form ``grade(submissions, output, feedback=..., ...)``
+    builds one from its arguments. Either way :func:`grade_run` grades and :func:`~..output.writer.write_run`
+    writes every file once, from the same merged results.
 
     Writes ``output`` (CSV: see :func:`~puma_course.grading.output.report.write_csv`), the class summary next
     to it (:func:`~.summary.write_summary`) and, if ``feedback`` is given, one Markdown file per student.
@@ -159,70 +195,106 @@ def grade(
     its folder): its students are graded instead of the folder's sub-folders, and the CSV gains a
     ``late`` column. Returns the results (sorted by student, exercise).
     """
-    sub_dir = Path(submissions)
-    names = list(exercises) if exercises else list(EXERCISES)
-    times = {"timeout_cell": timeout_cell, "timeout_total": timeout_total, "timeout_student": timeout_student}
-    _check_args(sub_dir, names, jobs, times)
-    key = choose_key(secret, seed)
-    box = _box(sandbox)
+    given: tuple[object, ...] = (output, feedback, jobs, timeout_cell, timeout_total, seed, exercises, progress)
+    given += (sandbox, timeout_student, tuple(private), cgroups, secret, collected)
+    if isinstance(submissions, GradeSettings):
+        if given != _DEFAULTS:
+            raise ValueError("grade: expected either a GradeSettings alone or the keyword arguments, got both")
+        return grade_run(submissions).results
+    if output is None:
+        raise ValueError("output: expected the path of the grades CSV, got None")
+    settings = GradeSettings(
+        submissions,
+        output,
+        feedback=feedback,
+        jobs=jobs,
+        timeout_cell=timeout_cell,
+        timeout_total=timeout_total,
+        timeout_student=timeout_student,
+        seed=seed,
+        secret=secret,
+        sandbox=sandbox,
+        private=private,
+        cgroups=cgroups,
+        exercises=exercises,
+        collected=collected,
+        progress=progress,
+    )
+    return grade_run(settings).results
+
+
+def grade_run(settings: GradeSettings) -> Graded:
+    """Grade the class ``settings`` describe and write its files (:func:`~..output.writer.write_run`).
+
+    Before any notebook runs, in this order: the bank (``settings.bank``), the exercises, the students (the
+    folder's or the platform download's), the written marks (a bad marks file is a ``ValueError`` naming its
+    row and column, and nothing is graded), Moodle's roster, the key (once) and the sandbox (once).
+    """
+    use_bank(settings.bank)
+    sub_dir = settings.submissions
+    names = list(settings.exercises) or list(EXERCISES)
+    times = {
+        "timeout_cell": settings.timeout_cell,
+        "timeout_total": settings.timeout_total,
+        "timeout_student": settings.timeout_student,
+    }
+    _check_args(sub_dir, names, settings.jobs, times)
+    collected = settings.collected
+    if collected is None and settings.layout != "folders":
+        collected = collect(sub_dir, settings.layout, names)
+    try:
+        students = scan(sub_dir) if collected is None else collected.folders()
+    except OSError as exc:
+        raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
+    marks = read_marks(settings.marks, [s.name for s in students], names) if settings.marks else None
+    roster = read_roster(settings.roster) if settings.roster is not None else None
+    key = choose_key(settings.secret, settings.seed)
+    box = _box(settings.sandbox)
     if box.kind != "bwrap":
-        warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=2)
+        warnings.warn(f"grading WITHOUT the operating-system sandbox: {box.reason}", SandboxWarning, stacklevel=3)
+    cgroups = settings.cgroups
     groups = cgroups if isinstance(cgroups, limits.Run) else limits.open_run(enabled=bool(cgroups))
     try:
-        return _grade_class(
-            sub_dir,
-            output,
-            feedback,
-            jobs,
-            timeout_cell,
-            timeout_total,
-            key,
-            names,
-            progress,
-            box,
-            timeout_student,
-            private,
-            groups,
-            collected,
-        )
+        results, kept = _grade_class(settings, _Run(key, box, names, groups, students, collected))
+        limits_label = f"{groups.label}; {limits.call_limit(groups, settings.timeout_cell)}"
     finally:
         if not isinstance(cgroups, limits.Run):
             groups.close()
+    facts = RunFacts(tuple(names), key, box, limits_label, collected, find_copies(kept))
+    files = write_run(
+        results,
+        settings.output,
+        facts,
+        feedback=settings.feedback,
+        marks=marks,
+        gradebooks=settings.gradebooks,
+        roster=roster,
+    )
+    return Graded(results, files, box, key)
 
 
-def _grade_class(
-    sub_dir: Path,
-    output: str | os.PathLike[str],
-    feedback: str | os.PathLike[str] | None,
-    jobs: int,
-    timeout_cell: float,
-    timeout_total: float,
-    key: Secret,
-    names: list[str],
-    progress: Callable[[NotebookResult], None] | None,
-    box: Sandbox,
-    timeout_student: float,
-    private: Sequence[str | os.PathLike[str]],
-    groups: limits.Run,
-    collected: Collected | None,
-) -> list[NotebookResult]:
+def _grade_class(settings: GradeSettings, run: _Run) -> tuple[list[NotebookResult], list[Handed]]:
+    """Grade every student's notebooks (``settings.jobs`` students at a time); the results, sorted, and each
+    notebook's own code for the copy report."""
+    sub_dir, key, box, names, groups, collected = (
+        settings.submissions, run.key, run.box, run.names, run.groups, run.collected
+    )  # fmt: skip
+    jobs, timeout_cell, timeout_total = settings.jobs, settings.timeout_cell, settings.timeout_total
+    timeout_student, progress, feedback = settings.timeout_student, settings.progress, settings.feedback
     if not groups.enforced:
         warnings.warn(
-            f"notebook limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", LimitsWarning, stacklevel=3
+            f"notebook limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", LimitsWarning, stacklevel=4
         )
     groups.share(jobs)
 
     def read(s: StudentFolder) -> StudentFiles:
         return read_student(sub_dir, s, names) if collected is None else collected.read(s, names)
 
-    try:
-        students = scan(sub_dir) if collected is None else collected.folders()
-    except OSError as exc:
-        raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
+    students = run.students
     # every expected value, each student's own, before any child runs
     plans = {(s.name, name): make_plan(EXERCISES[name], key, s.name) for s in students for name in names}
     package_before = package_digest(_PACKAGE_DIR, EXERCISES.course)
-    hidden = [_PACKAGE_DIR, *_checkouts(), sub_dir, Path(output), *(Path(p) for p in private)]
+    hidden = [_PACKAGE_DIR, *_checkouts(), sub_dir, settings.output, *settings.private]
     hidden += [Path(feedback)] if feedback is not None else []
     hidden += [Path(key.source)] if key.seed is None and key.source not in ("", "one-off") else []
     stage_in = box.scratch.path if box.scratch else None
@@ -307,26 +379,6 @@ def _grade_class(
             "may have tampered with them, so the grades of notebooks graded afterwards are not reliable. "
             "Grade with the sandbox, as a user who cannot write the package.",
             GradingIntegrityWarning,
-            stacklevel=2,
+            stacklevel=4,
         )
-    late = None if collected is None else collected.late()
-    write_csv(
-        output,
-        results,
-        names,
-        seed=key.seed,
-        sandbox=box.label,
-        secret=key.fingerprint,
-        late=late,
-        limits=f"{groups.label}; {limits.call_limit(groups, timeout_cell)}",
-    )
-    if feedback is not None:
-        unsandboxed = box.reason if box.kind != "bwrap" else None
-        user = getattr(box, "user", None)  # AsUser (Gradescope): alone, as an unprivileged user
-        as_user = user.name if box.kind == "user" and user is not None else None
-        reserved = reserved_stems(output, feedback)
-        write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=reserved, key=key, as_user=as_user)
-    write_summary(
-        results, output, unmatched=collected.problems if collected is not None else (), copies=find_copies(kept)
-    )
-    return results
+    return results, kept
