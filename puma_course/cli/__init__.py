@@ -7,6 +7,7 @@
                       [--timeout-cell S] [--timeout-total S] [--timeout-student S] [--secret FILE | --seed N]
                       [--sandbox auto|bwrap|none] [--exercise NAME ...] [--marks FILE ...]
                       [--layout folders|canvas|moodle] [--gradebook canvas|moodle|wide ...]
+    puma-course merge SHARD.json ... -o grades.csv [--secret FILE | --seed N] [...]          (merge.py)
     puma-course collect-written SUBMISSIONS -o DIR [--anonymise] ...                        (written.py)
     puma-course limits show | delegate --user NAME [--undo]                                 (limits.py)
     puma-course gradescope EXERCISE -o autograder.zip [--course DIR]                        (gradescope.py)
@@ -38,7 +39,7 @@ from typing import Any
 
 from ..course import CourseNotFoundError
 from ..extras import MissingExtraError, require_extra
-from . import check, grade, gradescope, lab, limits, publish, release, teach, written
+from . import check, grade, gradescope, lab, limits, merge, publish, release, teach, written
 from .help import BROKEN_PIPE, command_list, drop_stdout
 from .lab import CONTENTS_MANAGER, lab_command
 from .options import course_option
@@ -51,6 +52,7 @@ PARSERS: tuple[Callable[[Any, argparse.ArgumentParser], None], ...] = (
     check.add_parser,  # check
     release.add_parser,  # release
     grade.add_parser,  # grade
+    merge.add_parser,  # merge
     written.add_parser,  # collect-written
     limits.add_parser,  # limits
     gradescope.add_parser,  # gradescope
@@ -64,6 +66,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "check": check.run,
     "release": release.run,
     "grade": grade.run,
+    "merge": merge.run,
     "collect-written": written.run,
     "limits": limits.run,
     "gradescope": gradescope.run,

@@ -5,6 +5,7 @@
                       [--sandbox auto|bwrap|none] [--exercise NAME ...] [--quiet]
                       [--marks FILE ...] [--layout folders|canvas|moodle]
                       [--gradebook canvas|moodle|wide ...] [--roster MOODLE-EXPORT.csv]
+                      [--shard K/N [--shard-file FILE]]
 
 Without ``--exercise`` it grades the course's exercises that some student handed in. ``--marks`` (the filled-in
 files of ``collect-written``) are checked before grading (exit code 2, naming the file, row and column of the
@@ -95,6 +96,20 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         default=None,
         help="also write, next to the CSV, one row per student in this platform's grade-import format "
         "(repeatable): canvas, moodle or wide (a plain spreadsheet)",
+    )
+    gr.add_argument(
+        "--shard",
+        default=None,
+        metavar="K/N",
+        help="grade only part K of N of the class (a stable split by student name) and write a shard file for "
+        "puma-course merge (Slurm job arrays, Kubernetes Indexed Jobs: docs/scaling.md)",
+    )
+    gr.add_argument(
+        "--shard-file",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help="where --shard writes its shard file (default: <CSV stem>.shard.json beside the CSV)",
     )
     gr.add_argument(
         "--roster",
@@ -309,6 +324,8 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
         roster=args.roster,
         marks=args.marks or (),
         bank=root,
+        shard=args.shard,
+        shard_file=args.shard_file,
     )
     return settings, box, groups
 
@@ -326,3 +343,5 @@ def report_written(args: argparse.Namespace, files: Any, collected: Any) -> None
         print(f"gradebook ({fmt}): {path}")
         for note in notes:
             print(f"  {note}", file=sys.stderr)
+    if files.shard is not None:
+        print(f"shard {args.shard}: {files.shard} (puma-course merge combines it with the other parts)")

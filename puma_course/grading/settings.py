@@ -22,6 +22,7 @@ from .run import limits
 from .run.collect import Collected
 from .run.sandbox import MODES, Sandbox
 from .secret import Secret
+from .shards import Shard
 
 __all__ = ["GradeSettings", "LAYOUTS", "GRADEBOOKS", "use_bank"]
 
@@ -64,6 +65,9 @@ class GradeSettings:
       merged into every file written);
     * ``bank``: the question bank graded with: a :class:`~.model.Bank`, or the course folder holding ``bank/``
       (None: the bank already loaded, else the course found from the current folder);
+    * ``shard``: grade only part K of N of the class (:class:`~.shards.Shard`, a stable split by student) and
+      write a shard file (``shard_file``; default ``<output stem>.shard.json`` next to the CSV) that
+      ``puma-course merge`` combines with the other parts (:mod:`.shards`);
     * ``progress``: called with each notebook's result as it is graded.
     """
 
@@ -86,6 +90,8 @@ class GradeSettings:
     roster: Path | None = None
     marks: tuple[Path, ...] = ()
     bank: Bank | Path | None = None
+    shard: Shard | None = None
+    shard_file: Path | None = None
     progress: Callable[[NotebookResult], None] | None = field(default=None, compare=False)
 
     def __init__(
@@ -109,6 +115,8 @@ class GradeSettings:
         roster: PathLike | None = None,
         marks: Sequence[PathLike] | None = None,
         bank: Bank | PathLike | None = None,
+        shard: Shard | str | None = None,
+        shard_file: PathLike | None = None,
         progress: Callable[[NotebookResult], None] | None = None,
     ) -> None:
         if layout not in LAYOUTS:
@@ -119,6 +127,8 @@ class GradeSettings:
         for fmt in books:
             if fmt not in GRADEBOOKS:
                 raise ValueError(f"gradebook: expected one of {', '.join(GRADEBOOKS)}, got {fmt!r}")
+        if shard_file is not None and shard is None:
+            raise ValueError(f"shard_file: expected only together with a shard (K/N), got {str(shard_file)!r} alone")
         if isinstance(exercises, str):
             raise ValueError(f"exercises: expected a list of exercise names, got the string {exercises!r}")
         values: dict[str, Any] = {
@@ -141,6 +151,8 @@ class GradeSettings:
             "roster": None if roster is None else Path(roster),
             "marks": _paths(marks, "marks"),
             "bank": bank if bank is None or isinstance(bank, Bank) else Path(bank),
+            "shard": shard if shard is None or isinstance(shard, Shard) else Shard.parse(shard),
+            "shard_file": None if shard_file is None else Path(shard_file),
             "progress": progress,
         }
         for name, value in values.items():

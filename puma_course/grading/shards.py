@@ -31,7 +31,17 @@ from typing import Any
 
 from .model import NotebookResult
 
-__all__ = ["FORMAT", "Shard", "ShardFile", "ShardError", "write_shard", "read_shard", "read_shards"]
+__all__ = [
+    "FORMAT",
+    "Shard",
+    "ShardFile",
+    "ShardError",
+    "shard_path",
+    "run_facts",
+    "write_shard",
+    "read_shard",
+    "read_shards",
+]
 
 #: The shard file's format name and version (the file's ``format`` field).
 FORMAT = "puma-course-shard/1"
@@ -85,6 +95,11 @@ class ShardFile:
     exercises: tuple[str, ...]
     students: tuple[str, ...]
     results: tuple[NotebookResult, ...]
+    #: what the run's files report besides the results: the public seed (or None), the sandbox's kind and reason,
+    #: the limits' label and the hand-in layout (``merge`` refuses parts that differ in any of them)
+    facts: dict[str, Any] = dataclasses.field(default_factory=dict)
+    #: each notebook's own code, for the copy report over the whole class (:class:`.output.copies.Handed` fields)
+    handed: tuple[dict[str, Any], ...] = ()
     path: Path | None = None
 
     def to_json(self) -> dict[str, Any]:
@@ -96,6 +111,8 @@ class ShardFile:
             "exercises": list(self.exercises),
             "students": list(self.students),
             "results": [dataclasses.asdict(r) for r in self.results],
+            "facts": self.facts,
+            "handed": list(self.handed),
         }
 
 
@@ -110,6 +127,22 @@ def _result(raw: Any, where: str) -> NotebookResult:
         ):
             raise ShardError(f"{where}: expected finite numbers in {key}, got {values!r}")
     return NotebookResult(**raw)
+
+
+def shard_path(output: str | os.PathLike[str]) -> Path:
+    """Where ``grade --shard K/N -o FILE`` writes its shard file by default: ``<FILE's stem>.shard.json`` beside it.
+
+    >>> shard_path("out/part-2.csv").as_posix()
+    'out/part-2.shard.json'
+    """
+    out = Path(output)
+    return out.with_name(f"{out.stem}.shard.json")
+
+
+def run_facts(key: Any, box: Any, limits: str, layout: str) -> dict[str, Any]:
+    """What a part's files report besides its results (the key's public seed, the sandbox, the limits, the
+    layout), as the shard file keeps them: parts that differ in any of them do not merge."""
+    return {"seed": key.seed, "sandbox": box.kind, "sandbox_reason": box.reason, "limits": limits, "layout": layout}
 
 
 def write_shard(path: str | os.PathLike[str], shard_file: ShardFile) -> Path:
@@ -136,16 +169,18 @@ def read_shard(path: str | os.PathLike[str]) -> ShardFile:
         shard = Shard.parse(data["shard"])
         key, version = str(data["key"]), str(data["course_version"])
         exercises, students = tuple(map(str, data["exercises"])), tuple(map(str, data["students"]))
-        raw = data["results"]
+        raw, facts, handed = data["results"], data.get("facts", {}), data.get("handed", [])
     except (KeyError, TypeError, ValueError) as exc:
         raise ShardError(f"{p}: a shard file with a missing or bad field: {exc}") from exc
     if not isinstance(raw, list):
         raise ShardError(f"{p}: expected a list of results, got {type(raw).__name__}")
+    if not isinstance(facts, dict) or not isinstance(handed, list) or not all(isinstance(h, dict) for h in handed):
+        raise ShardError(f"{p}: expected facts as a mapping and handed as a list of mappings")
     results = tuple(_result(r, f"{p}, result {i + 1}") for i, r in enumerate(raw))
     strays = sorted({r.student for r in results} - set(students))
     if strays:
         raise ShardError(f"{p}: results for students the shard does not list: {', '.join(strays)}")
-    return ShardFile(shard, key, version, exercises, students, results, p)
+    return ShardFile(shard, key, version, exercises, students, results, facts, tuple(handed), p)
 
 
 def _one(files: Sequence[ShardFile], what: str, value: Any) -> None:
@@ -170,6 +205,8 @@ def read_shards(paths: Sequence[str | os.PathLike[str]]) -> tuple[list[ShardFile
     _one(files, "course versions", lambda f: f.course_version)
     _one(files, "splits (N in --shard K/N)", lambda f: f.shard.count)
     _one(files, "exercise lists", lambda f: f.exercises)
+    for fact in ("seed", "sandbox", "sandbox_reason", "limits", "layout"):
+        _one(files, f"settings ({fact})", lambda f, fact=fact: f.facts.get(fact))
     count = files[0].shard.count
     by_index: dict[int, list[str]] = {}
     for f in files:

@@ -63,6 +63,7 @@ class Written:
     feedback: dict[str, Path] = field(default_factory=dict)
     gradebooks: list[tuple[str, Path, list[str]]] = field(default_factory=list)
     marked: int | None = None  # answers with marks (None: no marks given)
+    shard: Path | None = None  # the shard file written (``grade --shard K/N``), for ``puma-course merge``
 
 
 def reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:

@@ -16,12 +16,14 @@ wording of every message, happen here (:mod:`.events`). Results go to a CSV and 
 from __future__ import annotations
 
 import concurrent.futures
+import dataclasses
 import os
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from ... import __version__
 from ...course import is_course
 from ..model import EXERCISES, Exercise, NotebookResult
 from ..output.copies import Handed, find_copies, handed
@@ -31,6 +33,7 @@ from ..output.writer import RunFacts, Written, write_run
 from ..plan import Plan, make_plan
 from ..secret import Secret, choose_key
 from ..settings import GradeSettings, use_bank
+from ..shards import ShardFile, run_facts, shard_path, write_shard
 from . import limits
 from .collect import Collected, collect
 from .notebook_run import LIMITS, _grade_data, _job, _run_worker  # noqa: F401 - _job, _run_worker: their old home
@@ -247,6 +250,8 @@ def grade_run(settings: GradeSettings) -> Graded:
     except OSError as exc:
         raise ValueError(f"submissions: expected a readable folder, got {str(sub_dir)!r} ({exc.strerror})") from None
     marks = read_marks(settings.marks, [s.name for s in students], names) if settings.marks else None
+    if settings.shard is not None:  # part K of N: the students whose name hashes to it (marks checked for all)
+        students = [s for s in students if settings.shard.owns(s.name)]
     roster = read_roster(settings.roster) if settings.roster is not None else None
     key = choose_key(settings.secret, settings.seed)
     box = _box(settings.sandbox)
@@ -270,6 +275,20 @@ def grade_run(settings: GradeSettings) -> Graded:
         gradebooks=settings.gradebooks,
         roster=roster,
     )
+    if settings.shard is not None:
+        files.shard = write_shard(
+            settings.shard_file or shard_path(settings.output),
+            ShardFile(
+                settings.shard,
+                key.fingerprint,
+                __version__,
+                tuple(names),
+                tuple(s.name for s in students),
+                tuple(results),
+                run_facts(key, box, limits_label, settings.layout),
+                tuple(dataclasses.asdict(h) for h in kept),
+            ),
+        )
     return Graded(results, files, box, key)
 
 
