@@ -4,7 +4,9 @@
   ``x._y`` on a name bound to an imported module of the package, or a private module (``_ops.py``)
   imported from outside the package that holds it. A module's private names are its own; a private
   module (``judge/judges/_poses.py``, ``_validate.py``) may be imported by the modules of the package
-  that holds it (and that package's subpackages), but its underscore names may not.
+  that holds it and of that package's subpackages (``from .._validate import as_array``), but its
+  underscore names may not, and only the package's own modules may take it by name
+  (``from . import _poses``; ``from .. import _version`` in a subpackage is reported).
 * **Import circles**: strongly connected components of the graph "module A imports module B",
   counting imports at module level and inside functions alike (a late import hides a circle, it
   does not remove it). Imports under ``if TYPE_CHECKING:`` are left out: they never run.
@@ -12,6 +14,11 @@
 An import ``from pkg import name`` is an edge to ``pkg.name`` when that is a module, else to ``pkg``;
 ``import a.b`` is an edge to ``a.b``. Running a submodule also runs its package's ``__init__``, but
 that is not counted as an edge (every package would otherwise be a circle with its submodules).
+
+Why ``ast`` and not a library: grimp (pip-installable; import-linter is built on it) gives the
+same module graph, but it records which module imports which (and the line as text), not the
+*names* taken, so the private-name check would still be written here; the circle check is then
+thirty lines of Tarjan. One standard-library reader for both keeps CI free of another dependency.
 
 Used by tests/test_architecture.py on ``puma_course``; the functions take any package folder so the
 tests can plant a violation in a small package under ``tmp_path`` and see it reported.
