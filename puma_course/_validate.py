@@ -26,6 +26,7 @@ __all__ = [
     "MAX_MAGNITUDE",
     "check_broadcast",
     "as_array",
+    "as_angle",
     "as_rotation",
     "as_transform",
     "as_positive",
@@ -144,6 +145,22 @@ def as_array(
     if max_magnitude is not None:
         check_magnitude(arr, name, max_magnitude)
     return arr
+
+
+def as_angle(value: Any, name: str = "angle") -> np.ndarray:
+    """Return ``value`` as angles in radians: a number (shape ()) or an array of shape (N,).
+
+    >>> as_angle([0.1, 0.2], "phi")
+    array([0.1, 0.2])
+    >>> as_angle(np.zeros((2, 2)), "phi")
+    Traceback (most recent call last):
+    ...
+    ValueError: phi: expected a number or an array of shape (N,), got an array of shape (2, 2)
+    """
+    t = as_array(value, name, what="an angle in radians (a number, or an array of shape (N,))")
+    if t.ndim > 1:
+        raise ValueError(f"{name}: expected a number or an array of shape (N,), got an array of shape {t.shape}")
+    return t
 
 
 def check_magnitude(arr: np.ndarray, name: str, limit: float = MAX_MAGNITUDE) -> None:

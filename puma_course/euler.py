@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import as_rotation, check_broadcast
-from .transforms import _angle, rotx, roty, rotz, wrap_angle  # noqa: F401  (the examples below use them)
+from ._validate import as_angle, as_rotation, check_broadcast
+from .transforms import rotx, roty, rotz, wrap_angle  # noqa: F401  (the examples below use them)
 
 __all__ = ["rotation_from_zyz", "zyz_from_rotation", "rotation_from_rpy", "rpy_from_rotation", "EULER_SINGULAR_TOL"]
 
@@ -30,7 +30,7 @@ def rotation_from_zyz(phi: Any, theta: Any, psi: Any) -> np.ndarray:
     >>> np.allclose(rotation_from_zyz(0.1, 0.2, 0.3), rotz(0.1) @ roty(0.2) @ rotz(0.3))
     True
     """
-    a, b, c = _angle(phi, "phi"), _angle(theta, "theta"), _angle(psi, "psi")
+    a, b, c = as_angle(phi, "phi"), as_angle(theta, "theta"), as_angle(psi, "psi")
     check_broadcast(phi=a.shape, theta=b.shape, psi=c.shape)
     (ca, sa), (cb, sb), (cc, sc) = ((np.cos(x), np.sin(x)) for x in np.broadcast_arrays(a, b, c))
     # entry by entry, no matrix product: a BLAS kernel would decide the last bit (README)
@@ -67,7 +67,7 @@ def zyz_from_rotation(R: Any, *, psi: Any = 0.0) -> np.ndarray:
     array([0.5, 0. , 0. ])
     """
     R = as_rotation(R, "R", batch=True)
-    psi_rep = _angle(psi, "psi")
+    psi_rep = as_angle(psi, "psi")
     check_broadcast(R=R.shape[:-2], psi=psi_rep.shape)
     sin_t = np.hypot(R[..., 0, 2], R[..., 1, 2])
     singular = sin_t < EULER_SINGULAR_TOL
@@ -98,7 +98,7 @@ def rotation_from_rpy(roll: Any, pitch: Any, yaw: Any) -> np.ndarray:
     >>> np.allclose(rotation_from_rpy(0.1, 0.2, 0.3), rotz(0.3) @ roty(0.2) @ rotx(0.1))
     True
     """
-    y, p, r = _angle(yaw, "yaw"), _angle(pitch, "pitch"), _angle(roll, "roll")
+    y, p, r = as_angle(yaw, "yaw"), as_angle(pitch, "pitch"), as_angle(roll, "roll")
     check_broadcast(yaw=y.shape, pitch=p.shape, roll=r.shape)
     (cy, sy), (cp, sp), (cr, sr) = ((np.cos(x), np.sin(x)) for x in np.broadcast_arrays(y, p, r))
     # entry by entry, no matrix product (see rotation_from_zyz)
@@ -123,7 +123,7 @@ def rpy_from_rotation(R: Any, *, roll: Any = 0.0) -> np.ndarray:
     array([ 0.        ,  1.57079633, -0.4       ])
     """
     R = as_rotation(R, "R", batch=True)
-    roll_rep = _angle(roll, "roll")
+    roll_rep = as_angle(roll, "roll")
     check_broadcast(R=R.shape[:-2], roll=roll_rep.shape)
     cos_p = np.hypot(R[..., 0, 0], R[..., 1, 0])
     singular = cos_p < EULER_SINGULAR_TOL

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import MAX_MAGNITUDE, as_array, as_rotation, as_tol, as_transform, check_broadcast
+from ._validate import MAX_MAGNITUDE, as_angle, as_array, as_rotation, as_tol, as_transform, check_broadcast
 
 __all__ = [
     "rotx",
@@ -45,15 +45,8 @@ __all__ = [
 ]
 
 
-def _angle(angle: Any, name: str = "angle") -> np.ndarray:
-    t = as_array(angle, name, what="an angle in radians (a number, or an array of shape (N,))")
-    if t.ndim > 1:
-        raise ValueError(f"{name}: expected a number or an array of shape (N,), got an array of shape {t.shape}")
-    return t
-
-
 def _rot(angle: Any, axis: int, name: str = "angle") -> np.ndarray:
-    t = _angle(angle, name)
+    t = as_angle(angle, name)
     c, s = np.cos(t), np.sin(t)
     R = np.zeros(t.shape + (3, 3))
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
@@ -117,7 +110,7 @@ def rodrigues(axis: Any, angle: Any) -> np.ndarray:
     True
     """
     a = as_array(axis, "axis", (3,), batch=True)
-    t = _angle(angle)
+    t = as_angle(angle)
     check_broadcast(axis=a.shape[:-1], angle=np.shape(t))  # not numpy's "could not be broadcast" (issue 21)
     # scaled by its largest entry before squaring (issue 21: [1e200, 0, 0] squared to inf gave the identity)
     big = np.max(np.abs(a), axis=-1, keepdims=True)

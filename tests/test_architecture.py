@@ -1,7 +1,8 @@
 """The package's folders are its layers (docs/architecture.md): these tests keep them so.
 
-A lower layer never imports a higher one; no module grows past about 400 lines; there is one
-angle-wrapping rule; ``import puma_course`` loads numpy only (tests/test_package.py).
+A lower layer never imports a higher one; no module takes another's private names; no import
+circle (tests/architecture.py reads the graph); there is one angle-wrapping rule; ``import
+puma_course`` loads numpy only (tests/test_package.py).
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from tests import architecture
 from tests.support import ROOT
 
 PKG = ROOT / "puma_course"
@@ -96,10 +98,137 @@ def test_the_layer_test_would_catch_a_violation(tmp_path):
     assert imported_layers(bad, ("kinematics", "violation")) == {"viz", "grading"}
 
 
-@pytest.mark.parametrize("path", modules(), ids=lambda p: str(p.relative_to(PKG)))
-def test_no_module_over_about_400_lines(path):
-    lines = len(path.read_text(encoding="utf-8").splitlines())
-    assert lines <= 420, f"{path.relative_to(ROOT)} has {lines} lines: split it by job"
+#: Violations other helpers of this session remove in parallel (issue 32): the grading engine's
+#: (helper ``layout``) and the command line's (helper ``cli``). Each entry must still be a violation
+#: (the test fails otherwise), so this set only shrinks; it is emptied when their work is merged.
+KNOWN_PRIVATE = {
+    # grading/judge/judges: the pose helpers' underscore names, taken from their private module
+    *(
+        f"puma_course.grading.judge.judges.{m} takes puma_course.grading.judge.judges._poses.{n}"
+        for m, names in {
+            "solutions": ("_dist", "_floats", "_off", "_radians", "_wrapped"),
+            "tables": ("_constant", "_floats", "_off"),
+        }.items()
+        for n in names
+    ),
+    "puma_course.grading.output.gradebook takes puma_course.grading.output.report._replace_atomically",
+    *(
+        f"puma_course.grading.run.{m} takes puma_course.grading.run.cgroupfs.{n}"
+        for m, names in {
+            "delegation": ("_rmdir", "_v2_mount", "_write"),
+            "limits": ("_int", "_key", "_own_groups", "_rmdir", "_v2_mount", "_write"),
+        }.items()
+        for n in names
+    ),
+    *(
+        f"puma_course.grading.run.runner takes puma_course.grading.run.{m}.{n}"
+        for m, names in {
+            "notebook_run": ("_grade_data", "_job", "_run_worker"),
+            "run_checks": ("_check_args", "_reserved_stems", "_stop_note", "_undumpable"),
+        }.items()
+        for n in names
+    ),
+    "puma_course.grading.gradescope takes puma_course._version",
+    # the command line (helper cli)
+    "puma_course.cli_written takes puma_course.grading.run.run_checks._reserved_stems",
+}
+KNOWN_CIRCLES = {
+    "puma_course.grading.judge.angle_mistakes <-> puma_course.grading.judge.diagnose",
+    "puma_course.grading.run.delegation <-> puma_course.grading.run.limits",
+}
+
+
+def test_no_module_takes_another_modules_private_names():
+    """A module's underscore names are its own: no ``from .x import _y``, no ``x._y``, no private module
+    imported from outside the package that holds it (tests/architecture.py says exactly what counts)."""
+    found = architecture.private_imports(PKG)
+    assert sorted(found - KNOWN_PRIVATE) == [], "private names taken across modules: make them public or move them"
+    assert sorted(KNOWN_PRIVATE - found) == [], "fixed: remove these from KNOWN_PRIVATE"
+
+
+def test_no_import_circles():
+    """No two modules import each other, directly or round a longer loop, at module level or inside a
+    function (``if TYPE_CHECKING:`` imports excepted: they never run). Move what both sides share into a
+    module both import; a late import only hides the circle."""
+    found = architecture.import_circles(PKG)
+    assert sorted(found - KNOWN_CIRCLES) == [], "import circles: move what both sides share into a third module"
+    assert sorted(KNOWN_CIRCLES - found) == [], "fixed: remove these from KNOWN_CIRCLES"
+
+
+def _plant(root: Path, files: dict[str, str]) -> Path:
+    """A small package ``pkg`` under ``root`` with the given files (path -> source)."""
+    for name, text in files.items():
+        path = root / "pkg" / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+    return root / "pkg"
+
+
+def test_the_private_name_check_would_catch_a_violation(tmp_path):
+    """Each form is reported; a public name, a dunder, a private module used inside its own package and
+    an underscore alias of a public name are not."""
+    pkg = _plant(
+        tmp_path,
+        {
+            "__init__.py": "from ._version import __version__\n",
+            "_version.py": "__version__ = '1'\n",
+            "a.py": "_y = 1\nz = 2\n",
+            "sub/__init__.py": "",
+            "sub/_helpers.py": "_h = 1\nh = 2\n",
+            "sub/ok.py": "from ._helpers import h\nfrom . import _helpers\nfrom .. import __version__\n"
+            "from ..a import z as _z\nimport html as _html\nfrom .._version import __version__ as v\n",
+            "sub/bad.py": "from ..a import _y, z\nfrom ._helpers import _h\n",
+            "far.py": "from .sub import _helpers\nfrom . import _version\n",  # _version: its own package's
+            "sub/far.py": "from .. import _version\n",
+            "far2.py": "from .sub._helpers import h\n",
+            "attr1.py": "from . import a\n\n\ndef f():\n    return a._y + a.z\n",
+            "attr2.py": "import pkg.a\n\nv = pkg.a._y\n",
+            "attr3.py": "import pkg.a as alias\n\nv = alias._y\n",
+        },
+    )
+    assert architecture.private_imports(pkg) == {
+        "pkg.sub.bad takes pkg.a._y",
+        "pkg.sub.bad takes pkg.sub._helpers._h",
+        "pkg.far takes pkg.sub._helpers",  # a private module of another package
+        "pkg.sub.far takes pkg._version",  # a private name of pkg, taken by name from a subpackage
+        "pkg.far2 takes pkg.sub._helpers",
+        "pkg.attr1 takes pkg.a._y",
+        "pkg.attr2 takes pkg.a._y",
+        "pkg.attr3 takes pkg.a._y",
+    }
+
+
+def test_the_circle_check_would_catch_a_violation(tmp_path):
+    """A two-module circle closed by an import inside a function and a three-module loop are both
+    reported; an ``if TYPE_CHECKING:`` import and a package importing its own submodules are not."""
+    pkg = _plant(
+        tmp_path,
+        {
+            "__init__.py": "from .a import f\nfrom .c import g\n",
+            "a.py": "from .b import h\n\n\ndef f():\n    return h()\n",
+            "b.py": "def h():\n    from . import a\n\n    return a\n",
+            "c.py": "import pkg.d\n\ng = 1\n",
+            "d.py": "from .e import x\n",
+            "e.py": "from typing import TYPE_CHECKING\n\nfrom pkg import c\n\nif TYPE_CHECKING:\n"
+            "    from . import a\nx = 1\n",
+            "lone.py": "import typing\n\nif typing.TYPE_CHECKING:\n    from .quiet import x\n",
+            "quiet.py": "from . import lone\n\nx = 1\n",
+        },
+    )
+    assert architecture.import_circles(pkg) == {"pkg.a <-> pkg.b", "pkg.c <-> pkg.d <-> pkg.e"}
+
+
+def test_every_module_named_in_an_import_exists():
+    """No package or test file imports a ``puma_course`` module that is not there (left behind by a move)."""
+    files = modules() + sorted((ROOT / "tests").rglob("*.py"))
+    assert sorted(architecture.missing_modules(files, PKG)) == []
+
+
+def test_the_missing_module_check_would_catch_one(tmp_path):
+    pkg = _plant(tmp_path, {"__init__.py": "", "a.py": "x = 1\n"})
+    user = tmp_path / "user.py"
+    user.write_text("import pkg.a\nfrom pkg.a import x\nfrom pkg import a\nfrom pkg.gone import y\nimport pkg.b\n")
+    assert architecture.missing_modules([user], pkg) == {"user.py:4: pkg.gone", "user.py:5: pkg.b"}
 
 
 def _mod_of_pi(node: ast.AST) -> bool:

@@ -22,6 +22,7 @@ import numpy as np
 
 from .._validate import MAX_MAGNITUDE, as_array, as_choice, as_length, as_transform
 from .ik import IKBatch, IKSolutions
+from .jacobian_columns import columns_to_array, walk_columns
 from .robot import Robot
 
 __all__ = ["mdh", "Link", "DHChain"]
@@ -270,9 +271,8 @@ class DHChain(Robot):
         >>> Puma560().jacobian(np.zeros(6)).shape
         (6, 6)
         """
-        from .jacobian import geometric_jacobian
-
-        return geometric_jacobian(self, q)
+        F, batch = self._frames12(q, keep=True)  # q checked once here; the frames are the package's own
+        return columns_to_array(walk_columns(F, self._rev), batch)
 
     def ik(self, T: Any, near: Any = None) -> IKSolutions:
         """Not available for a general chain (the course's arms add their closed forms)."""

@@ -26,12 +26,12 @@ import numpy as np
 from .._validate import MAX_MAGNITUDE, as_array
 from ..transforms import wrap_angle
 from .ik_select import (  # noqa: F401 - their old home: robots, trajectories and tests import them from here
-    _revolute_mask,
     dedupe_mask,
     joint_distance,
     keep_start,
     keys_from_bits,
     nearest_index,
+    revolute_mask,
 )
 
 __all__ = [
@@ -96,7 +96,7 @@ class IKSolutions(Sequence[np.ndarray]):
         object.__setattr__(self, "labels", labels)
         object.__setattr__(self, "flags", flags)
         object.__setattr__(self, "messages", dict(self.messages))
-        object.__setattr__(self, "revolute", _revolute_mask(self.revolute, q.shape[1]))
+        object.__setattr__(self, "revolute", revolute_mask(self.revolute, q.shape[1]))
         joints = tuple(self.joints) if self.joints else tuple(f"q{j + 1}" for j in range(q.shape[1]))
         if len(joints) != q.shape[1]:
             raise ValueError(f"joints: expected {q.shape[1]} joint names, got {len(joints)}")
@@ -287,7 +287,7 @@ class IKBatch:
         N, k, n = self.q.shape
         if self.valid.shape != (N, k) or self.flags.shape != (N, k) or len(self.labels) != k:
             raise ValueError("valid, flags, labels: expected shapes (N, k), (N, k) and k matching q (N, k, n)")
-        object.__setattr__(self, "revolute", _revolute_mask(self.revolute, n))
+        object.__setattr__(self, "revolute", revolute_mask(self.revolute, n))
 
     def __len__(self) -> int:
         return int(self.q.shape[0])

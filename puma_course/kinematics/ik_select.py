@@ -17,7 +17,8 @@ from ..transforms import wrap_angle
 __all__ = ["joint_distance", "keys_from_bits"]
 
 
-def _revolute_mask(revolute: Any, n: int) -> np.ndarray:
+def revolute_mask(revolute: Any, n: int) -> np.ndarray:
+    """Which of n joints are angles: ``revolute`` as a boolean mask of shape (n,), all True when None."""
     if revolute is None:
         return np.ones(n, dtype=bool)
     mask = np.asarray(revolute)
@@ -46,7 +47,7 @@ def joint_distance(q: Any, q_ref: Any, revolute: Any = None) -> np.ndarray:
     qb = as_array(q_ref, "q_ref", what="joint vectors", max_magnitude=MAX_MAGNITUDE)
     if qa.ndim == 0 or qb.ndim == 0 or qa.shape[-1] != qb.shape[-1]:
         raise ValueError(f"q, q_ref: expected joint vectors of the same length, got shapes {qa.shape} and {qb.shape}")
-    rev = _revolute_mask(revolute, qa.shape[-1])
+    rev = revolute_mask(revolute, qa.shape[-1])
     try:
         d = qa - qb
     except ValueError:

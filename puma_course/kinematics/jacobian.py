@@ -19,6 +19,8 @@ from typing import Any
 import numpy as np
 
 from .._validate import MAX_MAGNITUDE, as_mask
+from .dh import DHChain
+from .jacobian_columns import from_axes
 
 __all__ = ["geometric_jacobian", "jacobian_from_axes"]
 
@@ -67,46 +69,7 @@ def jacobian_from_axes(axes: np.ndarray, points: np.ndarray, pe: np.ndarray, rev
             raise ValueError(f"{name}: expected finite numbers of magnitude at most {MAX_MAGNITUDE:g}, got {arr!r}")
     if np.any(np.abs(np.linalg.norm(z, axis=-1) - 1.0) > 1e-9):
         raise ValueError(f"axes: expected unit vectors (the joint axes' directions), got {z.tolist()}")
-    return _from_axes(z, p, e, rev)
-
-
-def _from_axes(z: np.ndarray, p: np.ndarray, e: np.ndarray, rev: np.ndarray) -> np.ndarray:
-    """:func:`jacobian_from_axes` for arrays the package built itself (nothing checked again)."""
-    r = rev[:, None]
-    Jv = np.where(r, np.cross(z, e[..., None, :] - p), z)
-    Jw = np.where(r, z, 0.0)
-    return np.concatenate([np.swapaxes(Jv, -1, -2), np.swapaxes(Jw, -1, -2)], axis=-2)
-
-
-def _walk_columns(F: list[tuple[Any, ...]], revolute: list[bool]) -> list[tuple[Any, ...]]:
-    """Column i of J from the 12-number frames of the column walk (:func:`~.dh._walk`, frames 0..n).
-
-    Frame i+1 holds joint i+1: its axis z (entries 2, 6, 10) and origin p (3, 7, 11); the reference
-    point is the last frame's origin. The cross product is written out, as ``np.cross`` computes it:
-    floats for one pose, (N,) arrays for a batch.
-    """
-    e = F[-1]
-    ex, ey, ez = e[3], e[7], e[11]
-    out = []
-    for f, r in zip(F[1:], revolute, strict=True):
-        zx, zy, zz = f[2], f[6], f[10]
-        if r:
-            dx, dy, dz = ex - f[3], ey - f[7], ez - f[11]
-            out.append((zy * dz - zz * dy, zz * dx - zx * dz, zx * dy - zy * dx, zx, zy, zz))
-        else:
-            out.append((zx, zy, zz, 0.0, 0.0, 0.0))
-    return out
-
-
-def columns_to_array(cols: list[tuple[Any, ...]], batch: int | None) -> np.ndarray:
-    """n columns of six entries as J (6, n), or (N, 6, n) when the entries are (N,) arrays."""
-    if batch is None:
-        return np.array(list(zip(*cols, strict=True)), dtype=float)
-    J = np.zeros((batch, 6, len(cols)))
-    for i, col in enumerate(cols):
-        for k, value in enumerate(col):
-            J[:, k, i] = value
-    return J
+    return from_axes(z, p, e, rev)
 
 
 def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
@@ -124,9 +87,6 @@ def geometric_jacobian(chain: Any, q: Any) -> np.ndarray:
            [ 1.,  0.,  0.],
            [ 1.,  1.,  1.]])
     """
-    from .dh import DHChain
-
     if not isinstance(chain, DHChain):
         raise ValueError(f"chain: expected a DH chain (Puma560(), MK3(), DHChain(...)), got {type(chain).__name__}")
-    F, batch = chain._frames12(q, keep=True)  # q checked once here; the frames are the package's own
-    return columns_to_array(_walk_columns(F, chain._rev), batch)
+    return DHChain.jacobian(chain, q)  # the column walk, also for an arm whose jacobian is a closed form

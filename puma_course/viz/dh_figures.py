@@ -18,18 +18,16 @@ from .._validate import as_array, as_length
 from ..kinematics.frame_assignment import CommonNormal, FrameWalk, common_normal, d_theta
 from ..kinematics.spaces import actuator_from_joint
 from ..transforms import homogeneous
+from .dimensions import step_dimensions_figure
 from .frames import AXIS_COLORS, frame_tightly, triad_letters
 from .labels import Label, place_labels
+from .style import AXIS_LINE, JOINT_COLOR, NORMAL_COLOR
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["draw_common_normal", "DHPicture", "draw_dh_picture", "draw_frame_walk", "draw_piston_joint",
            "plot_step_dimensions", "NORMAL_COLOR", "JOINT_COLOR"]  # fmt: skip
-
-#: Colour of a common normal, a and α (link parameters); of d and θ (joint parameters).
-NORMAL_COLOR, JOINT_COLOR = "tab:purple", "tab:brown"
-_AXIS_LINE = dict(ls="--", lw=1.2, color="0.35")
 
 
 def _seg(ax: Any, a: Any, b: Any, **kw: Any) -> list[Any]:
@@ -74,7 +72,7 @@ def draw_common_normal(ax: Any, p1: Any, u1: Any, p2: Any, u2: Any, *, sub: str 
     spans = [(-0.6 * L, L)] * 2 if spans is None else spans
     tops = []
     for f, u, (lo, hi), x in ((cn.foot1, u1n, spans[0], cn.direction), (cn.foot2, u2n, spans[1], -cn.direction)):
-        _seg(ax, f + lo * u, f + hi * u, **_AXIS_LINE)
+        _seg(ax, f + lo * u, f + hi * u, **AXIS_LINE)
         _right_angle(ax, f, x, u, 0.07 * L, NORMAL_COLOR)
         tops.append(f + hi * u)
     _seg(ax, cn.foot1, cn.foot2, color=NORMAL_COLOR, lw=3.5)
@@ -127,7 +125,7 @@ def draw_dh_picture(ax: Any, points: Any, directions: Any, *, i: str = "i", elev
     _, lab1 = draw_common_normal(ax, P[0], U[0], P[1], U[1], sub=prev, names=(prev, i), half=L, spans=spans,
                                  place=False)  # fmt: skip
     u3 = U[2] / np.linalg.norm(U[2])
-    _seg(ax, c2.foot2 - 0.6 * L * u3, c2.foot2 + L * u3, **_AXIS_LINE)
+    _seg(ax, c2.foot2 - 0.6 * L * u3, c2.foot2 + L * u3, **AXIS_LINE)
     _seg(ax, c2.foot1, c2.foot2, color=NORMAL_COLOR, lw=3.5)
     _right_angle(ax, c2.foot2, -c2.direction, u3, 0.07 * L, NORMAL_COLOR)
     _seg(ax, c1.foot2, c2.foot1, color=JOINT_COLOR, lw=5, solid_capstyle="butt")  # d_i along axis i
@@ -344,6 +342,4 @@ def plot_step_dimensions(walk: FrameWalk, k: int, *, units: str = "m", digits: i
     >>> import matplotlib.pyplot as plt
     >>> plt.close(fig)
     """
-    from .dimensions import step_dimensions_figure  # drawn there; imported here on use (no import cycle)
-
     return step_dimensions_figure(walk, k, units=units, digits=digits)

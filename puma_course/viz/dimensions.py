@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..kinematics.frame_assignment import FrameWalk
-from .dh_figures import _AXIS_LINE, JOINT_COLOR, NORMAL_COLOR
 from .frames import AXIS_COLORS
+from .style import AXIS_LINE, JOINT_COLOR, NORMAL_COLOR
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -90,7 +90,7 @@ def step_dimensions_figure(walk: FrameWalk, k: int, *, units: str = "m", digits:
     foot, end = plan(st.foot_prev), plan(O + st.a * X)
     # axis k (dashed: a joint axis), the line X_{k-1} through its foot, the normal a_k (purple)
     v_lo, v_hi = min(foot[1], 0.0) - m, max(foot[1], 0.0) + m
-    left.plot([0, 0], [v_lo, v_hi], **_AXIS_LINE)
+    left.plot([0, 0], [v_lo, v_hi], **AXIS_LINE)
     left.text(0, v_lo, f" axis {sub}", ha="left", va="bottom", color="0.3", fontsize=11)
     xp = plan(st.foot_prev + prev.x) - foot
     if np.linalg.norm(xp) > 0.5:  # X_{k-1} lies in the page: draw its line through the foot
@@ -115,7 +115,7 @@ def step_dimensions_figure(walk: FrameWalk, k: int, *, units: str = "m", digits:
     # axis k+1 through the end of the normal: a line in the page, or a circle where it stands normal to it
     zn = plan(O + nxt.z) - plan(O)
     if np.linalg.norm(zn) > 0.5:
-        left.plot(*np.stack([end - 0.8 * m * zn, end + 0.8 * m * zn]).T, **_AXIS_LINE)
+        left.plot(*np.stack([end - 0.8 * m * zn, end + 0.8 * m * zn]).T, **AXIS_LINE)
         left.text(*(end + 0.8 * m * zn), f"axis {nk}", color="0.3", ha="left", va="bottom", fontsize=11)
     else:
         into = float(np.dot(nxt.z, Y)) > 0  # +Y_k points away from the reader (the reader sits on -Y_k)
@@ -140,8 +140,8 @@ def step_dimensions_figure(walk: FrameWalk, k: int, *, units: str = "m", digits:
     # right: seen along X_k (X_k towards the reader): Z_k across, X_k x Z_k up
     W = np.cross(X, Z)
     zk1 = np.array([float(np.dot(nxt.z, Z)), float(np.dot(nxt.z, W))])
-    right.plot([-1.25, 1.25], [0, 0], **_AXIS_LINE)
-    right.plot(*np.stack([-1.25 * zk1, 1.25 * zk1]).T, **_AXIS_LINE)
+    right.plot([-1.25, 1.25], [0, 0], **AXIS_LINE)
+    right.plot(*np.stack([-1.25 * zk1, 1.25 * zk1]).T, **AXIS_LINE)
     for d, name, col in ((np.array([1.0, 0.0]), f"Z{sub}", AXIS_COLORS[2]), (zk1, f"Z{nk}", "0.2")):
         right.annotate("", tuple(d), (0, 0), arrowprops={"arrowstyle": "-|>", "color": col, "lw": 2.2,
                                                          "shrinkA": 0, "shrinkB": 0})  # fmt: skip

@@ -25,7 +25,7 @@ from ..kinematics.ik import IKSolutions, SingularityWarning
 from ..kinematics.puma560 import Puma560
 from .arms import draw_robot
 from .frames import draw_frame, set_equal, triad_letters
-from .ik_sweeps import DECIDED_JOINT, SWEPT_JOINT, branch_gaps, plot_singularity_sweeps, singularity_sweep
+from .ik_sweeps import DECIDED_JOINT, SWEPT_JOINT, as_puma, branch_gaps, plot_singularity_sweeps, singularity_sweep
 from .labels import Label, place_labels
 
 __all__ = [
@@ -41,12 +41,6 @@ __all__ = [
     "plot_wrist_flip",
     "singularity_sweep",
 ]
-
-
-def _puma(arm: Any) -> Puma560:
-    if not isinstance(arm, Puma560):
-        raise ValueError(f"arm: expected a Puma560(), got {type(arm).__name__}")
-    return arm
 
 
 # ------------------------------------------------------------------------------------------------ the wrist
@@ -68,7 +62,7 @@ def draw_wrist(ax: Any, arm: Puma560, q: Any, *, length: float = 0.07, frames: S
     17
     >>> plt.close(fig)
     """
-    arm = _puma(arm)
+    arm = as_puma(arm)
     L = as_length(length, "length", positive=True)
     if isinstance(frames, str) or not set(frames) <= {4, 5, 6}:
         raise ValueError(f"frames: expected some of the wrist frames 4, 5, 6, got {frames!r}")
@@ -117,7 +111,7 @@ def wrist_letters(ax: Any, arm: Puma560, q: Any, *, length: float = 0.07, frames
     ``subscripts`` names each axis with its frame (x₄, y₄, z₄: the frame and the axis in one text, in place of
     draw_wrist's ``{4}``), otherwise plain x, y, z. Call it when the view and the limits are final.
     """
-    arm = _puma(arm)
+    arm = as_puma(arm)
     F = arm.frames(arm.check_q(q))
     out: list[Label] = []
     for j, T in _wrist_triads(F, as_length(length, "length", positive=True), frames).items():
@@ -152,7 +146,7 @@ def plot_wrist_flip(arm: Puma560, q_noflip: Any, q_flip: Any, *, titles: Sequenc
     ['noflip', 'flip']
     >>> plt.close(fig)
     """
-    arm = _puma(arm)
+    arm = as_puma(arm)
     Q = [arm.check_q(q_noflip), arm.check_q(q_flip)]
     elev, azim = _view_of_wrist(arm.frames(Q[0]))
     fig = plt.figure(figsize=(9.0, 4.6))
@@ -188,7 +182,7 @@ def plot_solutions(arm: Puma560, solutions: IKSolutions, *, grid: float = 0.25, 
     (8, 'left/up/noflip')
     >>> plt.close(fig)
     """
-    arm = _puma(arm)
+    arm = as_puma(arm)
     if not isinstance(solutions, IKSolutions) or len(solutions) == 0:
         raise ValueError(f"solutions: expected the IKSolutions of a reachable pose, got {solutions!r}")
     grid = as_length(grid, "grid", positive=True)
@@ -233,7 +227,7 @@ def plot_shoulder_top_view(arm: Puma560, T: Any) -> Figure:
     'x [m]'
     >>> plt.close(fig)
     """
-    arm = _puma(arm)
+    arm = as_puma(arm)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SingularityWarning)
         sol = arm.ik(T)

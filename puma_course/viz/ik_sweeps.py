@@ -27,10 +27,12 @@ SWEPT_JOINT = {"shoulder": 1, "elbow": 2, "wrist": 4}
 _PARTNER = {"shoulder": 6, "elbow": 2, "wrist": 1}
 
 
-def _puma(arm: Any) -> Puma560:
-    from .ik_figures import _puma as check
-
-    return check(arm)
+def as_puma(arm: Any) -> Puma560:
+    """``arm`` if it is a :class:`Puma560`, else ``ValueError`` naming it (the figures here and in
+    :mod:`.ik_figures` draw that arm only)."""
+    if not isinstance(arm, Puma560):
+        raise ValueError(f"arm: expected a Puma560(), got {type(arm).__name__}")
+    return arm
 
 
 def branch_gaps(arm: Puma560, Q: Any) -> tuple[list[str], dict[str, np.ndarray]]:
@@ -45,7 +47,7 @@ def branch_gaps(arm: Puma560, Q: Any) -> tuple[list[str], dict[str, np.ndarray]]
     >>> labels, round(float(np.degrees(gaps["wrist"][0])), 6)  # noflip and flip: θ5 and -θ5
     (['left/up/noflip'], 120.0)
     """
-    arm = _puma(arm)
+    arm = as_puma(arm)
     Qc = np.atleast_2d(arm.check_q(Q))
     b = arm.ik_batch(arm.fk(Qc), near=Qc)
     if not b.reachable.all():  # fk of a joint vector is always reachable; only a bad input gets here
@@ -87,7 +89,7 @@ def singularity_sweep(arm: Puma560, q0: Any, word: str, *, half_width: float = m
     >>> np.degrees(s["x"]).round(1).tolist(), float(s["zero"]), s["labels"][0], s["labels"][-1]
     ([-60.0, -30.0, 0.0, 30.0, 60.0], 0.0, 'left/up/flip', 'left/up/noflip')
     """
-    arm = _puma(arm)
+    arm = as_puma(arm)
     if not isinstance(word, str) or word not in DECIDED_JOINT:
         raise ValueError(f"word: expected one of 'shoulder', 'elbow', 'wrist', got {word!r}")
     n = as_count(n, "n", minimum=3)
@@ -116,7 +118,7 @@ def plot_singularity_sweeps(arm: Puma560, q0: Any, *, half_width: float = math.r
     ['θ2 [deg]', 'θ3 [deg]', 'θ5 [deg]']
     >>> plt.close(fig)
     """
-    arm = _puma(arm)
+    arm = as_puma(arm)
     fig, axes = plt.subplots(2, 3, figsize=(11, 5.6), sharex="col")
     words = {"shoulder": ("left", "right"), "elbow": ("up", "down"), "wrist": ("noflip", "flip")}
     for c, (word, (a, b)) in enumerate(words.items()):

@@ -12,6 +12,7 @@ Typical use (in a notebook; the last expression displays the panel)::
 
 from __future__ import annotations
 
+import html
 import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -23,7 +24,7 @@ from ..kinematics.dh import mdh
 from ..kinematics.ik import IKSolutions, SingularityWarning
 from ..kinematics.robot import Robot
 from .viewer import RobotViewer, Viewer, start_q
-from .widgets import Panel, SliderList, _escape, frame_name, joint_sliders, pose_readout
+from .widgets import Panel, SliderList, frame_name, joint_sliders, pose_readout
 
 __all__ = ["RobotPanel", "robot_panel", "dh_link_panel"]
 
@@ -79,7 +80,9 @@ class RobotPanel(Panel):
                 text += "; singular: " + "; ".join(sol.messages.get(k, k) for k in sol.singular)
         else:
             text = f"no solution: {sol.reason}"
-        self.ik_status.value = f"<div style='font-size:12px; line-height:1.3; width:340px'>{_escape(text)}</div>"
+        self.ik_status.value = (
+            f"<div style='font-size:12px; line-height:1.3; width:340px'>{html.escape(text, quote=False)}</div>"
+        )
         self.viewer.show_ik(sol, selected=self.ik_selector.value)
 
     def _on_select(self, change: Any) -> None:

@@ -16,6 +16,12 @@ import matplotlib as mpl
 
 __all__ = ["COURSE_STYLE", "PROJECTOR_STYLE", "use_course_style", "use_projector_style", "projector_style"]
 
+#: Colour of a common normal, a and α (link parameters); of d and θ (joint parameters): the DH drawings
+#: (:mod:`.dh_figures`, :mod:`.dimensions`).
+NORMAL_COLOR, JOINT_COLOR = "tab:purple", "tab:brown"
+#: How the DH drawings draw a joint axis (a dashed grey line): keyword arguments of ``ax.plot``.
+AXIS_LINE: dict[str, Any] = dict(ls="--", lw=1.2, color="0.35")
+
 #: matplotlib rcParams of the course (``plt.rcParams.update(COURSE_STYLE)``)
 COURSE_STYLE: dict[str, Any] = {
     "figure.dpi": 110,

@@ -275,17 +275,17 @@ class Viewer(anywidget.AnyWidget):
 
     def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[Any, Any], dict[Any, Any]] | None:
         data = super()._repr_mimebundle_(**kwargs)
-        return _with_picture(data, self)
+        return with_picture(data, self)
 
 
 #: Written under the still picture a saved notebook (or the website) shows in place of a live viewer.
 STILL_NOTE = "A still picture: run the cell in JupyterLab to turn the view and move the arm."
 
 
-def _with_picture(data: Any, viewer: Viewer) -> Any:
+def with_picture(data: Any, viewer: Viewer) -> Any:
     """Add the viewer's static PNG to a widget's display bundle (frontends without the live model show it)."""
     if isinstance(data, tuple):  # (data, metadata)
-        return (_with_picture(data[0], viewer), data[1])
+        return (with_picture(data[0], viewer), data[1])
     if isinstance(data, dict):
         data = dict(data)
         data["image/png"] = base64.b64encode(viewer.static_png(note=STILL_NOTE)).decode("ascii")

@@ -21,6 +21,7 @@ Typical use (in a notebook; the last expression displays the panel)::
 
 from __future__ import annotations
 
+import html
 import inspect
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -29,7 +30,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from .._validate import as_array
-from .viewer import Viewer, _with_picture
+from .viewer import Viewer, with_picture
 
 __all__ = ["SliderList", "joint_sliders", "Panel", "pose_readout", "frame_name"]
 
@@ -180,10 +181,6 @@ def _call_readout(fn: Callable[..., str], q: np.ndarray, frames: np.ndarray | No
     return str(fn(q, frames) if nparams >= 2 else fn(q))
 
 
-def _escape(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-
-
 class Panel(widgets.HBox):
     """A joint panel: sliders (and a readout) on the left, a live :class:`~.viewer.Viewer` on the right.
 
@@ -259,7 +256,7 @@ class Panel(widgets.HBox):
             self.last_readout = text
             self.readout_widget.value = (
                 "<pre class='puma-readout' style='font-size:12px; line-height:1.25; margin:6px 0 0 0'>"
-                + _escape(text) + "</pre>"
+                + html.escape(text, quote=False) + "</pre>"
             )  # fmt: skip
         self.on_update(q)
 
@@ -285,4 +282,4 @@ class Panel(widgets.HBox):
         self._update()
 
     def _repr_mimebundle_(self, **kwargs: Any) -> Any:
-        return _with_picture(super()._repr_mimebundle_(**kwargs), self.viewer)
+        return with_picture(super()._repr_mimebundle_(**kwargs), self.viewer)

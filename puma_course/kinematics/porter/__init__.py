@@ -24,6 +24,7 @@ from ..._validate import as_choice, as_robot_length, as_tol
 from ...transforms import wrap_angle
 from .._ops import ARRAY, SCALAR
 from ..ik import IKBatch, IKSolutions, dedupe_mask, keep_start
+from ..jacobian_columns import from_axes
 from ..robot import Robot
 from .explicit import BRANCH_LABELS, PLANE, SIGN, branch, pose_terms
 from .families import REVOLUTE, nearest_parallel, split_q2zero
@@ -122,13 +123,11 @@ class Porter(Robot):
         >>> J[:, 2] + 0.0  # the stroke q2 moves p5 along x2 = x0 and turns nothing
         array([1., 0., 0., 0., 0., 0.])
         """
-        from ..jacobian import _from_axes
-
         F = self.frames(q)  # q checked here, once; the frames are the package's own
         pick = [(1, 2), (2, 1), (2, 0), (3, 1), (4, 2), (5, 0)]  # (frame, column) of each joint's axis
         axes = np.stack([F[..., k, :3, c] for k, c in pick], axis=-2)
         points = np.stack([F[..., k, :3, 3] for k, _ in pick], axis=-2)
-        return _from_axes(axes, points, F[..., 5, :3, 3], self.revolute)
+        return from_axes(axes, points, F[..., 5, :3, 3], self.revolute)
 
     # ---- inverse problem ------------------------------------------------------------------
     def classify(self, T: Any, *, tol: float = TOL) -> tuple[str, ...]:
