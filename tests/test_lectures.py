@@ -139,7 +139,8 @@ def test_every_lecture_section_a_hint_or_an_exercise_names_exists():
     (the lectures' rewrite renumbered them once; a stale number sends a student to the wrong page)."""
     sections = _sections()
     files = [*(ROOT / "puma_course" / "grading").rglob("*.py"), *(ROOT / "solutions").glob("*.ipynb"),
-             *(ROOT / "exercises").glob("*.ipynb"), *LECTURES, ROOT / "README.md"]  # fmt: skip
+             *(ROOT / "exercises").glob("*.ipynb"), *LECTURES, ROOT / "README.md",
+             *(ROOT / "docs").glob("*.md")]  # fmt: skip
     bad = [
         f"{path.relative_to(ROOT)}: lecture {n} §{sec}"
         for path in files

@@ -2,7 +2,8 @@
 the notation and conventions, built offline from the committed notebooks (nothing is executed).
 
 ``build_site(course)`` lays out a book source in a temporary folder (the course's ``notebooks/``,
-``exercises/`` and ``figures/``, a landing page and the conventions page written from the README)
+``exercises/`` and ``figures/``, a landing page, and the course's guides from ``docs/``: the readers' by
+default, every one with ``guides="all"``; see :mod:`.guides`)
 and builds it with Sphinx, MyST-NB and the Sphinx Book Theme (the parts Jupyter Book 1 is made
 of), configured for a reader with no network:
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..course import find_course
+from .guides import Guide, guides_of, site_markdown
 
 __all__ = ["SiteReport", "build_site", "repository_url", "MATHJAX_FILE", "MATHJAX_VERSION", "ARCHIVE"]
 
@@ -117,7 +118,12 @@ def _get_the_course(repo_url: str | None, archive: bool = True) -> list[str]:
 
 
 def _landing_page(
-    root: Path, lectures: list[Path], exercises: list[Path], repo_url: str | None = None, archive: bool = True
+    root: Path,
+    lectures: list[Path],
+    exercises: list[Path],
+    repo_url: str | None = None,
+    archive: bool = True,
+    guides: list[Guide] | None = None,
 ) -> str:
     sections = _readme_sections((root / "README.md").read_text(encoding="utf-8"))
     intro = sections["_intro"].split("\n", 1)[1].strip()  # without the "# puma-course" title
@@ -145,14 +151,19 @@ def _landing_page(
         lines.append(f"- [{_title(nb)}](exercises/{nb.name})")
     lines += ["", "## The course's conventions", "", "[Notation and conventions](conventions.md): the symbols of "
               "every arm, units, the three readings of a transform, the DH flavour, the IK results.", ""]  # fmt: skip
+    others = [g for g in guides or [] if g.page != "conventions"]
+    if others:
+        lines += ["## Guides", ""] + [f"- [{g.title}]({g.page}.md)" for g in others] + [""]
     lines += ["```{toctree}", ":hidden:", ":caption: Lectures", ""] + [f"notebooks/{nb.stem}" for nb in lectures]
     lines += ["```", "", "```{toctree}", ":hidden:", ":caption: Exercises", ""]
     lines += [f"exercises/{nb.stem}" for nb in exercises] + ["```", ""]
-    lines += ["```{toctree}", ":hidden:", ":caption: The course", "", "conventions", "```", ""]
+    lines += ["```{toctree}", ":hidden:", ":caption: The course", "", "conventions", *(g.page for g in others)]
+    lines += ["```", ""]
     return "\n".join(lines)
 
 
 def _conventions_page(root: Path) -> str:
+    """The notation and conventions from a course's README, for a course without ``docs/conventions.md``."""
     sections = _readme_sections((root / "README.md").read_text(encoding="utf-8"))
     out = ["# Notation and conventions", "",
            "The course states its notation and its conventions once; every lecture follows them.", ""]  # fmt: skip
@@ -259,6 +270,7 @@ def build_site(
     out: str | Path | None = None,
     repo_url: str | None = None,
     edition: EditionWriter | None = None,
+    guides: str = "readers",
 ) -> SiteReport:
     """Build the website of the course at ``course`` (default: the course around the current folder).
 
@@ -267,11 +279,15 @@ def build_site(
     ``pyproject.toml``; none, when it names none). The landing page also links the student
     edition's archive (:data:`ARCHIVE`), built here. Everything else the build writes (Sphinx's
     doctrees, MyST-NB's ``jupyter_execute/``) stays in a temporary folder, so the course is left as
-    it was. Returns a :class:`SiteReport`. Raises ``ValueError`` when the folder is not a course.
+    it was. ``guides`` says which of the course's guides (``docs/*.md``) become pages: ``"readers"`` (those
+    written for students, :data:`~puma_course.site.guides.READER_GUIDES`) or ``"all"`` (the instructors' and
+    maintainers' too, for an instructor's own copy; see :mod:`puma_course.site.guides`). Returns a
+    :class:`SiteReport`. Raises ``ValueError`` when the folder is not a course or ``guides`` is unknown.
     """
     from sphinx.application import Sphinx
 
     root = find_course(course)
+    chosen = guides_of(root, guides)
     out_dir = Path(out) if out is not None else root / "_site"
     if repo_url is None:
         repo_url = repository_url(root)
@@ -293,9 +309,14 @@ def build_site(
             shutil.copy2(nb, src / "exercises" / nb.name)
         if (root / "figures").is_dir():
             shutil.copytree(root / "figures", src / "figures", ignore=shutil.ignore_patterns("*.py", "__pycache__"))
-        landing = _landing_page(root, lectures, exercises, repo_url, edition is not None)
+        landing = _landing_page(root, lectures, exercises, repo_url, edition is not None, chosen)
         (src / "index.md").write_text(landing, encoding="utf-8")
-        (src / "conventions.md").write_text(_conventions_page(root), encoding="utf-8")
+        if not any(g.page == "conventions" for g in chosen):  # a course without docs/conventions.md
+            (src / "conventions.md").write_text(_conventions_page(root), encoding="utf-8")
+        names = ({nb.name for nb in lectures}, {nb.name for nb in exercises})
+        for guide in chosen:
+            (src / f"{guide.page}.md").parent.mkdir(parents=True, exist_ok=True)
+            (src / f"{guide.page}.md").write_text(site_markdown(guide, chosen, *names), encoding="utf-8")
         (src / "conf.py").write_text(_CONF.format(mathjax=MATHJAX_FILE), encoding="utf-8")
         _copy_mathjax(base / "assets" / "mathjax")
         (base / "assets" / "puma.css").write_text(_CSS, encoding="utf-8")

@@ -213,3 +213,94 @@ def test_no_file_of_the_site_names_a_cdn_host(built):
     assert not named, named
     assert (out / "_static" / "mathjax" / "sre" / "mathmaps" / "en.json").is_file()
     assert (out / "_static" / "mathjax" / "a11y" / "explorer.js").is_file()
+
+
+# ---------------------------------------------------------------- the guides (docs/*.md) as pages (issue 32)
+def _internal_links_broken(out: Path, rel: str) -> list[str]:
+    """The links of page ``rel`` that open no file of the site, or no element with the #anchor they name."""
+    from urllib.parse import unquote, urldefrag, urljoin, urlparse
+
+    broken = []
+    for href in re.findall(r'href="([^"]+)"', (out / rel).read_text(encoding="utf-8")):
+        href = html.unescape(href)
+        if href.startswith(("http:", "https:", "mailto:", "#", "javascript:", "data:")):
+            continue
+        target, fragment = urldefrag(urljoin(rel, href))
+        path = out / unquote(urlparse(target).path)
+        if not path.exists():
+            broken.append(f"{rel} -> {href}")
+        elif fragment and path.suffix == ".html" and f'id="{fragment}"' not in path.read_text(encoding="utf-8"):
+            broken.append(f"{rel} -> {href} (no anchor {fragment!r})")
+    return broken
+
+
+def _text(page: Path) -> str:
+    return html.unescape(re.sub(r"<[^>]+>", "", page.read_text(encoding="utf-8")))
+
+
+def test_the_readers_guides_are_pages_in_the_sites_navigation_and_the_instructors_are_not(built):
+    from puma_course.site.guides import OTHER_GUIDES, READER_GUIDES
+
+    out, _ = built
+    landing = (out / "index.html").read_text(encoding="utf-8")
+    for name in READER_GUIDES:
+        rel = "conventions.html" if name == "conventions" else f"guides/{name}.html"
+        page = out / rel
+        assert page.is_file(), rel
+        title = (ROOT / "docs" / f"{name}.md").read_text(encoding="utf-8").splitlines()[0].removeprefix("# ")
+        assert title in _text(page), (rel, title)
+        assert 'class="bd-sidebar-primary' in page.read_text(encoding="utf-8"), f"{rel}: no navigation"
+        assert f'href="{rel}"' in landing, f"the landing page does not link {rel}"
+        assert not _internal_links_broken(out, rel), _internal_links_broken(out, rel)
+    # what the notation page says comes from docs/conventions.md now (README holds no copy)
+    assert "Three readings of one transform" in _text(out / "conventions.html")
+    for name in OTHER_GUIDES:
+        assert not (out / "guides" / f"{name}.html").exists(), f"an instructor's guide is on the site: {name}"
+    # a guide's link to a lecture opens the lecture's page; one to a guide left out keeps its text only
+    students = (out / "guides" / "students.html").read_text(encoding="utf-8")
+    assert 'href="../notebooks/01_rotations_and_transforms.html"' in students
+    assert 'href="../exercises/ex10_trajectories.html"' in students
+
+
+def test_a_guides_links_are_rewritten_for_the_site(tmp_path):
+    from puma_course.site.guides import guides_of, site_markdown
+
+    docs = tmp_path / "docs"
+    docs.mkdir()
+    (docs / "conventions.md").write_text("# Notation\n\n[home](students.md#how-to-work)\n", encoding="utf-8")
+    (docs / "grading.md").write_text("# Grading\n", encoding="utf-8")
+    (docs / "students.md").write_text(
+        "# For students\n\n[lecture](../notebooks/01_a.ipynb) [ex](../exercises/ex01_a.ipynb#q1) "
+        "[notation](conventions.md#units) [grading](grading.md) [test](../tests/test_x.py) [web](https://x.org) "
+        "[here](#for-students) ![figure](../figures/f.png)\n\n```text\n[kept](grading.md)\n```\n",
+        encoding="utf-8",
+    )
+    chosen = guides_of(tmp_path)
+    assert [(g.page, g.title) for g in chosen] == [("guides/students", "For students"), ("conventions", "Notation")]
+    text = site_markdown(chosen[0], chosen, {"01_a.ipynb"}, {"ex01_a.ipynb"})
+    assert "[lecture](../notebooks/01_a.ipynb) [ex](../exercises/ex01_a.ipynb#q1)" in text
+    assert "[notation](../conventions.md#units) grading test [web](https://x.org) [here](#for-students)" in text
+    assert "![figure](../figures/f.png)" in text and "[kept](grading.md)" in text  # an image and code untouched
+    assert "[home](guides/students.md#how-to-work)" in site_markdown(chosen[1], chosen, set(), set())
+    assert [g.page for g in guides_of(tmp_path, "all")] == ["guides/students", "conventions", "guides/grading"]
+    with pytest.raises(ValueError, match=r"guides: expected one of 'readers', 'all', got 'some'"):
+        guides_of(tmp_path, "some")
+
+
+@pytest.mark.slow
+def test_every_guide_is_a_page_of_the_instructors_site_and_its_links_resolve(tmp_path):
+    """``build_site(guides="all")``: every docs/*.md but the index is a page, every internal link opens."""
+    from puma_course.site import build_site
+
+    report = build_site(ROOT, tmp_path / "site", guides="all")
+    out = report.out
+    names = sorted(p.stem for p in (ROOT / "docs").glob("*.md") if p.stem != "index")
+    assert len(names) >= 15
+    rels = ["conventions.html" if n == "conventions" else f"guides/{n}.html" for n in names]
+    missing = [r for r in rels if not (out / r).is_file()]
+    assert not missing, missing
+    broken = [b for r in rels for b in _internal_links_broken(out, r)]
+    assert not broken, "\n".join(broken[:20])
+    # Sphinx's own notes on a second build in one process (nodes registered again) are not the guides'
+    about = [w for w in report.warnings if "guides/" in w or "conventions" in w]
+    assert not about, about
