@@ -256,7 +256,7 @@ def open_limits(box: Any, timeout_cell: float = 10.0) -> Any:
     print(
         f"WARNING: notebook limits are {groups.label}; {limits.call_limit(groups, timeout_cell)}.\n"
         "WARNING: a notebook's processes together may then use more memory, processes and CPU than one "
-        "notebook's limits (README.md, Safety); the CSV's limits column says so.",
+        "notebook's limits (docs/safety.md); the CSV's limits column says so.",
         file=sys.stderr,
     )
     if hasattr(os, "geteuid") and os.geteuid() != 0:
@@ -300,7 +300,7 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
             "WARNING: a hostile notebook can read and change what this user can (solutions/, classmates' "
             "files, the grades) and outlive its notebook; every feedback file says so. Install bubblewrap "
             "(apt install bubblewrap, or the grader's extra: pip install 'puma-course[grader]') "
-            "or see README.md, Safety.",
+            "or see docs/safety.md.",
             file=sys.stderr,
         )
     groups = open_limits(box, args.timeout_cell)  # a control group per notebook: limits for its whole process tree
