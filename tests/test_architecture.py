@@ -124,13 +124,11 @@ KNOWN_PRIVATE = {
         f"puma_course.grading.run.runner takes puma_course.grading.run.{m}.{n}"
         for m, names in {
             "notebook_run": ("_grade_data", "_job", "_run_worker"),
-            "run_checks": ("_check_args", "_reserved_stems", "_stop_note", "_undumpable"),
+            "run_checks": ("_check_args", "_stop_note", "_undumpable"),
         }.items()
         for n in names
     ),
     "puma_course.grading.gradescope takes puma_course._version",
-    # the command line (helper cli)
-    "puma_course.cli_written takes puma_course.grading.run.run_checks._reserved_stems",
 }
 KNOWN_CIRCLES = {
     "puma_course.grading.judge.angle_mistakes <-> puma_course.grading.judge.diagnose",
