@@ -19,6 +19,10 @@ import pytest
 from puma_course.grading.gradescope_run import write_results
 from puma_course.grading.run.asuser import _PROBE, LAUNCHER, NPROC, User, end_processes, probe, uids
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: an unprivileged user's launcher, probe and process
+# ending: no numerics.
+pytestmark = pytest.mark.no_numerics
+
 PYTHON = "/usr/bin/python3"
 needs_root = pytest.mark.skipif(
     os.geteuid() != 0 or not os.access(PYTHON, os.X_OK), reason="needs root and /usr/bin/python3"

@@ -15,6 +15,10 @@ from puma_course.cli import main
 from puma_course.grading.run.delegation import delegate, find_delegated, parent_name, undelegate
 from puma_course.grading.run.limits import describe
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: a control-group subtree on a fake hierarchy: files and
+# names, no numerics.
+pytestmark = pytest.mark.no_numerics
+
 CONTROLLERS = ("memory", "pids", "cpu", "cpuacct")
 
 

@@ -337,6 +337,9 @@ def _venv(where: Path) -> Path:
 
 
 @pytest.mark.slow
+# CI's second pass (another OpenBLAS kernel) leaves this out: a pip install and the files it puts in a venv; its one
+# check is a blank exercise's 0 points (the public cases' verdicts under this kernel are tested above)
+@pytest.mark.no_numerics
 def test_the_installed_edition_holds_no_key_and_checks_the_public_cases(edition, tmp_path):
     python = _venv(tmp_path / "venv")
     before = sorted(p.relative_to(edition).as_posix() for p in edition.rglob("*"))

@@ -23,6 +23,11 @@ import pytest
 from puma_course.grading import EXERCISES, SandboxWarning, grade
 from tests.support import ROOT
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: crafted submissions (loops, crashes, floods,
+# tampering) under short time limits: the grader's robustness; an honest answer's numerics under this kernel are
+# test_exercises' full marks.
+pytestmark = pytest.mark.no_numerics
+
 FIXTURES = ROOT / "tests" / "fixtures" / "submissions"
 EX = "ex01_rotations"
 

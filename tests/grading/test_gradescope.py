@@ -29,6 +29,10 @@ from puma_course.grading.gradescope import _bank_files, _find_notebook, results_
 from tests.grading import container
 from tests.support import ROOT
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: the autograder zip and its container: packaging; an
+# honest answer's numerics under this kernel are test_exercises' full marks.
+pytestmark = pytest.mark.no_numerics
+
 EX = "ex01_rotations"
 #: the containers: Docker's default capabilities (Gradescope's case), every capability (new namespaces allowed)
 CAPS = ["docker", "all"]

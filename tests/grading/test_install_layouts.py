@@ -29,6 +29,9 @@ from puma_course.grading.run.sandbox import choose
 from tests.support import ROOT
 
 pytestmark = [
+    # CI's second pass (another OpenBLAS kernel) leaves this out: each install layout under bubblewrap:
+    # packaging; an honest answer's numerics under this kernel are test_exercises' full marks.
+    pytest.mark.no_numerics,
     pytest.mark.slow,
     pytest.mark.skipif(os.name != "posix", reason="venv layout (bin/) of POSIX"),
 ]

@@ -13,6 +13,9 @@ import pytest
 from puma_course.grading.run import limits
 from puma_course.grading.run.limits import describe, open_run
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: the control-group files a run writes: no numerics.
+pytestmark = pytest.mark.no_numerics
+
 
 def _v2(tmp_path: Path, own: str = "/") -> tuple[Path, Path]:
     root = tmp_path / "cg"

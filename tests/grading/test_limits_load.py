@@ -20,6 +20,10 @@ from puma_course.grading.run.limits import open_run
 from tests.grading.hostile import SLOWISH, _functions
 from tests.support import ROOT
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: marks kept beside busy processes: a test of the limits
+# under load, not of numerics.
+pytestmark = pytest.mark.no_numerics
+
 EX = "ex01_rotations"
 
 

@@ -19,6 +19,10 @@ import pytest
 
 from puma_course.grading.run import child, limits, monitor
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: the grader's monitor of time and processes: no
+# numerics.
+pytestmark = pytest.mark.no_numerics
+
 
 class _Meter(monitor.Meter):
     def __init__(self) -> None:

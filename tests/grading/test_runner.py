@@ -20,6 +20,10 @@ from puma_course.grading.run.sandbox import Sandbox, child_env, choose
 from puma_course.grading.run.stage import Stage
 from tests.support import ROOT
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: the grading plan, the worker's pipes and time limits:
+# no numerics.
+pytestmark = pytest.mark.no_numerics
+
 EX = EXERCISES["ex01_rotations"]
 
 

@@ -11,6 +11,9 @@ from puma_course.grading.run import submissions as subs_mod
 from puma_course.grading.run.submissions import MAX_NOTEBOOK_BYTES, read_path, read_student, scan
 from tests.support import ROOT
 
+# CI's second pass (another OpenBLAS kernel) leaves this out: reading students' folders and files: no numerics.
+pytestmark = pytest.mark.no_numerics
+
 EX = "ex01_rotations"
 
 
