@@ -4,7 +4,7 @@
 
 ``ZIP_DIR`` holds ``ex01_rotations.zip`` and ``ex09_puma_ik.zip`` built by ``puma-course gradescope`` (by this
 version, or by an earlier one: check out the other version elsewhere and build them there). Each zip's
-``setup.sh`` runs once in a throwaway container (:mod:`tests.grading.container`; offline, the venv seeing this
+``setup.sh`` runs once in a throwaway container (:mod:`tests.grading.publish.container`; offline, the venv seeing this
 Python's site-packages: an earlier ``setup.sh`` without ``PUMA_VENV_OPTIONS`` is edited to do the same), then
 each attack in ``tests/fixtures/hostile/gradescope/`` is graded ``RUNS`` times (default 3) with Docker's
 capabilities and with all of them. Printed per run: the score, run_autograder's exit code, whether the attack
@@ -26,8 +26,8 @@ import nbformat
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from tests.grading import container as c  # noqa: E402
-from tests.grading.hostile import _notebook, of  # noqa: E402
+from tests.grading.hostile.harness import _notebook, of  # noqa: E402
+from tests.grading.publish import container as c  # noqa: E402
 
 
 def main(zips: Path, runs: int) -> None:

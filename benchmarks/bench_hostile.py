@@ -49,7 +49,7 @@ from puma_course.grading.run.sandbox import choose
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from tests.grading.hostile import SLOWISH  # noqa: E402  (the slowish classmate of the hostile tests, one cell)
+from tests.grading.hostile.harness import SLOWISH  # noqa: E402  (the slowish classmate of the hostile tests, one cell)
 
 FORGE = """
 import json, os, time

@@ -11,7 +11,7 @@ with ``--shot NN:K`` also a screenshot of slide K (0-based, in ``Reveal.getSlide
     python benchmarks/bench_slides.py                          # build then measure
     python benchmarks/bench_slides.py --slides _slides --shot 09:5 --shot-file /tmp/s.png
 
-Figures are printed, not asserted (tests/test_instructor.py checks the structure instead).
+Figures are printed, not asserted (tests/instructor/test_instructor.py checks the structure instead).
 """
 
 from __future__ import annotations

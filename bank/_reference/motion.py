@@ -476,7 +476,7 @@ def _start_nearest_jumps(arm: Puma560, path06: np.ndarray, q0: np.ndarray, slack
     """True when choosing, at every pose, the solution nearest the *start* q0 (not the previous pose) makes a
     step the path judge calls a jump: only such paths tell that mistake from the right method."""
     # every branch of every pose in one batched solve (the rows arm.ik gives, bit for bit: the same decisions
-    # as solving pose by pose, so the same paths are drawn for the same key; tests/grading/test_ex10_paths.py)
+    # as solving pose by pose, so the same paths are drawn for the same key; tests/grading/bank/test_ex10_paths.py)
     sols = _quiet(arm.ik_batch, path06)
     d = np.asarray(transforms.wrap_angle(sols.q - q0))
     pick = np.argmin(np.where(sols.valid, np.sum(d * d, axis=2), np.inf), axis=1)

@@ -12,7 +12,7 @@ and writes the same JSON with the standard library:
   into lines);
 * :func:`new_notebook` and the ``new_*_cell`` functions build what ``nbformat.v4`` builds.
 
-What nbformat adds on top, the schema check, is the tests' job: ``tests/grading/test_release.py`` validates
+What nbformat adds on top, the schema check, is the tests' job: ``tests/grading/publish/test_release.py`` validates
 every notebook release writes against nbformat's schema and compares this module with nbformat on every
 notebook of the course. Standard library only.
 """

@@ -285,7 +285,7 @@ def load_outcome_map(course: str | Path | None = None) -> dict[str, list[dict[st
 
     Each entry is ``{"outcome": <the start of the outcome's text>, "assessed_by": ["exNN_name.qK", ...]}``
     or ``{"outcome": ..., "not_assessed": <why>}``. Raises ``ValueError`` naming the first entry that
-    is malformed; :mod:`tests.test_instructor` checks it against the lectures and the question bank.
+    is malformed; :mod:`tests.instructor.test_instructor` checks it against the lectures and the question bank.
     """
     root = _find(course)
     path = root / "instructor" / "outcomes.json"

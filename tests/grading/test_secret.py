@@ -25,7 +25,7 @@ from puma_course.cli import main
 from puma_course.grading import EXERCISES, grade
 from puma_course.grading.run.runner import make_plan
 from puma_course.grading.secret import SECRET_FILE, Secret, from_seed, load_secret
-from tests.grading.hostile import KNOWN_SEEDS, _notebook, fixtures, home_table, table_key
+from tests.grading.hostile.harness import KNOWN_SEEDS, _notebook, fixtures, home_table, table_key
 from tests.support import ROOT
 
 EX = "ex01_rotations"

@@ -1,6 +1,6 @@
 """The tripwire, the second line where an answer must stay within reach: tricks that switch it off fail the case.
 
-The first line is that an answer is not in the student side at all (tests/grading/test_student_package.py);
+The first line is that an answer is not in the student side at all (tests/grading/run/test_student_package.py);
 here an exercise allows ``rodrigues`` and one question forbids it, so the worker's watch is all there is.
 """
 

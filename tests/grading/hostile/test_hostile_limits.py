@@ -1,6 +1,6 @@
 """Hostile fixtures against the limits (issue 21): per notebook, not per process; the grader's own work bounded.
 
-Each runs beside an honest and a blank classmate (tests/grading/hostile.py); those needing control groups are
+Each runs beside an honest and a blank classmate (tests/grading/hostile/harness.py); those needing control groups are
 skipped, saying so, where the machine does not allow them (CI runs as root on a hybrid cgroup machine, where
 they run). In addition to what every run must satisfy:
 
@@ -17,7 +17,7 @@ from __future__ import annotations
 import pytest
 
 from puma_course.grading.run.limits import CPUS
-from tests.grading.hostile import LIMITS, check_run, of, run_attack
+from tests.grading.hostile.harness import LIMITS, check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile
 

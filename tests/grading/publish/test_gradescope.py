@@ -3,7 +3,7 @@
 Gradescope's tree (gradescope-autograders.readthedocs.io, "Autograder Specifications": ``/autograder/source`` = the
 unpacked zip, ``/autograder/run_autograder``, ``/autograder/submission``, ``/autograder/results``) is laid out in a
 temporary folder; ``setup.sh`` runs once in a throwaway container (offline), and ``run_autograder`` runs for each
-submission in a fresh one, as root, with no bubblewrap inside (:mod:`tests.grading.container`): with Docker's
+submission in a fresh one, as root, with no bubblewrap inside (:mod:`tests.grading.publish.container`): with Docker's
 default capabilities (no new namespaces, as on Gradescope) or with every capability (new namespaces allowed).
 Every ``results.json`` is validated against :data:`RESULTS_SCHEMA`, written from that page's "Output format".
 The attacks of issue 30 are in ``test_hostile_gradescope.py``.
@@ -26,7 +26,7 @@ from puma_course import __version__
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, NotebookResult
 from puma_course.grading.gradescope import _bank_files, _find_notebook, results_json, wheel_name
-from tests.grading import container
+from tests.grading.publish import container
 from tests.support import ROOT
 
 # CI's second pass (another OpenBLAS kernel) leaves this out: the autograder zip and its container: packaging; an

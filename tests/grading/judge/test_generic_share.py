@@ -4,7 +4,7 @@ Generic feedback says only that the values differ ("values differ from the refer
 not reach the pose", "no single mistake explains every case"): it names no mistake and says nothing a student can
 act on. Typical wrong answers are the corpus's wrong answers but the systematic perturbations of
 :mod:`tests.fixtures.answers.generic` that no student writes on purpose (values 1 % off, zeros, the first public
-case memorised, the first row negated). ``python -m tests.grading.test_generic_share`` prints the figures.
+case memorised, the first row negated). ``python -m tests.grading.judge.test_generic_share`` prints the figures.
 """
 
 from __future__ import annotations

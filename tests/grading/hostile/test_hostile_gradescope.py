@@ -2,7 +2,7 @@
 
 Each attack in ``tests/fixtures/hostile/gradescope/`` is appended to the handed-out exercise and graded by the zip
 ``puma-course gradescope`` builds: ``setup.sh`` once (the image), then ``run_autograder`` as root in a fresh
-throwaway container without bubblewrap (:mod:`tests.grading.container`), with Docker's default capabilities
+throwaway container without bubblewrap (:mod:`tests.grading.publish.container`), with Docker's default capabilities
 (no new namespaces: Gradescope's case) and with every capability (the grader's PID and mount namespaces).
 The grader's environment holds a secret the attacks look for. Every attack must gain nothing: run_autograder
 ends normally, results.json is the grader's (root's, written once, score 0, no leak signalled by exit code 97),
@@ -23,9 +23,9 @@ import pytest
 
 from puma_course.cli import main
 from puma_course.grading import EXERCISES
-from tests.grading import container
-from tests.grading.hostile import _notebook, of
-from tests.grading.test_gradescope import RESULTS_SCHEMA
+from tests.grading.hostile.harness import _notebook, of
+from tests.grading.publish import container
+from tests.grading.publish.test_gradescope import RESULTS_SCHEMA
 from tests.support import ROOT
 
 pytestmark = [

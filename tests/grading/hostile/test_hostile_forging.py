@@ -1,6 +1,6 @@
 """Hostile fixtures, forging the output: the feedback and the CSV show a student's text literally, short and inert.
 
-See tests/grading/hostile.py for what every run must satisfy; here, in addition, every feedback file is read
+See tests/grading/hostile/harness.py for what every run must satisfy; here, in addition, every feedback file is read
 as Markdown would render it (code spans removed) and every CSV cell as a spreadsheet would.
 """
 
@@ -13,7 +13,7 @@ import pytest
 
 from puma_course.grading import EXERCISES
 from puma_course.grading.output.text import quoted
-from tests.grading.hostile import check_run, of, run_attack
+from tests.grading.hostile.harness import check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile
 

@@ -32,7 +32,7 @@ from puma_course.grading.run.worker import CellTimeout
 # numerics.
 pytestmark = pytest.mark.no_numerics
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 COUNTERS = {"ns": b"123456789000\n", "stat": b"usage_usec 123456789\nuser_usec 100000000\nsystem_usec 23456789\n"}
 
 

@@ -30,13 +30,14 @@ from tests.fixtures.copies import EXERCISE, EXPECTED, build_class
 MARGIN = 0.05
 
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 
 
 @pytest.fixture(autouse=True, scope="module")
 def _this_course():
     """The exercise's own cells come from the loaded course's release: load this repository's bank, whatever another
-    test run before in the same process loaded (tests/grading/test_gradescope.py loads one zip's bank at a time)."""
+    test run before in the same process loaded (tests/grading/publish/test_gradescope.py loads one zip's bank at a
+    time)."""
     load_bank(ROOT)
 
 

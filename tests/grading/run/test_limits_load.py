@@ -17,7 +17,7 @@ import pytest
 
 from puma_course.grading import EXERCISES, grade
 from puma_course.grading.run.limits import open_run
-from tests.grading.hostile import SLOWISH, _functions
+from tests.grading.hostile.harness import SLOWISH, _functions
 from tests.support import ROOT
 
 # CI's second pass (another OpenBLAS kernel) leaves this out: marks kept beside busy processes: a test of the limits

@@ -21,7 +21,7 @@ from tests.fixtures.answers.generic import factory_name
 from tests.fixtures.answers.methods import METHODS
 from tests.fixtures.answers.model import grade
 
-README = Path(__file__).resolve().parents[2] / "docs" / "grading.md"  # the mistakes table
+README = Path(__file__).resolve().parents[3] / "docs" / "grading.md"  # the mistakes table
 SEEDS = (0, 1, 2)
 
 

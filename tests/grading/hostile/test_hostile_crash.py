@@ -1,6 +1,6 @@
 """Hostile fixtures, crashing the run: odd files and names, broken or enormous notebooks, dying or flooding workers.
 
-Whatever the submission, the run ends with a CSV and feedback for everyone; see tests/grading/hostile.py.
+Whatever the submission, the run ends with a CSV and feedback for everyone; see tests/grading/hostile/harness.py.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.grading.hostile import check_run, of, run_attack
+from tests.grading.hostile.harness import check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile
 

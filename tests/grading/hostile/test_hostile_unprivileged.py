@@ -39,7 +39,7 @@ import pytest
 
 from puma_course.grading import EXERCISES
 from puma_course.grading.run.sandbox import choose
-from tests.grading.hostile import SLOWISH, Listener, _notebook, fixtures
+from tests.grading.hostile.harness import SLOWISH, Listener, _notebook, fixtures
 from tests.support import ROOT
 
 pytestmark = [pytest.mark.hostile, pytest.mark.unprivileged]

@@ -49,7 +49,7 @@ ex10 q3    L10 §2 cells 4-5, nearest at every step                0/6
 ex10 q4    L10 §5, the quintic, unwrapped                         0.33/2
 =========  =====================================================  ===========
 
-Print the current figures with ``python -m tests.grading.test_transcriptions``.
+Print the current figures with ``python -m tests.grading.bank.test_transcriptions``.
 """
 
 from __future__ import annotations

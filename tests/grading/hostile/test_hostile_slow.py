@@ -1,6 +1,6 @@
 """Hostile fixtures, slowing the run: an attacker costs at most its own limits, and nothing after its notebook ends.
 
-See tests/grading/hostile.py for what every run must satisfy. Times are compared with the limits the run
+See tests/grading/hostile/harness.py for what every run must satisfy. Times are compared with the limits the run
 was given (generous margins: the limits, not the machine's speed, are what is tested).
 """
 
@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 
 from puma_course.grading.run.limits import WALL_FACTOR
-from tests.grading.hostile import LIMITS, check_run, of, run_attack
+from tests.grading.hostile.harness import LIMITS, check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile
 

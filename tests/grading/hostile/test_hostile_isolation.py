@@ -1,14 +1,14 @@
 """Hostile fixtures, isolation: a notebook reaches neither the grader, nor its classmates, nor the network.
 
 Every fixture here needs the operating-system sandbox (without it, the grader runs student code as its own
-user and says so); see tests/grading/hostile.py for what every run must satisfy.
+user and says so); see tests/grading/hostile/harness.py for what every run must satisfy.
 """
 
 from __future__ import annotations
 
 import pytest
 
-from tests.grading.hostile import check_run, of, run_attack
+from tests.grading.hostile.harness import check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile
 

@@ -1,14 +1,14 @@
 """Hostile fixtures, persistence: nothing a notebook leaves behind outlives it or changes a later grade.
 
 The honest classmate is graded after the attacker (students run in name order), so a planted module,
-cache file, daemon or exit hook would show in its marks; see tests/grading/hostile.py.
+cache file, daemon or exit hook would show in its marks; see tests/grading/hostile/harness.py.
 """
 
 from __future__ import annotations
 
 import pytest
 
-from tests.grading.hostile import check_run, of, run_attack
+from tests.grading.hostile.harness import check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile
 

@@ -1,14 +1,14 @@
 """Hostile fixtures, answer-key access: nothing of the package beyond what the exercise allows is within reach.
 
 Each fixture (tests/fixtures/hostile/answer_key/) is graded beside an honest and a blank classmate; see
-tests/grading/hostile.py for what every run must satisfy.
+tests/grading/hostile/harness.py for what every run must satisfy.
 """
 
 from __future__ import annotations
 
 import pytest
 
-from tests.grading.hostile import check_run, of, run_attack
+from tests.grading.hostile.harness import check_run, of, run_attack
 
 pytestmark = pytest.mark.hostile
 
