@@ -302,7 +302,7 @@ def _notebook(args: argparse.Namespace) -> Path:
 
 def _check(args: argparse.Namespace) -> int:
     from .grading import format_check_report, grade_notebook
-    from .grading.model import BankNotFoundError, load_bank
+    from .grading.bank_loader import BankNotFoundError, load_bank
 
     notebook = _notebook(args)
     name = args.exercise or notebook.stem

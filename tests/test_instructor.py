@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from puma_course.cli import main
-from puma_course.grading.model import EXERCISES
+from puma_course.grading.bank_loader import EXERCISES
 from puma_course.instructor import (
     CDN_HOSTS,
     lecture_outcomes,

@@ -25,11 +25,13 @@ instructor's course folder.
 
 from __future__ import annotations
 
-from .model import EXERCISES, BankNotFoundError, Exercise, NotebookResult, Question, load_bank
+from .bank_loader import EXERCISES, BankNotFoundError, load_bank
 from .output.report import format_check_report
 from .release import release, release_notebook
+from .results import NotebookResult
 from .run.runner import GradingIntegrityWarning, SandboxWarning, grade, grade_notebook
 from .selfcheck import check, use_exercise
+from .spec import Exercise, Question
 
 __all__ = [
     "EXERCISES",

@@ -28,7 +28,7 @@ from pathlib import Path
 
 from ..course import INDEX
 from ..hub import write_binder_files
-from .model import load_bank
+from .bank_loader import load_bank
 from .public import DATA_FILE, dumps, public_exercise
 
 __all__ = ["Edition", "write_edition", "STUDENT_README", "SETUP_PY", "MANAGED"]

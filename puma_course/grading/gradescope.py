@@ -45,12 +45,14 @@ from pathlib import Path
 from typing import Any
 
 from .. import _version
+from .bank_loader import EXERCISES, load_bank
 from .gradescope_run import finish, isolate, write_results
-from .model import EXERCISES, Exercise, NotebookResult, load_bank
 from .output.report import format_question
 from .output.text import quoted
+from .results import NotebookResult
 from .run.asuser import STUDENT_USER
 from .run.submissions import read_path
+from .spec import Exercise
 
 __all__ = ["build_autograder", "run", "results_json", "wheel_name", "SETUP_SH", "RUN_AUTOGRADER"]
 
@@ -98,7 +100,7 @@ def wheel_name(version: str = _version.__version__) -> str:
 #: The bank/__init__.py of an autograder: it registers the zip's own exercise only.
 BANK_INIT = '''"""The question bank of this autograder: {exercise} alone (puma-course {version} built it)."""
 
-from puma_course.grading.model import register
+from puma_course.grading.bank_loader import register
 
 from . import {exercise} as _exercise
 
@@ -133,7 +135,7 @@ def _bank_files(course: Path, exercise: str | None = None) -> dict[str, bytes]:
 def _imported(folder: Path, exercise: str) -> set[Path]:
     """The files of the bank at ``folder`` that ``<exercise>.py`` imports, and those they import (relative imports,
     or absolute ones of the bank's package name), with the ``__init__.py`` of every package between them."""
-    from .model import BANK_MODULE
+    from .bank_loader import BANK_MODULE
 
     seen: set[Path] = set()
     todo = [folder / f"{exercise}.py"]
@@ -315,7 +317,7 @@ def _forget_bank(source: Path) -> None:
     import pkgutil
     import shutil
 
-    from .model import BANK_MODULE
+    from .bank_loader import BANK_MODULE
 
     for info in pkgutil.walk_packages([str(source / "bank")], prefix=BANK_MODULE + "."):
         importlib.import_module(info.name)

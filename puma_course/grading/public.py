@@ -28,10 +28,11 @@ from typing import Any
 
 import numpy as np
 
+from .bank_loader import BANK_MODULE
 from .judge.diagnose import Mistake
 from .judge.judges.tables import record_diagnosis, table_judge
-from .model import BANK_MODULE, Exercise, Question
 from .remake import Made, remake
+from .spec import Exercise, Question
 
 __all__ = ["DATA_FILE", "Replay", "public_exercise", "dumps", "exercises", "available", "no_hidden"]
 

@@ -43,7 +43,8 @@ from pathlib import Path
 from typing import Any
 
 from . import notebook_json as nbjson
-from .model import EXERCISES, Exercise, Question
+from .bank_loader import EXERCISES
+from .spec import Exercise, Question
 from .written import ANSWER_TAG, PLACEHOLDER, PROMPT_TAG, prompt_source, written_questions, written_summary
 
 __all__ = [

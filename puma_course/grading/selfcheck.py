@@ -15,11 +15,14 @@ from typing import Any
 import numpy as np
 
 from ..course import CourseNotFoundError
-from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, reconcile, score_question
+from .bank_loader import EXERCISES, BankNotFoundError
+from .judge.verdict import Verdict, reconcile
 from .output.report import format_question
 from .plan import wire
+from .results import score_question
 from .run.events import call_verdict
 from .run.worker import MAX_SIZE, as_numbers, describe, forbidden_codes, guarded_call, received, type_name
+from .spec import Exercise, Question
 
 __all__ = ["use_exercise", "check", "public_outcomes", "registry"]
 

@@ -33,9 +33,9 @@ from puma_course.grading import EXERCISES
 from puma_course.grading.edition import write_edition
 from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.judge.judges.tables import modified_table_fk
-from puma_course.grading.model import score_question
 from puma_course.grading.public import DATA_FILE, _key, dumps, public_exercise
 from puma_course.grading.remake import Made
+from puma_course.grading.results import score_question
 from puma_course.grading.selfcheck import public_outcomes
 from puma_course.grading.written import written_exercises, written_questions
 from puma_course_bank import _reference

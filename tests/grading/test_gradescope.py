@@ -252,7 +252,7 @@ _SAME_PLANS = """
 import json, sys
 from pathlib import Path
 import numpy as np
-from puma_course.grading.model import EXERCISES, load_bank
+from puma_course.grading.bank_loader import EXERCISES, load_bank
 from puma_course.grading.plan import make_plan
 
 def norm(v):

@@ -35,7 +35,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..model import EXERCISES, NotebookResult
+from ..bank_loader import EXERCISES
+from ..results import NotebookResult
 from ..run.collect import Submitter
 from ..written import written_questions
 from .report import _replace_atomically

@@ -31,7 +31,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..model import EXERCISES
+from ..bank_loader import EXERCISES
 from ..run.collect import collect
 from ..run.submissions import StudentFolder, read_student, scan
 from ..written import Answer, WrittenQuestion, read_answers, release_of, written_exercises, written_questions

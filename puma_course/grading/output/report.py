@@ -24,9 +24,11 @@ import tempfile
 from collections.abc import Collection, Sequence
 from pathlib import Path
 
-from ..model import EXERCISES, Exercise, NotebookResult, Question
+from ..bank_loader import EXERCISES
+from ..results import NotebookResult
 from ..run.worker import NOT_ATTEMPTED
 from ..secret import Secret
+from ..spec import Exercise, Question
 from .text import csv_safe, file_stem, one_line, quoted
 
 __all__ = [

@@ -18,8 +18,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..bank_loader import EXERCISES
 from ..judge.diagnose import TITLES
-from ..model import EXERCISES, NotebookResult, Question
+from ..results import NotebookResult
+from ..spec import Question
 from .copies import CopyReport, copies_section
 from .report import replace_atomically, verdict
 from .text import one_line

@@ -18,9 +18,10 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from ..model import Exercise, NotebookResult
 from ..output.text import quoted
 from ..plan import Plan
+from ..results import NotebookResult
+from ..spec import Exercise
 from . import child, events, limits, monitor, worker
 from . import limits as limits_mod
 from .sandbox import Sandbox, child_env

@@ -10,7 +10,7 @@ import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-from ..model import EXERCISES
+from ..bank_loader import EXERCISES
 
 __all__: list[str] = []
 

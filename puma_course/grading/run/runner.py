@@ -22,12 +22,14 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ...course import is_course
-from ..model import EXERCISES, Exercise, NotebookResult
+from ..bank_loader import EXERCISES
 from ..output.copies import Handed, find_copies, handed
 from ..output.report import write_csv, write_feedback
 from ..output.summary import write_summary
 from ..plan import Plan, make_plan
+from ..results import NotebookResult
 from ..secret import Secret, choose_key
+from ..spec import Exercise
 from . import limits
 from .collect import Collected
 from .notebook_run import LIMITS, _grade_data, _job, _run_worker  # noqa: F401 - _job, _run_worker: their old home

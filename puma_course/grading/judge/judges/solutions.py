@@ -8,9 +8,9 @@ from typing import Any
 import numpy as np
 
 from ....transforms import wrap_angle
-from ...model import Judge, Verdict
 from ...remake import made
 from ..diagnose import close
+from ..verdict import Judge, Verdict
 from ._poses import POS_TOL, _dist, _floats, _off, _radians, _wrapped, pose_ok
 
 

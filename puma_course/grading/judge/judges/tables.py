@@ -9,8 +9,8 @@ import numpy as np
 
 from ....kinematics import DHChain, Link
 from ....kinematics.standard_dh import standard_dh
-from ...model import Judge, Verdict
 from ...remake import made
+from ..verdict import Judge, Verdict
 from ._poses import POS_TOL, _constant, _floats, _off, pose_ok
 
 # ------------------------------------------------------------------------------------------ DH tables
