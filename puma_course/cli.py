@@ -309,7 +309,7 @@ def _check(args: argparse.Namespace) -> int:
     try:  # the bank of the course the notebook is in (or --course, or the one run in), else an edition's public cases
         known: Any = load_bank(_course(args) if args.course else find_course(notebook.parent, fallback=True))
     except (BankNotFoundError, CourseNotFoundError):
-        from .grading import public as public_cases
+        from .grading.publish import public as public_cases
 
         if not public_cases.available():
             raise

@@ -6,8 +6,8 @@
     puma-course collect-written SUBMISSIONS -o DIR [--anonymise]   (see :mod:`puma_course.cli_written`)
 
 Part of the ``cli`` layer (light to import: the grader is imported only when a command runs).
-See :mod:`puma_course.grading.run.collect`, :mod:`puma_course.grading.output.gradebook` and
-:mod:`puma_course.grading.gradescope`.
+See :mod:`puma_course.grading.intake.collect`, :mod:`puma_course.grading.output.gradebook` and
+:mod:`puma_course.grading.publish.gradescope`.
 """
 
 from __future__ import annotations
@@ -97,7 +97,7 @@ def collect_or_explain(args: argparse.Namespace, names: Sequence[str]) -> tuple[
     if args.layout == "folders":
         found, seen = _student_folders(args.submissions)
     else:
-        from .grading.run.collect import collect
+        from .grading.intake.collect import collect
 
         collected = collect(args.submissions, args.layout, list(names))
         found, seen = collected.notebooks(), collected.seen
@@ -120,7 +120,7 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
     """The exercises ``grade`` grades and the platform download collected (None for ``folders``), or
     (None, None) when there is nothing to grade (said on stderr). Without ``--exercise``: the course's
     exercises that some student handed in; the others are named once, never graded as ``missing``."""
-    from .grading.run.submissions import exercises_to_grade
+    from .grading.intake.submissions import exercises_to_grade
 
     names, collected = args.exercise, None
     if args.layout == "folders" and not collect_or_explain(args, names or [])[1]:
@@ -206,7 +206,7 @@ def write_gradebooks(args: argparse.Namespace, results: Sequence[Any], names: Se
 def gradescope(args: argparse.Namespace, course: Path) -> int:
     """``puma-course gradescope``: build the zip."""
     from .grading import EXERCISES, load_bank
-    from .grading.gradescope import build_autograder
+    from .grading.publish.gradescope import build_autograder
 
     load_bank(course)  # the questions of the course the zip is built from (its bank/ goes into the zip)
     if args.exercise not in EXERCISES:

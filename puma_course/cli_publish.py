@@ -44,7 +44,7 @@ def add_publish_parsers(sub: Any, course: argparse.ArgumentParser) -> None:
 
 def edition(args: argparse.Namespace, course: Path) -> int:
     """``puma-course edition DIR``: the student edition of ``course`` written into DIR."""
-    from .grading.edition import write_edition
+    from .grading.publish.edition import write_edition
 
     ed = write_edition(args.out, course)
     print(f"wrote the student edition ({len(ed.exercises)} exercises, {len(ed.files)} files) to {ed.root}")
@@ -58,7 +58,7 @@ def site(args: argparse.Namespace, course: Path) -> int:
     except ImportError as exc:  # pragma: no cover - the extra is missing
         print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
         return 2
-    from .grading.edition import write_edition
+    from .grading.publish.edition import write_edition
 
     report = build_site(course, args.output, repo_url=args.repo_url, edition=write_edition)
     print(

@@ -85,7 +85,7 @@ def collect_written(args: argparse.Namespace, course: Path) -> int:
 def _students(args: argparse.Namespace, collected: Any) -> list[str]:
     if collected is not None:
         return [s.key for s in collected.students]
-    from .grading.run.submissions import scan
+    from .grading.intake.submissions import scan
 
     return [s.name for s in scan(args.submissions)]
 

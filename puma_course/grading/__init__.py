@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from .bank_loader import EXERCISES, BankNotFoundError, load_bank
 from .output.report import format_check_report
-from .release import release, release_notebook
+from .publish.release import release, release_notebook
 from .results import NotebookResult
 from .run.runner import GradingIntegrityWarning, SandboxWarning, grade, grade_notebook
 from .selfcheck import check, use_exercise

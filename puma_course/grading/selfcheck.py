@@ -39,13 +39,13 @@ def registry() -> Mapping[str, Exercise]:
     """The exercises the self-check knows: the course's question bank, else a student edition's public cases.
 
     In the instructor's course the bank (``COURSE/bank/``) is found from the current folder; a student
-    edition has none, and its package carries the public cases instead (:mod:`.public`).
+    edition has none, and its package carries the public cases instead (:mod:`.publish.public`).
     """
     try:
         len(EXERCISES)
         return EXERCISES
     except (BankNotFoundError, CourseNotFoundError):
-        from . import public
+        from .publish import public
 
         if not public.available():
             raise

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from puma_course.grading.gradescope_run import write_results
+from puma_course.grading.publish.gradescope_run import write_results
 from puma_course.grading.run.asuser import _PROBE, LAUNCHER, NPROC, User, end_processes, probe, uids
 
 PYTHON = "/usr/bin/python3"

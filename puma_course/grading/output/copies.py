@@ -33,7 +33,7 @@ from itertools import combinations
 from pathlib import Path
 
 from ..bank_loader import EXERCISES
-from ..release import HEADING_TAG, QUESTION_TAG
+from ..publish.release import HEADING_TAG, QUESTION_TAG
 from ..spec import Exercise
 from ..written import Release, release_of
 from .fingerprints import Print, fingerprint, shared_tokens, similarity, tokens

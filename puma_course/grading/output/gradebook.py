@@ -36,8 +36,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..bank_loader import EXERCISES
+from ..intake.collect import Submitter
 from ..results import NotebookResult
-from ..run.collect import Submitter
 from ..written import written_questions
 from .report import _replace_atomically
 from .text import csv_safe

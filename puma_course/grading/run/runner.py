@@ -23,6 +23,8 @@ from pathlib import Path
 
 from ...course import is_course
 from ..bank_loader import EXERCISES
+from ..intake.collect import Collected
+from ..intake.submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
 from ..output.copies import Handed, find_copies, handed
 from ..output.report import write_csv, write_feedback
 from ..output.summary import write_summary
@@ -31,12 +33,10 @@ from ..results import NotebookResult
 from ..secret import Secret, choose_key
 from ..spec import Exercise
 from . import limits
-from .collect import Collected
 from .notebook_run import LIMITS, _grade_data, _job, _run_worker  # noqa: F401 - _job, _run_worker: their old home
 from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
 from .sandbox import Sandbox, choose
 from .stage import Stage
-from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
 
 __all__ = [
     "GradingIntegrityWarning",

@@ -57,7 +57,7 @@ def diagnosis_points(Q: Any, revolute: Any, scale: float) -> list[np.ndarray]:
 
     ``Q`` with each joint's value negated (a joint turning the wrong way), then q = 0, then each joint moved
     alone from q = 0 (right only at q = 0). A student edition records the reference's poses at these too
-    (:mod:`puma_course.grading.public`), so that its self-check names the same mistakes as the course.
+    (:mod:`puma_course.grading.publish.public`), so that its self-check names the same mistakes as the course.
 
     >>> [P.tolist() for P in diagnosis_points([[0.1, 0.2]], [True, False], 2.0)]
     [[[-0.1, 0.2]], [[0.1, -0.2]], [[0.0, 0.0]], [[0.7, 0.0]], [[0.0, 0.6]]]

@@ -13,7 +13,7 @@ Specifications"): ``setup.sh`` and ``run_autograder`` at its root; Gradescope un
   ``PUMA_VENV_OPTIONS`` venv options (the tests install offline). It makes the system user
   ``puma-student`` (:data:`~.run.asuser.STUDENT_USER`; ``PUMA_STUDENT_UID`` fixes its uid) and makes the
   installed package, its record and ``/autograder/source`` root's alone.
-* ``run_autograder`` runs ``python -m puma_course.grading.gradescope``: :func:`run` locks the grader's
+* ``run_autograder`` runs ``python -m puma_course.grading.publish.gradescope``: :func:`run` locks the grader's
   folders and checks the student's user (:func:`~.gradescope_run.isolate`), grades the submitted notebook
   (``<exercise>.ipynb``, or the only notebook submitted) as ``puma-course grade`` does, as that user
   (:mod:`.run.asuser`), with the zip's question bank, ends every process of the user and writes
@@ -44,19 +44,19 @@ import zipfile
 from pathlib import Path
 from typing import Any
 
-from .. import _version
-from .bank_loader import EXERCISES, load_bank
+from ... import _version
+from ..bank_loader import EXERCISES, load_bank
+from ..intake.submissions import read_path
+from ..output.report import format_question
+from ..output.text import quoted
+from ..results import NotebookResult
+from ..run.asuser import STUDENT_USER
+from ..spec import Exercise
 from .gradescope_run import finish, isolate, write_results
-from .output.report import format_question
-from .output.text import quoted
-from .results import NotebookResult
-from .run.asuser import STUDENT_USER
-from .run.submissions import read_path
-from .spec import Exercise
 
 __all__ = ["build_autograder", "run", "results_json", "wheel_name", "SETUP_SH", "RUN_AUTOGRADER"]
 
-_PACKAGE_DIR = Path(__file__).resolve().parents[1]
+_PACKAGE_DIR = Path(__file__).resolve().parents[2]
 _EPOCH = (1980, 1, 1, 0, 0, 0)
 HIDDEN_MARK = "hidden case"
 
@@ -84,7 +84,7 @@ RUN_AUTOGRADER = """#!/usr/bin/env bash
 # Gradescope runs this for every submission, in /autograder (puma-course {version}, exercise {exercise}).
 PY=python3
 if [ -x /autograder/puma-venv/bin/python ]; then PY=/autograder/puma-venv/bin/python; fi
-exec "$PY" -m puma_course.grading.gradescope /autograder
+exec "$PY" -m puma_course.grading.publish.gradescope /autograder
 """
 
 
@@ -135,7 +135,7 @@ def _bank_files(course: Path, exercise: str | None = None) -> dict[str, bytes]:
 def _imported(folder: Path, exercise: str) -> set[Path]:
     """The files of the bank at ``folder`` that ``<exercise>.py`` imports, and those they import (relative imports,
     or absolute ones of the bank's package name), with the ``__init__.py`` of every package between them."""
-    from .bank_loader import BANK_MODULE
+    from ..bank_loader import BANK_MODULE
 
     seen: set[Path] = set()
     todo = [folder / f"{exercise}.py"]
@@ -317,7 +317,7 @@ def _forget_bank(source: Path) -> None:
     import pkgutil
     import shutil
 
-    from .bank_loader import BANK_MODULE
+    from ..bank_loader import BANK_MODULE
 
     for info in pkgutil.walk_packages([str(source / "bank")], prefix=BANK_MODULE + "."):
         importlib.import_module(info.name)
@@ -325,7 +325,7 @@ def _forget_bank(source: Path) -> None:
 
 
 def _run(base: Path) -> dict[str, Any]:
-    from .run.runner import grade
+    from ..run.runner import grade
 
     start = time.perf_counter()
     iso = isolate(base)  # before anything else: the grader's files root's alone, the student's user checked

@@ -42,10 +42,10 @@ import re
 from pathlib import Path
 from typing import Any
 
+from ..bank_loader import EXERCISES
+from ..spec import Exercise, Question
+from ..written import ANSWER_TAG, PLACEHOLDER, PROMPT_TAG, prompt_source, written_questions, written_summary
 from . import notebook_json as nbjson
-from .bank_loader import EXERCISES
-from .spec import Exercise, Question
-from .written import ANSWER_TAG, PLACEHOLDER, PROMPT_TAG, prompt_source, written_questions, written_summary
 
 __all__ = [
     "STUB",
