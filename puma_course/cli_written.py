@@ -105,11 +105,11 @@ def merge_marks(args: argparse.Namespace, results: Sequence[Any]) -> Any:
     if marks is None:
         return None
     from .grading.output.marks import merge_csv, merge_feedback, written_by_student
-    from .grading.run.run_checks import _reserved_stems
+    from .grading.run.run_checks import reserved_stems
 
     merge_csv(args.output, marks, results)
     if args.feedback is not None:
-        merge_feedback(args.feedback, results, marks, reserved=_reserved_stems(args.output, args.feedback))
+        merge_feedback(args.feedback, results, marks, reserved=reserved_stems(args.output, args.feedback))
     marked = sum(1 for m in marks.marks.values() if m.points is not None)
     print(f"written marks: {marked} answer(s) marked, merged into {args.output}" + (
         f" and the feedback in {args.feedback}" if args.feedback is not None else ""))  # fmt: skip

@@ -11,7 +11,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
-from .diagnose import base_key
+from .mistake import base_key
 
 __all__ = ["Verdict", "Judge", "reconcile"]
 

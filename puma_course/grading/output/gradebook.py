@@ -39,7 +39,7 @@ from ..bank_loader import EXERCISES
 from ..intake.collect import Submitter
 from ..results import NotebookResult
 from ..written import written_questions
-from .report import _replace_atomically
+from .report import replace_atomically
 from .text import csv_safe
 
 __all__ = ["FORMATS", "gradebook_path", "gradebook_rows", "write_gradebook", "read_roster", "number"]
@@ -202,5 +202,5 @@ def write_gradebook(
     path = gradebook_path(output, fmt)
     buffer = io.StringIO()
     csv.writer(buffer).writerows(rows)
-    _replace_atomically(path, buffer.getvalue())
+    replace_atomically(path, buffer.getvalue())
     return path, notes

@@ -243,9 +243,6 @@ def replace_atomically(path: Path, text: str) -> None:
         raise
 
 
-_replace_atomically = replace_atomically  # the name other modules import
-
-
 def write_feedback(
     folder: str | os.PathLike[str],
     results: Sequence[NotebookResult],

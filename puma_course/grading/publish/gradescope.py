@@ -44,7 +44,7 @@ import zipfile
 from pathlib import Path
 from typing import Any
 
-from ... import _version
+from ... import __version__
 from ..bank_loader import EXERCISES, load_bank
 from ..intake.submissions import read_path
 from ..output.report import format_question
@@ -88,7 +88,7 @@ exec "$PY" -m puma_course.grading.publish.gradescope /autograder
 """
 
 
-def wheel_name(version: str = _version.__version__) -> str:
+def wheel_name(version: str = __version__) -> str:
     """The wheel's file name (PEP 427).
 
     >>> wheel_name("0.2.0")
@@ -123,7 +123,7 @@ def _bank_files(course: Path, exercise: str | None = None) -> dict[str, bytes]:
     if exercise is not None and (folder / f"{exercise}.py").is_file():
         mine = sorted(_imported(folder, exercise))
         files = {f"bank/{p.relative_to(folder).as_posix()}": p.read_bytes() for p in mine}
-        files["bank/__init__.py"] = BANK_INIT.format(exercise=exercise, version=_version.__version__).encode()
+        files["bank/__init__.py"] = BANK_INIT.format(exercise=exercise, version=__version__).encode()
         return files
     return {
         f"bank/{p.relative_to(folder).as_posix()}": p.read_bytes()
@@ -209,7 +209,7 @@ def build_autograder(course: str | os.PathLike[str], exercise: str, output: str 
     """Write the autograder zip of ``exercise`` to ``output``; return a few lines saying what is in it."""
     if exercise not in EXERCISES:
         raise ValueError(f"exercise: expected one of {sorted(EXERCISES)}, got {exercise!r}")
-    version = _version.__version__
+    version = __version__
     wheel = wheel_name(version)
     config = {"exercise": exercise, "version": version, "wheel": wheel}
     out = Path(output)
@@ -338,10 +338,8 @@ def _run(base: Path) -> dict[str, Any]:
         out = {"score": 0.0, "output": f"not graded: {iso.refused}. Ask your instructor.", "tests": []}
         write_results(base, out)
         return out
-    if config.get("version") != _version.__version__:
-        notes.append(
-            f"WARNING: the zip was built by puma-course {config.get('version')}, this is {_version.__version__}"
-        )
+    if config.get("version") != __version__:
+        notes.append(f"WARNING: the zip was built by puma-course {config.get('version')}, this is {__version__}")
     path, said = _find_notebook(base / "submission", name)
     if said:
         notes.append(said)
@@ -376,7 +374,7 @@ def _run(base: Path) -> dict[str, Any]:
         feedback = next((Path(tmp) / "feedback").glob("*.md")).read_text(encoding="utf-8")
     notes += [f"status: {result.status}", *result.notes]
     notes.append(f"{name}: {result.score:g} / {result.max_score:g} points")
-    extra = {"exercise": name, "status": result.status, "version": _version.__version__, "seed": seed}
+    extra = {"exercise": name, "status": result.status, "version": __version__, "seed": seed}
     extra["sandbox"] = box.kind
     out = finish(iso, base, results_json(result, exercise, notes, feedback, time.perf_counter() - start, extra))
     print(out["output"])

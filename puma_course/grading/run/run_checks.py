@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..bank_loader import EXERCISES
 
-__all__: list[str] = []
+__all__ = ["check_args", "reserved_stems", "stop_note", "undumpable", "package_digest"]
 
 
 def _positive(name: str, value: float) -> float:
@@ -21,7 +21,7 @@ def _positive(name: str, value: float) -> float:
     return float(value)
 
 
-def _stop_note(seconds: float, by_student: bool) -> str:
+def stop_note(seconds: float, by_student: bool) -> str:
     if by_student:
         return (
             f"stopped after {seconds:g} s: the total time for all of this student's notebooks ran out; "
@@ -34,7 +34,7 @@ def _stop_note(seconds: float, by_student: bool) -> str:
 
 
 @contextlib.contextmanager
-def _undumpable(on: bool) -> Iterator[None]:
+def undumpable(on: bool) -> Iterator[None]:
     """Linux, without the OS sandbox: make the grader's memory unreachable through /proc and ptrace for its workers."""
     libc = None
     if on and sys.platform.startswith("linux"):
@@ -52,7 +52,7 @@ def _undumpable(on: bool) -> Iterator[None]:
             libc.prctl(4, 1, 0, 0, 0)
 
 
-def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[str, float]) -> None:
+def check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[str, float]) -> None:
     if not submissions.is_dir():
         raise ValueError(f"submissions: expected a folder with one sub-folder per student, got {str(submissions)!r}")
     for name in names:
@@ -64,7 +64,7 @@ def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[
         _positive(key, value)
 
 
-def _reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
+def reserved_stems(output: str | os.PathLike[str], feedback: str | os.PathLike[str]) -> list[str]:
     """The file stems in the feedback folder that belong to the grader's own files (the CSV, the class summary)."""
     from ..output.summary import summary_path
 

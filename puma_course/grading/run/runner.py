@@ -33,8 +33,8 @@ from ..results import NotebookResult
 from ..secret import Secret, choose_key
 from ..spec import Exercise
 from . import limits
-from .notebook_run import LIMITS, _grade_data, _job, _run_worker  # noqa: F401 - _job, _run_worker: their old home
-from .run_checks import _check_args, _reserved_stems, _stop_note, _undumpable, package_digest
+from .notebook_run import LIMITS, grade_data  # noqa: F401 - LIMITS: its old home
+from .run_checks import check_args, package_digest, reserved_stems, stop_note, undumpable
 from .sandbox import Sandbox, choose
 from .stage import Stage
 
@@ -115,8 +115,8 @@ def grade_notebook(
     box = _box(sandbox)
     calls = make_plan(exercise, seed, student) if plan is None else plan
     with Stage([exercise], box.scratch.path if box.scratch else None) as stage:
-        return _grade_data(
-            data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
+        return grade_data(
+            data, exercise, student, calls, stage, box, timeout_cell, timeout_total, stop_note(timeout_total, False)
         )
 
 
@@ -164,7 +164,7 @@ def grade(
     sub_dir = Path(submissions)
     names = list(exercises) if exercises else list(EXERCISES)
     times = {"timeout_cell": timeout_cell, "timeout_total": timeout_total, "timeout_student": timeout_student}
-    _check_args(sub_dir, names, jobs, times)
+    check_args(sub_dir, names, jobs, times)
     key = choose_key(secret, seed)
     box = _box(sandbox)
     if box.kind != "bwrap":
@@ -228,7 +228,7 @@ def _grade_class(
     hidden += [Path(feedback)] if feedback is not None else []
     hidden += [Path(key.source)] if key.seed is None and key.source not in ("", "one-off") else []
     stage_in = box.scratch.path if box.scratch else None
-    with Stage([EXERCISES[n] for n in names], stage_in) as stage, _undumpable(box.kind != "bwrap"):
+    with Stage([EXERCISES[n] for n in names], stage_in) as stage, undumpable(box.kind != "bwrap"):
         hidden.append(stage.root)
         pre: dict[str, StudentFiles] = {}
         kept: list[Handed] = []  # each notebook's own code, for the copy report (read from the bytes graded)
@@ -267,8 +267,8 @@ def _grade_class(
                         res = _blank(s.name, ex, "timeout", note)
                     else:
                         limit = min(timeout_total, left)
-                        note = _stop_note(limit, limit < timeout_total)
-                        res = _grade_data(
+                        note = stop_note(limit, limit < timeout_total)
+                        res = grade_data(
                             nb.data,
                             ex,
                             s.name,
@@ -326,7 +326,7 @@ def _grade_class(
         unsandboxed = box.reason if box.kind != "bwrap" else None
         user = getattr(box, "user", None)  # AsUser (Gradescope): alone, as an unprivileged user
         as_user = user.name if box.kind == "user" and user is not None else None
-        reserved = _reserved_stems(output, feedback)
+        reserved = reserved_stems(output, feedback)
         write_feedback(feedback, results, unsandboxed=unsandboxed, reserved=reserved, key=key, as_user=as_user)
     write_summary(
         results, output, unmatched=collected.problems if collected is not None else (), copies=find_copies(kept)

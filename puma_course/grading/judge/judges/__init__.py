@@ -24,7 +24,7 @@ student's table, the robot's forward kinematics) from the course's bank (``bank/
 
 from __future__ import annotations
 
-from ._poses import pose_errors, pose_ok
+from .poses import pose_errors, pose_ok
 from .solutions import nearest_judge, path_judge, rotation_judge, solution_set_judge, stroke_judge
 from .tables import table_judge
 
