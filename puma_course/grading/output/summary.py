@@ -1,6 +1,6 @@
 """The instructor's view of a graded class: per question, who passed and which mistakes were common.
 
-:func:`class_summary` reads the graded results (:class:`~puma_course.grading.model.NotebookResult`,
+:func:`class_summary` reads the graded results (:class:`~puma_course.grading.results.NotebookResult`,
 one per student and exercise) and counts, for every question, how many students passed it, partly
 passed it, failed it or did not attempt it, their mean points, and the mistakes the grader diagnosed
 (:mod:`puma_course.grading.judge.diagnose`), each counted once per student who made it. :func:`write_summary`

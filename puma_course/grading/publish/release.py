@@ -11,7 +11,7 @@
 * the notebook gets the metadata JupyterLab 4 writes (:data:`NOTEBOOK_METADATA`), without
   ``language_info.version``, which depends on the student's Python.
 
-**Points are stored once**, in :attr:`Question.points <puma_course.grading.model.Question.points>`.
+**Points are stored once**, in :attr:`Question.points <puma_course.grading.spec.Question.points>`.
 A solution tags each answer cell ``question:qN`` and nothing more; the generator adds the
 ``points:N`` tag to that cell, a heading cell just above it (``**q2** · 3 points · write
 `rotation_between` below``, tagged ``heading:q2``) and, after the notebook's first cell, a
