@@ -5,14 +5,14 @@ generators, references, judges, the mistakes it recognises, hints, the package n
 use). Every call into the kinematics layer goes through :mod:`._reference`; numbers that need numpy
 alone are in :mod:`._formulas` and :mod:`._inputs`, the answer keys in :mod:`._keys`.
 
->>> from puma_course.grading.model import EXERCISES
+>>> from puma_course.grading.bank_loader import EXERCISES
 >>> sorted(EXERCISES)[:2]
 ['ex01_rotations', 'ex02_dh_frames']
 """
 
 from __future__ import annotations
 
-from puma_course.grading.model import register
+from puma_course.grading.bank_loader import register
 
 from . import (
     ex01_rotations,

@@ -23,7 +23,7 @@ from puma_course.grading.judge.diagnose import (
     sign_flip,
 )
 from puma_course.grading.judge.judges import table_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._formulas import (

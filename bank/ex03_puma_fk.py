@@ -16,7 +16,7 @@ import numpy as np
 
 from puma_course.grading.judge.diagnose import matches
 from puma_course.grading.judge.judges import table_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._reference import chains as ref
@@ -62,6 +62,7 @@ def _chain_cases(rng: np.random.Generator, n: int) -> list[tuple[Any, ...]]:
 
 PLANAR = np.array([[0.0, 0.0, 0.0, 0.0, 0], [0.0, 1.0, 0.0, 0.0, 0], [0.0, 0.7, 0.0, 0.0, 0]])
 SLIDER = np.array([[0.0, 0.0, 0.3, 0.5, 0], [-H, 0.2, 0.0, 0.1, 1], [H, 0.0, -0.4, 0.0, 0]])
+
 
 def _one_link_too_few(table: Any, q: Any, k: int) -> np.ndarray:
     """The mistake: the product of the link matrices from row k + 2 on (rows counted from 1), one link too few."""

@@ -15,7 +15,7 @@ import numpy as np
 
 from puma_course.grading.judge.diagnose import degrees_in, matches
 from puma_course.grading.judge.judges import table_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._formulas import approach_only, kept_axis, turned_back

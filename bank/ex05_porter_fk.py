@@ -16,7 +16,7 @@ import numpy as np
 
 from puma_course.grading.judge.diagnose import INVERSE, TRANSPOSED, matches
 from puma_course.grading.judge.judges import table_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._reference import porter_chain as ref

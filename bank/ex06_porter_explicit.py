@@ -17,7 +17,7 @@ import numpy as np
 
 from puma_course.grading.judge.diagnose import matches
 from puma_course.grading.judge.judges import solution_set_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._formulas import porter_wrist_point

@@ -14,7 +14,7 @@ import numpy as np
 from puma_course.grading.judge.compare import compare_solution_set
 from puma_course.grading.judge.diagnose import DUPLICATES, angle_2pi, degrees_out, matches, matches_set, unit_axis_out
 from puma_course.grading.judge.judges import stroke_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._formulas import porter_elbows, porter_normal

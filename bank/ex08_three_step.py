@@ -17,7 +17,7 @@ import numpy as np
 from puma_course.grading.judge.compare import compare_angles
 from puma_course.grading.judge.diagnose import TRANSPOSED, degrees_out, matches
 from puma_course.grading.judge.judges import rotation_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._inputs import reachable_wrist_points

@@ -17,7 +17,7 @@ import numpy as np
 
 from puma_course.grading.judge.diagnose import SIGN_FLIP, matches, negated, unit_axis_out
 from puma_course.grading.judge.judges import solution_set_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._reference import chains

@@ -15,7 +15,7 @@ import numpy as np
 from puma_course.grading.judge.compare import compare_angles
 from puma_course.grading.judge.diagnose import matches
 from puma_course.grading.judge.judges import path_judge, solution_set_judge
-from puma_course.grading.model import Exercise, Question
+from puma_course.grading.spec import Exercise, Question
 
 from . import _keys as keys
 from ._reference import motion as ref

@@ -39,7 +39,7 @@ from pathlib import Path
 import nbformat
 
 from puma_course.grading import EXERCISES, grade
-from puma_course.grading.model import NotebookResult
+from puma_course.grading.results import NotebookResult
 from puma_course.grading.run import limits as lim
 from puma_course.grading.run.child import ChildResult
 from puma_course.grading.run.events import apply

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from puma_course.grading import load_bank
-from puma_course.grading.model import EXERCISES
+from puma_course.grading.bank_loader import EXERCISES
 from puma_course.grading.written import written_questions
 from tests.support import ROOT
 

@@ -64,7 +64,7 @@ def notebook_of(args: argparse.Namespace) -> Path:
 def run(args: argparse.Namespace) -> int:
     """``puma-course check``: 0 when the notebook ran (its score printed), 1 when it did not, 2 on bad input."""
     from ..grading import BankNotFoundError, format_check_report, grade_notebook, load_bank
-    from ..grading import public as public_cases
+    from ..grading.publish import public as public_cases
 
     notebook = notebook_of(args)
     name = args.exercise or notebook.stem

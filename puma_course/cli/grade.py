@@ -193,7 +193,7 @@ def collect_or_explain(args: argparse.Namespace, names: Sequence[str]) -> tuple[
     if args.layout == "folders":
         found, seen = _student_folders(args.submissions)
     else:
-        from ..grading.run.collect import collect
+        from ..grading.intake.collect import collect
 
         collected = collect(args.submissions, args.layout, list(names))
         found, seen = collected.notebooks(), collected.seen
@@ -216,7 +216,7 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
     """The exercises ``grade`` grades and the platform download collected (None for ``folders``), or
     (None, None) when there is nothing to grade (said on stderr). Without ``--exercise``: the course's
     exercises that some student handed in; the others are named once, never graded as ``missing``."""
-    from ..grading.run.submissions import exercises_to_grade
+    from ..grading.intake.submissions import exercises_to_grade
 
     names, collected = args.exercise, None
     if args.layout == "folders" and not collect_or_explain(args, names or [])[1]:

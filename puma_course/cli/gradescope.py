@@ -33,7 +33,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """``puma-course gradescope``: build the zip."""
     from ..grading import EXERCISES, load_bank
-    from ..grading.gradescope import build_autograder
+    from ..grading.publish.gradescope import build_autograder
 
     root = course(args)
     load_bank(root)  # the questions of the course the zip is built from (its bank/ goes into the zip)

@@ -35,7 +35,13 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
     mg.add_argument("--secret", type=Path, default=None, metavar="FILE", help="the key file grade used")
     mg.add_argument("--seed", type=int, default=None, metavar="N", help="the public seed grade used")
     mg.add_argument("--marks", type=Path, action="append", default=None, metavar="FILE", help="as for grade")
-    mg.add_argument("--gradebook", choices=("canvas", "moodle", "wide"), action="append", default=None)
+    mg.add_argument(
+        "--gradebook",
+        choices=("canvas", "moodle", "wide"),
+        action="append",
+        default=None,
+        help="also write this platform's gradebook next to the CSV (repeatable), as for grade",
+    )
     mg.add_argument("--roster", type=Path, default=None, metavar="CSV", help="as for grade (--gradebook moodle)")
     mg.add_argument(
         "--submissions",

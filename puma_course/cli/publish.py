@@ -46,7 +46,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
 
 def run_edition(args: argparse.Namespace) -> int:
     """``puma-course edition DIR``: the student edition of the course written into DIR."""
-    from ..grading.edition import write_edition
+    from ..grading.publish.edition import write_edition
 
     ed = write_edition(args.out, course(args))
     print(f"wrote the student edition ({len(ed.exercises)} exercises, {len(ed.files)} files) to {ed.root}")
@@ -61,7 +61,7 @@ def run_site(args: argparse.Namespace) -> int:
     except ImportError as exc:  # pragma: no cover - the extra is missing
         print(f"puma-course site: {exc}; install the site's tools: pip install -e '.[site]'", file=sys.stderr)
         return 2
-    from ..grading.edition import write_edition
+    from ..grading.publish.edition import write_edition
 
     report = build_site(root, args.output, repo_url=args.repo_url, edition=write_edition)
     print(

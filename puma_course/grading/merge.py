@@ -13,12 +13,12 @@ import os
 from collections.abc import Sequence
 from pathlib import Path
 
-from .model import NotebookResult
+from .intake.collect import Collected, collect
 from .output.copies import Handed, find_copies
 from .output.gradebook import read_roster
 from .output.marks import read_marks
 from .output.writer import RunFacts, Written, write_run
-from .run.collect import Collected, collect
+from .results import NotebookResult
 from .run.sandbox import Sandbox
 from .secret import Secret
 from .shards import ShardError, read_shards

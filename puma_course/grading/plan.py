@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from .model import Exercise
 from .secret import Secret
+from .spec import Exercise
 
 __all__ = ["Call", "Plan", "make_plan", "wire"]
 

@@ -3,7 +3,7 @@
 A judge, a comparison or a mistake's check is a closure over its factory's arguments
 (``sign_flip(names)``, ``table_judge(chain_fk, standard_fk)``); :func:`made` wraps one so that
 :mod:`pickle` stores the recipe (the factory, by name, and its arguments) instead of the closure.
-The student edition stores its public questions this way (:mod:`puma_course.grading.public`),
+The student edition stores its public questions this way (:mod:`puma_course.grading.publish.public`),
 with the question bank's own functions among the arguments replaced by recorded values.
 
 >>> import pickle

@@ -15,11 +15,14 @@ from typing import Any
 import numpy as np
 
 from ..course import CourseNotFoundError
-from .model import EXERCISES, BankNotFoundError, Exercise, Question, Verdict, reconcile, score_question
+from .bank_loader import EXERCISES, BankNotFoundError
+from .judge.verdict import Verdict, reconcile
 from .output.report import format_question
 from .plan import wire
+from .results import score_question
 from .run.events import call_verdict
 from .run.worker import MAX_SIZE, as_numbers, describe, forbidden_codes, guarded_call, received, type_name
+from .spec import Exercise, Question
 
 __all__ = ["use_exercise", "check", "public_outcomes", "registry"]
 
@@ -36,13 +39,13 @@ def registry() -> Mapping[str, Exercise]:
     """The exercises the self-check knows: the course's question bank, else a student edition's public cases.
 
     In the instructor's course the bank (``COURSE/bank/``) is found from the current folder; a student
-    edition has none, and its package carries the public cases instead (:mod:`.public`).
+    edition has none, and its package carries the public cases instead (:mod:`.publish.public`).
     """
     try:
         len(EXERCISES)
         return EXERCISES
     except (BankNotFoundError, CourseNotFoundError):
-        from . import public
+        from .publish import public
 
         if not public.available():
             raise

@@ -17,9 +17,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .model import EXERCISES, Bank, NotebookResult
+from .bank_loader import EXERCISES, Bank
+from .intake.collect import Collected
+from .results import NotebookResult
 from .run import limits
-from .run.collect import Collected
 from .run.sandbox import MODES, Sandbox
 from .secret import Secret
 from .shards import Shard

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .model import NotebookResult
+from .results import NotebookResult
 
 __all__ = [
     "FORMAT",

@@ -28,7 +28,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from .model import BANK_MODULE, EXERCISES, Exercise
+from .bank_loader import BANK_MODULE, EXERCISES
+from .spec import Exercise
 
 __all__ = [
     "Criterion",

@@ -64,7 +64,7 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 def build(root: Path, kind: str) -> Path:
     """Build the site, the slides or the keys into ``root/kind`` as ``puma-course site|slides|keys`` does."""
-    from puma_course.grading.edition import write_edition
+    from puma_course.grading.publish.edition import write_edition
     from puma_course.instructor import build_keys, build_slides
     from puma_course.site import build_site
 

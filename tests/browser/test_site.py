@@ -29,7 +29,7 @@ pytestmark = pytest.mark.browser
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    from puma_course.grading.edition import write_edition
+    from puma_course.grading.publish.edition import write_edition
     from puma_course.site import build_site
 
     report = build_site(ROOT, tmp_path_factory.mktemp("site") / "html", edition=write_edition)

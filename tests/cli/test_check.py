@@ -9,7 +9,7 @@ import numpy as np
 
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, load_bank
-from puma_course.grading.public import public_cases_only
+from puma_course.grading.publish.public import public_cases_only
 from tests.support import ROOT
 
 

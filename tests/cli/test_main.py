@@ -67,6 +67,7 @@ def test_every_command_is_dispatched_by_the_one_table(monkeypatch, capsys):
         "check": ["check", "nb.ipynb"],
         "release": ["release"],
         "grade": ["grade", "subs", "-o", "g.csv"],
+        "merge": ["merge", "part-1.shard.json", "-o", "g.csv"],
         "collect-written": ["collect-written", "subs", "-o", "out"],
         "limits": ["limits", "show"],
         "gradescope": ["gradescope", "ex01_rotations", "-o", "a.zip"],

@@ -1,4 +1,5 @@
-"""Notebooks read and written without nbformat (:mod:`puma_course.grading.notebook_json`), checked against nbformat.
+"""Notebooks read and written without nbformat (:mod:`puma_course.grading.publish.notebook_json`), checked
+against nbformat.
 
 * on every notebook of the course, reading gives what ``nbformat.reads(..., as_version=4)`` gives and writing
   gives ``nbformat.writes``'s exact text;
@@ -17,8 +18,8 @@ import nbformat
 import pytest
 
 from puma_course.grading import EXERCISES
-from puma_course.grading import notebook_json as nbjson
-from puma_course.grading.release import notebook_text, release_notebook
+from puma_course.grading.publish import notebook_json as nbjson
+from puma_course.grading.publish.release import notebook_text, release_notebook
 from tests.support import ROOT
 
 NOTEBOOKS = sorted([*ROOT.glob("solutions/*.ipynb"), *ROOT.glob("exercises/*.ipynb"), *ROOT.glob("notebooks/*.ipynb")])

@@ -230,7 +230,7 @@ def test_a_pair_returned_is_worded_alike_by_the_self_check_and_the_grader(tmp_pa
 
 def _public_points(answer) -> tuple[float, float]:
     """(the self-check's points, the grader's points on the same public cases) for a corpus answer."""
-    from puma_course.grading.model import score_question
+    from puma_course.grading.results import score_question
     from puma_course.grading.selfcheck import public_outcomes
     from tests.fixtures.answers.model import grade
 

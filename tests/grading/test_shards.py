@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from puma_course.grading.model import NotebookResult
+from puma_course.grading.results import NotebookResult
 from puma_course.grading.shards import Shard, ShardError, ShardFile, read_shard, read_shards, write_shard
 
 NAMES = st.text(alphabet=string.ascii_letters + string.digits + "._-éø", min_size=1, max_size=20)

@@ -17,7 +17,7 @@ import nbformat
 import pytest
 
 from puma_course.cli import main
-from puma_course.grading.model import load_bank
+from puma_course.grading.bank_loader import load_bank
 from puma_course.grading.written import ANSWER_TAG, PROMPT_TAG, Release, read_answers, release_of, written_questions
 from tests.support import ROOT
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from puma_course.cli import main
-from puma_course.grading.model import EXERCISES
+from puma_course.grading.bank_loader import EXERCISES
 from puma_course.instructor import (
     CDN_HOSTS,
     lecture_outcomes,
@@ -181,7 +181,7 @@ def test_every_figure_of_every_lecture_has_alt_text_and_every_cell_a_slide_type(
 
 
 def test_the_kit_stays_out_of_the_student_edition(tmp_path):
-    from puma_course.grading.edition import write_edition
+    from puma_course.grading.publish.edition import write_edition
 
     write_edition(tmp_path / "edition", ROOT)  # what `puma-course edition DIR` hands a student
     assert not (tmp_path / "edition" / "instructor").exists()

@@ -1,5 +1,5 @@
 """The mistakes of angles and axes: degrees where radians were expected (returned or given), an angle off by a
-whole turn, an axis not of length 1 (split from :mod:`.diagnose`, which re-exports them).
+whole turn, an axis not of length 1 (:mod:`.diagnose` re-exports them).
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..remake import made
-from .diagnose import Mistake, close
+from .mistake import Mistake, close
 
 __all__ = ["DEGREES_OUT", "angle_2pi", "degrees_in", "degrees_out", "unit_axis_out"]
 

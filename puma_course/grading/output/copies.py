@@ -32,8 +32,9 @@ from functools import lru_cache
 from itertools import combinations
 from pathlib import Path
 
-from ..model import EXERCISES, Exercise
-from ..release import HEADING_TAG, QUESTION_TAG
+from ..bank_loader import EXERCISES
+from ..publish.release import HEADING_TAG, QUESTION_TAG
+from ..spec import Exercise
 from ..written import Release, release_of
 from .fingerprints import Print, fingerprint, shared_tokens, similarity, tokens
 from .payloads import payloads

@@ -35,10 +35,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..model import EXERCISES, NotebookResult
-from ..run.collect import Submitter
+from ..bank_loader import EXERCISES
+from ..intake.collect import Submitter
+from ..results import NotebookResult
 from ..written import written_questions
-from .report import _replace_atomically
+from .report import replace_atomically
 from .text import csv_safe
 
 __all__ = ["FORMATS", "gradebook_path", "gradebook_rows", "write_gradebook", "read_roster", "number"]
@@ -201,5 +202,5 @@ def write_gradebook(
     path = gradebook_path(output, fmt)
     buffer = io.StringIO()
     csv.writer(buffer).writerows(rows)
-    _replace_atomically(path, buffer.getvalue())
+    replace_atomically(path, buffer.getvalue())
     return path, notes

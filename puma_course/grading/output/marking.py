@@ -31,9 +31,9 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..model import EXERCISES
-from ..run.collect import collect
-from ..run.submissions import StudentFolder, read_student, scan
+from ..bank_loader import EXERCISES
+from ..intake.collect import collect
+from ..intake.submissions import StudentFolder, read_student, scan
 from ..written import Answer, WrittenQuestion, read_answers, release_of, written_exercises, written_questions
 from .report import replace_atomically
 from .text import csv_safe, file_stem, quoted

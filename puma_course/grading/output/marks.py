@@ -34,7 +34,7 @@ from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..model import NotebookResult
+from ..results import NotebookResult
 from ..written import WrittenQuestion, written_questions
 from .marking import student_code
 from .report import feedback_paths, replace_atomically

@@ -24,9 +24,11 @@ import tempfile
 from collections.abc import Collection, Mapping, Sequence
 from pathlib import Path
 
-from ..model import EXERCISES, Exercise, NotebookResult, Question
+from ..bank_loader import EXERCISES
+from ..results import NotebookResult
 from ..run.worker import NOT_ATTEMPTED
 from ..secret import Secret
+from ..spec import Exercise, Question
 from .text import csv_safe, file_stem, one_line, quoted
 
 __all__ = [
@@ -254,9 +256,6 @@ def replace_atomically(path: Path, text: str) -> None:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
-
-
-_replace_atomically = replace_atomically  # the name other modules import
 
 
 def write_feedback(

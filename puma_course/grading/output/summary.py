@@ -1,6 +1,6 @@
 """The instructor's view of a graded class: per question, who passed and which mistakes were common.
 
-:func:`class_summary` reads the graded results (:class:`~puma_course.grading.model.NotebookResult`,
+:func:`class_summary` reads the graded results (:class:`~puma_course.grading.results.NotebookResult`,
 one per student and exercise) and counts, for every question, how many students passed it, partly
 passed it, failed it or did not attempt it, their mean points, and the mistakes the grader diagnosed
 (:mod:`puma_course.grading.judge.diagnose`), each counted once per student who made it. :func:`write_summary`
@@ -18,8 +18,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..bank_loader import EXERCISES
 from ..judge.diagnose import TITLES
-from ..model import EXERCISES, NotebookResult, Question
+from ..results import NotebookResult
+from ..spec import Question
 from .copies import CopyReport, copies_section
 from .report import replace_atomically, verdict
 from .text import one_line, quoted

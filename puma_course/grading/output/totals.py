@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
-from ..model import NotebookResult
+from ..results import NotebookResult
 
 __all__ = ["StudentTotal", "student_totals"]
 

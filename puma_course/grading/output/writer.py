@@ -25,8 +25,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..model import NotebookResult
-from ..run.collect import Collected
+from ..intake.collect import Collected
+from ..results import NotebookResult
 from ..run.sandbox import Sandbox
 from ..secret import Secret
 from .copies import CopyReport

@@ -1,6 +1,7 @@
-"""Running a submission: read it, stage the worker and the student-side package, run it sandboxed, collect events.
+"""Running a submission: stage the worker and the student-side package, run it sandboxed and limited, collect events.
 
-:mod:`.runner` (``grade``, ``grade_notebook``), :mod:`.run_checks`, :mod:`.child`, :mod:`.sandbox`,
-:mod:`.limits`, :mod:`.stage`, :mod:`.submissions`, :mod:`.collect`, :mod:`.events` (what came back,
-judged against the plan), :mod:`.worker` (copied into the stage) and :mod:`.student`.
+:mod:`.runner` (``grade``, ``grade_notebook``), :mod:`.run_checks`, :mod:`.notebook_run`, :mod:`.child`,
+:mod:`.monitor`, :mod:`.sandbox` (with :mod:`.scratch` and :mod:`.asuser`), :mod:`.limits` (with :mod:`.groups`,
+:mod:`.delegation`, :mod:`.cgroupfs`), :mod:`.stage`, :mod:`.events` (what came back, judged against the plan),
+:mod:`.worker` (copied into the stage) and :mod:`.student`. The submissions are read by :mod:`..intake`.
 """

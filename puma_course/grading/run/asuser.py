@@ -2,7 +2,7 @@
 
 Gradescope runs its autograder as root in a container where bubblewrap cannot start. Without this module the
 student's code would then run as root too: it could outlive its notebook, rewrite ``results.json``, signal the
-grader or read the grader's memory. Here (:mod:`puma_course.grading.gradescope` uses it):
+grader or read the grader's memory. Here (:mod:`puma_course.grading.publish.gradescope` uses it):
 
 * :class:`AsUser` is a :class:`~.sandbox.Sandbox` (kind "user") whose worker command starts with
   :data:`LAUNCHER`: run as root, it gives the worker's fresh folder to the user, tries to enter new PID and

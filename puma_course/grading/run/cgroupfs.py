@@ -1,10 +1,10 @@
 """The control-group file system as :mod:`.limits` and :mod:`.delegation` use it: its files read and written.
 
-Reading a counter (:func:`_int`, :func:`_key`), writing a setting (:func:`_write`), removing a group
-whose last process has just been reaped (:func:`_rmdir`), the grader's own group per controller
-(:func:`_own_groups`) and where the unified hierarchy is mounted (:func:`_v2_mount`).
+Reading a counter (:func:`read_int`, :func:`read_key`), writing a setting (:func:`write_setting`), removing a group
+whose last process has just been reaped (:func:`remove_group`), the grader's own group per controller
+(:func:`own_groups`) and where the unified hierarchy is mounted (:func:`v2_mount`).
 
->>> _own_groups("/nonexistent/cgroup")
+>>> own_groups("/nonexistent/cgroup")
 {}
 """
 
@@ -14,17 +14,19 @@ import errno
 import time
 from pathlib import Path
 
-__all__: list[str] = []
+__all__ = ["read_int", "read_key", "remove_group", "write_setting", "own_groups", "v2_mount"]
 
 
-def _int(path: Path) -> int:
+def read_int(path: Path) -> int:
+    """The number at the start of a counter file (0 when it cannot be read)."""
     try:
         return int(path.read_text().split()[0])
     except (OSError, ValueError, IndexError):
         return 0
 
 
-def _key(path: Path, key: str) -> int:
+def read_key(path: Path, key: str) -> int:
+    """The number after ``key`` in a file of ``key value`` lines (0 when absent or unreadable)."""
     try:
         for line in path.read_text().splitlines():
             parts = line.split()
@@ -35,7 +37,8 @@ def _key(path: Path, key: str) -> int:
     return 0
 
 
-def _rmdir(folder: Path) -> None:
+def remove_group(folder: Path) -> None:
+    """Remove a group's folder, waiting up to 2 s while the kernel still holds it (gone already: nothing to do)."""
     for _ in range(100):  # a killed process leaves its group a moment after it is reaped
         try:
             folder.rmdir()
@@ -48,12 +51,13 @@ def _rmdir(folder: Path) -> None:
             time.sleep(0.02)
 
 
-def _write(path: Path, value: str) -> None:
+def write_setting(path: Path, value: str) -> None:
+    """Write a setting (one value) into a control-group file."""
     with open(path, "w", encoding="ascii") as fh:
         fh.write(value)
 
 
-def _own_groups(proc_cgroup: str) -> dict[str, str]:
+def own_groups(proc_cgroup: str) -> dict[str, str]:
     """The grader's own group by controller ("" for v2's unified line), from ``/proc/self/cgroup``."""
     out: dict[str, str] = {}
     try:
@@ -68,7 +72,8 @@ def _own_groups(proc_cgroup: str) -> dict[str, str]:
     return out
 
 
-def _v2_mount(root: Path) -> Path | None:
+def v2_mount(root: Path) -> Path | None:
+    """Where the unified (v2) hierarchy is mounted under ``root`` (``root`` or ``root/unified``), or None."""
     for candidate in (root, root / "unified"):
         if (candidate / "cgroup.controllers").exists():
             return candidate

@@ -40,8 +40,8 @@ import pwd
 import re
 from pathlib import Path
 
-from .cgroupfs import _rmdir, _v2_mount, _write
-from .limits import ROOT, Run
+from .cgroupfs import remove_group, v2_mount, write_setting
+from .groups import ROOT, Run
 
 __all__ = ["parent_name", "delegate", "undelegate", "find_delegated", "V1_CONTROLLERS", "V2_CONTROLLERS"]
 
@@ -71,7 +71,7 @@ def _v1_mount(root: Path, controller: str) -> Path | None:
 
 
 def _v2_ready(root: Path) -> Path | None:
-    mount = _v2_mount(root)
+    mount = v2_mount(root)
     if mount is None:
         return None
     try:
@@ -103,9 +103,9 @@ def delegate(user: str, *, root: str | os.PathLike[str] = ROOT) -> list[str]:
     mount = _v2_ready(base)
     if mount is not None:
         folder = mount / name
-        _write(mount / "cgroup.subtree_control", " ".join(f"+{c}" for c in V2_CONTROLLERS))
+        write_setting(mount / "cgroup.subtree_control", " ".join(f"+{c}" for c in V2_CONTROLLERS))
         folder.mkdir(exist_ok=True)
-        _write(folder / "cgroup.subtree_control", " ".join(f"+{c}" for c in V2_CONTROLLERS))
+        write_setting(folder / "cgroup.subtree_control", " ".join(f"+{c}" for c in V2_CONTROLLERS))
         leaf = folder / "grader"
         leaf.mkdir(exist_ok=True)
         for path in (folder, leaf):
@@ -224,10 +224,10 @@ def _make(version: int, parents: dict[str, Path], run_name: str) -> Run | str:
                 run.mkdir()
                 made.append(run)
                 if version == 2:
-                    _write(run / "cgroup.subtree_control", " ".join(f"+{c}" for c in V2_CONTROLLERS))
+                    write_setting(run / "cgroup.subtree_control", " ".join(f"+{c}" for c in V2_CONTROLLERS))
         except OSError as exc:
             for folder in reversed(made):
-                _rmdir(folder)
+                remove_group(folder)
             why = "not this user's" if exc.errno in (errno.EACCES, errno.EPERM) else exc.strerror
             return f"cannot make a group in the delegated subtree {parent} ({why})"
         folders[controller] = run

@@ -14,9 +14,11 @@ import time
 from typing import Any
 
 from ..judge.bounds import check_answer
-from ..model import Exercise, NotebookResult, Question, Verdict, key_words, reconcile, score_question
+from ..judge.verdict import Verdict, reconcile
 from ..output.text import quoted
 from ..plan import Plan
+from ..results import NotebookResult, score_question
+from ..spec import Exercise, Question, key_words
 from .child import ChildResult
 from .limits import WALL_FACTOR
 from .worker import NOT_ATTEMPTED

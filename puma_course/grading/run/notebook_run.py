@@ -1,9 +1,9 @@
 """One notebook through one worker: its job line, its sandbox and control group, its events scored.
 
-:func:`_grade_data` grades a notebook's bytes (the runner's :func:`~.runner.grade_notebook` and
-:func:`~.runner.grade` call it): :func:`_run_worker` starts a fresh worker (:mod:`.child`) under the
+:func:`grade_data` grades a notebook's bytes (the runner's :func:`~.runner.grade_notebook` and
+:func:`~.runner.grade` call it): :func:`run_worker` starts a fresh worker (:mod:`.child`) under the
 sandbox (:mod:`.sandbox`), in a control group of its own when the run has them (:mod:`.limits`),
-feeds it :func:`_job` (what to call, never what is expected) and the notebook, and :mod:`.events`
+feeds it :func:`job_line` (what to call, never what is expected) and the notebook, and :mod:`.events`
 scores what comes back.
 """
 
@@ -18,21 +18,22 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from ..model import Exercise, NotebookResult
 from ..output.text import quoted
 from ..plan import Plan
+from ..results import NotebookResult
+from ..spec import Exercise
 from . import child, events, limits, monitor, worker
 from . import limits as limits_mod
 from .sandbox import Sandbox, child_env
 from .stage import Stage
 
-__all__ = ["LIMITS"]
+__all__ = ["LIMITS", "grade_data", "job_line", "run_worker"]
 
 #: Limits the worker sets on itself (see :func:`puma_course.grading.run.worker.limit_resources`).
 LIMITS = {"memory": 4 << 30, "file_size": 64 << 20, "open_files": 256, "processes": 64}
 
 
-def _job(
+def job_line(
     exercise: Exercise,
     plan: Plan,
     timeout_cell: float,
@@ -73,7 +74,7 @@ def calls(plan: Plan) -> list[bytes]:
     return [json.dumps(item.job()).encode() + b"\n" for item in plan]
 
 
-def _run_worker(
+def run_worker(
     data: bytes,
     exercise: Exercise,
     plan: Plan,
@@ -106,7 +107,7 @@ def _run_worker(
                 clock, fmt = group.cpu_clock() if group is not None else (-1, "")  # calls timed on CPU time
                 paths = [lib, *box.seen_sites]
                 nproc = box.kind == "bwrap"
-                job = _job(exercise, plan, timeout_cell, timeout, paths, nproc, (clock, fmt), len(data))
+                job = job_line(exercise, plan, timeout_cell, timeout, paths, nproc, (clock, fmt), len(data))
                 passed = tuple(f for f in (fd, clock) if f >= 0)
                 fds: dict[str, Any] = {"pass_fds": passed} if passed else {}
                 watch = monitor.Watch(lambda pid: monitor.meter_for(group, pid), timeout_cell, timeout, wall_total)
@@ -176,7 +177,7 @@ def _stop_words(outcome: child.ChildResult, stop_note: str, timeout: float, wall
     return stop_note
 
 
-def _grade_data(
+def grade_data(
     data: bytes,
     exercise: Exercise,
     student: str,
@@ -198,7 +199,7 @@ def _grade_data(
     result = NotebookResult.blank(student, exercise)
 
     def run(part: Plan, cpu: float, clock: float) -> child.ChildResult:
-        return _run_worker(data, exercise, part, stage, box, timeout_cell, cpu, private, groups, clock)
+        return run_worker(data, exercise, part, stage, box, timeout_cell, cpu, private, groups, clock)
 
     outcome = _run_to_the_end(data, plan, timeout, wall, run)
     if not outcome.timed_out and not any(e.get("kind") == "ready" for e in outcome.events):

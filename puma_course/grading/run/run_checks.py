@@ -9,9 +9,9 @@ import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-from ..model import EXERCISES
+from ..bank_loader import EXERCISES
 
-__all__ = ["package_digest"]
+__all__ = ["check_args", "stop_note", "undumpable", "package_digest"]
 
 
 def _positive(name: str, value: float) -> float:
@@ -20,7 +20,7 @@ def _positive(name: str, value: float) -> float:
     return float(value)
 
 
-def _stop_note(seconds: float, by_student: bool) -> str:
+def stop_note(seconds: float, by_student: bool) -> str:
     if by_student:
         return (
             f"stopped after {seconds:g} s: the total time for all of this student's notebooks ran out; "
@@ -33,7 +33,7 @@ def _stop_note(seconds: float, by_student: bool) -> str:
 
 
 @contextlib.contextmanager
-def _undumpable(on: bool) -> Iterator[None]:
+def undumpable(on: bool) -> Iterator[None]:
     """Linux, without the OS sandbox: make the grader's memory unreachable through /proc and ptrace for its workers."""
     libc = None
     if on and sys.platform.startswith("linux"):
@@ -51,7 +51,7 @@ def _undumpable(on: bool) -> Iterator[None]:
             libc.prctl(4, 1, 0, 0, 0)
 
 
-def _check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[str, float]) -> None:
+def check_args(submissions: Path, names: Sequence[str], jobs: int, times: dict[str, float]) -> None:
     if not submissions.is_dir():
         raise ValueError(f"submissions: expected a folder with one sub-folder per student, got {str(submissions)!r}")
     for name in names:

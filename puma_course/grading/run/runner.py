@@ -25,22 +25,24 @@ from pathlib import Path
 
 from ... import __version__
 from ...course import is_course
-from ..model import EXERCISES, Exercise, NotebookResult
+from ..bank_loader import EXERCISES
+from ..intake.collect import Collected, collect
+from ..intake.submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
 from ..output.copies import Handed, find_copies, handed
 from ..output.gradebook import read_roster
 from ..output.marks import read_marks
 from ..output.writer import RunFacts, Written, write_run
 from ..plan import Plan, make_plan
+from ..results import NotebookResult
 from ..secret import Secret, choose_key
 from ..settings import GradeSettings, use_bank
 from ..shards import ShardFile, run_facts, shard_path, write_shard
+from ..spec import Exercise
 from . import limits
-from .collect import Collected, collect
-from .notebook_run import LIMITS, _grade_data, _job, _run_worker  # noqa: F401 - _job, _run_worker: their old home
-from .run_checks import _check_args, _stop_note, _undumpable, package_digest
+from .notebook_run import LIMITS, grade_data  # noqa: F401 - LIMITS: its old home
+from .run_checks import check_args, package_digest, stop_note, undumpable
 from .sandbox import Sandbox, choose
 from .stage import Stage
-from .submissions import MAX_NOTEBOOK_BYTES, StudentFiles, StudentFolder, read_path, read_student, scan
 
 __all__ = [
     "GradingIntegrityWarning",
@@ -121,8 +123,8 @@ def grade_notebook(
     box = _box(sandbox)
     calls = make_plan(exercise, seed, student) if plan is None else plan
     with Stage([exercise], box.scratch.path if box.scratch else None) as stage:
-        return _grade_data(
-            data, exercise, student, calls, stage, box, timeout_cell, timeout_total, _stop_note(timeout_total, False)
+        return grade_data(
+            data, exercise, student, calls, stage, box, timeout_cell, timeout_total, stop_note(timeout_total, False)
         )
 
 
@@ -241,7 +243,7 @@ def grade_run(settings: GradeSettings) -> Graded:
         "timeout_total": settings.timeout_total,
         "timeout_student": settings.timeout_student,
     }
-    _check_args(sub_dir, names, settings.jobs, times)
+    check_args(sub_dir, names, settings.jobs, times)
     collected = settings.collected
     if collected is None and settings.layout != "folders":
         collected = collect(sub_dir, settings.layout, names)
@@ -317,7 +319,7 @@ def _grade_class(settings: GradeSettings, run: _Run) -> tuple[list[NotebookResul
     hidden += [Path(feedback)] if feedback is not None else []
     hidden += [Path(key.source)] if key.seed is None and key.source not in ("", "one-off") else []
     stage_in = box.scratch.path if box.scratch else None
-    with Stage([EXERCISES[n] for n in names], stage_in) as stage, _undumpable(box.kind != "bwrap"):
+    with Stage([EXERCISES[n] for n in names], stage_in) as stage, undumpable(box.kind != "bwrap"):
         hidden.append(stage.root)
         pre: dict[str, StudentFiles] = {}
         kept: list[Handed] = []  # each notebook's own code, for the copy report (read from the bytes graded)
@@ -356,8 +358,8 @@ def _grade_class(settings: GradeSettings, run: _Run) -> tuple[list[NotebookResul
                         res = _blank(s.name, ex, "timeout", note)
                     else:
                         limit = min(timeout_total, left)
-                        note = _stop_note(limit, limit < timeout_total)
-                        res = _grade_data(
+                        note = stop_note(limit, limit < timeout_total)
+                        res = grade_data(
                             nb.data,
                             ex,
                             s.name,

@@ -16,7 +16,7 @@ import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 
-from ..model import Exercise
+from ..spec import Exercise
 from . import student
 
 __all__ = ["Stage", "WORKER_DIR"]

@@ -12,7 +12,7 @@ import pytest
 import puma_course_bank as bank
 from puma_course import MK3, Porter, Puma560, transforms
 from puma_course.grading import EXERCISES, Exercise, Question
-from puma_course.grading.model import register
+from puma_course.grading.bank_loader import register
 from puma_course.grading.plan import _jsonable
 from puma_course.grading.run.worker import forbidden_codes, resolve
 from puma_course_bank import _formulas
@@ -166,7 +166,7 @@ def test_bank_files_call_the_kinematics_only_through_reference(name):
         "__future__",
         "typing",
         "numpy",
-        "puma_course.grading.model",
+        "puma_course.grading.spec",
         "puma_course.grading.judge.compare",
         "puma_course.grading.judge.diagnose",
         "puma_course.grading.judge.judges",

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from puma_course.grading import EXERCISES
-from puma_course.grading.run.submissions import handed_in
+from puma_course.grading.intake.submissions import handed_in
 from tests.support import ROOT
 
 HANDED = ("ex03_puma_fk", "ex09_puma_ik")

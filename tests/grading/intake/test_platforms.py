@@ -1,7 +1,7 @@
 """Platform downloads in, gradebooks out: Canvas's flat folder and Moodle's folders graded, gradebooks parsed back.
 
 The downloads are built from the course's own ``solutions/`` (full marks) and ``exercises/`` (0 points),
-named as Canvas and Moodle name them (see :mod:`puma_course.grading.run.collect`); the gradebooks are read
+named as Canvas and Moodle name them (see :mod:`puma_course.grading.intake.collect`); the gradebooks are read
 back with the csv module, so columns, order, quoting and numbers are checked as an import would read them.
 """
 
@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 
 from puma_course.cli import main
+from puma_course.grading.intake.collect import collect, parse_canvas_name
 from puma_course.grading.output.gradebook import CANVAS_IDS, number
-from puma_course.grading.run.collect import collect, parse_canvas_name
 from tests.support import ROOT
 
 EX1, EX2 = "ex01_rotations", "ex02_dh_frames"

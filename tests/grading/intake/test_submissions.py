@@ -1,4 +1,4 @@
-"""grading.run.submissions: students and notebooks read without following links, whatever the folder holds."""
+"""grading.intake.submissions: students and notebooks read without following links, whatever the folder holds."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import os
 
 import pytest
 
-from puma_course.grading.run import submissions as subs_mod
-from puma_course.grading.run.submissions import MAX_NOTEBOOK_BYTES, read_path, read_student, scan
+from puma_course.grading.intake import submissions as subs_mod
+from puma_course.grading.intake.submissions import MAX_NOTEBOOK_BYTES, read_path, read_student, scan
 from tests.support import ROOT
 
 # CI's second pass (another OpenBLAS kernel) leaves this out: reading students' folders and files: no numerics.

@@ -17,7 +17,7 @@ import pytest
 
 from puma_course.grading import EXERCISES
 from puma_course.grading.judge.bounds import MAX_NUMBERS, check_answer, number_bound, shape_of
-from puma_course.grading.model import NotebookResult
+from puma_course.grading.results import NotebookResult
 from puma_course.grading.run.child import ChildResult
 from puma_course.grading.run.events import apply, call_verdict
 from puma_course.grading.run.runner import make_plan

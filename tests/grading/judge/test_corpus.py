@@ -5,7 +5,7 @@ every wrong one fails; a wrong *method* earns at most a third of its question (R
 method earns little"); a wrong answer tagged with a mistake has that mistake named on every failing
 case, and none names a mistake it was told not to; one that ``says`` something says it on every
 failing case. Graded in-process with ``Question.judge`` and the grader's
-:func:`~puma_course.grading.model.reconcile`, so the whole corpus takes seconds.
+:func:`~puma_course.grading.judge.verdict.reconcile`, so the whole corpus takes seconds.
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ import pytest
 
 from puma_course.grading import EXERCISES
 from puma_course.grading.judge.diagnose import TITLES, Mistake, base_key, close, diagnose, matches
-from puma_course.grading.model import Verdict
+from puma_course.grading.judge.verdict import Verdict
 
 
 def judge(name, qid, got, *args):

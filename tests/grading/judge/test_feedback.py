@@ -16,7 +16,8 @@ import pytest
 
 from puma_course.grading import EXERCISES
 from puma_course.grading.judge.diagnose import base_key
-from puma_course.grading.model import Question, Verdict, reconcile
+from puma_course.grading.judge.verdict import Verdict, reconcile
+from puma_course.grading.spec import Question
 from tests.fixtures.answers.generic import factory_name
 from tests.fixtures.answers.methods import METHODS
 from tests.fixtures.answers.model import grade
@@ -138,7 +139,7 @@ def test_readme_mistakes_table_matches_the_graders_question_by_question():
 
 
 def test_every_key_of_the_graders_has_a_title():
-    from puma_course.grading.diagnose import TITLES
+    from puma_course.grading.judge.diagnose import TITLES
 
     keys = set().union(*(recognised(q) for ex in EXERCISES.values() for q in ex.questions))
     assert keys <= set(TITLES)

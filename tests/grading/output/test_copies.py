@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from puma_course.grading import EXERCISES, grade
-from puma_course.grading.model import load_bank
+from puma_course.grading.bank_loader import load_bank
 from puma_course.grading.output import copies as cp
 from puma_course.grading.output.fingerprints import WINDOW, K, fingerprint, similarity, tokens
 from puma_course.grading.output.payloads import payloads

@@ -4,7 +4,7 @@
   data, and no solution, bank, hidden test or reference code, and no rubric or worked answer of a written
   question (every file searched, as bytes);
 * writing it again updates DIR in place and leaves a ``.git`` alone;
-* the edition's self-check (the public cases as data, :mod:`puma_course.grading.public`) gives the
+* the edition's self-check (the public cases as data, :mod:`puma_course.grading.publish.public`) gives the
   same outcome, diagnosis and hint as the instructor's bank on every public case of every question,
   for the solutions' answers and for wrong ones (each recognised mistake, zeros, not attempted);
 * installed with ``pip install`` into a fresh virtual environment (slow), the edition's package holds
@@ -30,12 +30,12 @@ import pytest
 
 from puma_course.cli import main
 from puma_course.grading import EXERCISES
-from puma_course.grading.edition import write_edition
 from puma_course.grading.judge.judges import table_judge
 from puma_course.grading.judge.judges.tables import modified_table_fk
-from puma_course.grading.model import score_question
-from puma_course.grading.public import DATA_FILE, _key, dumps, public_exercise
+from puma_course.grading.publish.edition import write_edition
+from puma_course.grading.publish.public import DATA_FILE, _key, dumps, public_exercise
 from puma_course.grading.remake import Made
+from puma_course.grading.results import score_question
 from puma_course.grading.selfcheck import public_outcomes
 from puma_course.grading.written import written_exercises, written_questions
 from puma_course_bank import _reference
@@ -151,7 +151,7 @@ def test_the_edition_holds_what_a_student_needs(edition):
     assert readme.index(".venv\\Scripts\\activate.bat") < readme.index(".venv\\Scripts\\Activate.ps1")
     assert "Set-ExecutionPolicy" in readme
     assert "puma-course lab --allow-root" in readme and "sudo" in readme  # what to do as root
-    assert (edition / "puma_course" / DATA_FILE.relative_to(DATA_FILE.parents[2])).is_file()
+    assert (edition / "puma_course" / DATA_FILE.relative_to(DATA_FILE.parents[3])).is_file()
     assert not list(edition.rglob("__pycache__"))
 
 

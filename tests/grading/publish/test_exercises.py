@@ -10,7 +10,7 @@ import nbformat
 import pytest
 
 from puma_course.grading import EXERCISES, grade, release, release_notebook
-from puma_course.grading.release import (
+from puma_course.grading.publish.release import (
     BEGIN_HIDDEN,
     BEGIN_SOLUTION,
     END_HIDDEN,

@@ -25,7 +25,7 @@ import pytest
 from puma_course import __version__
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, NotebookResult
-from puma_course.grading.gradescope import _bank_files, _find_notebook, results_json, wheel_name
+from puma_course.grading.publish.gradescope import _bank_files, _find_notebook, results_json, wheel_name
 from tests.grading.publish import container
 from tests.support import ROOT
 
@@ -204,12 +204,12 @@ def test_setup_sh_installs_the_pinned_wheel_offline_and_makes_the_user(autograde
     def inside(code: str) -> subprocess.CompletedProcess[str]:
         return container.container(tree, made.etc, [py, "-c", code])
 
-    found = inside("import puma_course.grading.gradescope")
+    found = inside("import puma_course.grading.publish.gradescope")
     # the dependencies were not installed (offline, --no-deps): the import of numpy fails, the version is there
     meta = inside("import importlib.metadata as m; print(m.version('puma-course'))")
     assert meta.stdout.strip() == __version__, meta.stderr
     assert found.returncode != 0 and "numpy" in found.stderr
-    installed = list((tree / "puma-venv").glob("lib/python*/site-packages/puma_course/grading/gradescope.py"))
+    installed = list((tree / "puma-venv").glob("lib/python*/site-packages/puma_course/grading/publish/gradescope.py"))
     assert installed, "the wheel did not install the package's files"
     # the user, unprivileged; the package, its record and the zip's folder root's alone
     user = [line.split(":") for line in (made.etc / "passwd").read_text().splitlines() if line.startswith("puma-")]
@@ -256,7 +256,7 @@ _SAME_PLANS = """
 import json, sys
 from pathlib import Path
 import numpy as np
-from puma_course.grading.model import EXERCISES, load_bank
+from puma_course.grading.bank_loader import EXERCISES, load_bank
 from puma_course.grading.plan import make_plan
 
 def norm(v):

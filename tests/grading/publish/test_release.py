@@ -1,4 +1,4 @@
-"""puma_course.grading.release: the solution-to-exercise transform, points from the bank, the release check."""
+"""puma_course.grading.publish.release: the solution-to-exercise transform, points from the bank, the release check."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import pytest
 
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, release, release_notebook
-from puma_course.grading.release import (
+from puma_course.grading.publish.release import (
     NOTEBOOK_METADATA,
     STUB,
     essentials,

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from puma_course.grading.gradescope_run import write_results
+from puma_course.grading.publish.gradescope_run import write_results
 from puma_course.grading.run.asuser import _PROBE, LAUNCHER, NPROC, User, end_processes, probe, uids
 
 # CI's second pass (another OpenBLAS kernel) leaves this out: an unprivileged user's launcher, probe and process

@@ -1,7 +1,7 @@
 """Judging modelling questions for what is right, not against one answer.
 
 Each factory returns a ``judge(got, expected, args) -> Verdict`` for :attr:`Question.judge_with
-<puma_course.grading.model.Question.judge_with>`. ``expected`` is what the question's reference computed
+<puma_course.grading.spec.Question.judge_with>`. ``expected`` is what the question's reference computed
 in the grader's process: a dict holding the hidden joint values, the reference poses and the
 reference robot's forward kinematics as a callable (``"fk"``), so a judge can test a student's answer
 by what it *does*:
@@ -24,7 +24,7 @@ student's table, the robot's forward kinematics) from the course's bank (``bank/
 
 from __future__ import annotations
 
-from ._poses import pose_errors, pose_ok
+from .poses import pose_errors, pose_ok
 from .solutions import nearest_judge, path_judge, rotation_judge, solution_set_judge, stroke_judge
 from .tables import table_judge
 

@@ -8,15 +8,15 @@ from typing import Any
 import numpy as np
 
 from ....transforms import wrap_angle
-from ...model import Judge, Verdict
 from ...remake import made
-from ..diagnose import close
-from ._poses import POS_TOL, _dist, _floats, _off, _radians, _wrapped, pose_ok
+from ..mistake import close
+from ..verdict import Judge, Verdict
+from .poses import POS_TOL, as_floats, joint_distance, offset_text, pose_ok, revolute_to_radians, wrap_joints
 
 
 # ------------------------------------------------------------------------------------------ solution sets
 def _rows(got: Any, n: int) -> np.ndarray | str:
-    arr = _floats(got)
+    arr = as_floats(got)
     if arr is None:
         return "did not return numbers"
     if arr.size == 0:  # an empty list: no configuration (an unreachable pose has none)
@@ -39,8 +39,8 @@ def _not_reaching(arr: np.ndarray, expected: dict[str, Any], target: Any) -> Ver
         return None
     i = int(np.flatnonzero(~ok)[0])
     label = f"row {i + 1}" if arr.shape[0] > 1 else "your configuration"
-    plain = f"{label} does not reach the pose: off by {_off(reached[i : i + 1], np.asarray(target))}"
-    if np.all(pose_ok(fk(_radians(arr, rev)), target, scale)):
+    plain = f"{label} does not reach the pose: off by {offset_text(reached[i : i + 1], np.asarray(target))}"
+    if np.all(pose_ok(fk(revolute_to_radians(arr, rev)), target, scale)):
         return Verdict("your angles are in degrees: the course works in radians", "degrees", None, plain)
     for key, message, offset in expected.get("offsets", ()):  # joint values counted from another zero
         if np.all(pose_ok(fk(arr - np.asarray(offset, dtype=float)), target, scale)):
@@ -106,7 +106,7 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
                 f"q2_max = {q2_max:.4g} (lecture 06 §5): drop it; {left}",
                 "stroke_limit",
             )
-        D = _dist(arr[:, None, :], arr[None, :, :], rev)
+        D = joint_distance(arr[:, None, :], arr[None, :, :], rev)
         twice = np.argwhere(np.triu(D < match_tol, k=1))  # the same tolerance as a match: one solution, once
         if twice.size:
             i, j = (int(v) + 1 for v in twice[0])
@@ -119,7 +119,7 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
                 f"returned {len(arr)} configurations; the pose has {k} solutions: list each solution once",
                 "duplicates",
             )
-        M = _dist(sols[:, None, :], arr[None, :, :], rev) < match_tol
+        M = joint_distance(sols[:, None, :], arr[None, :, :], rev) < match_tol
         missing = [labels[i] for i in np.flatnonzero(~M.any(axis=1))]
         if missing:
             return Verdict(f"misses {len(missing)} of the {k} solutions: {', '.join(missing)}", "missing_solutions")
@@ -131,7 +131,7 @@ def solution_set_judge(match_tol: float = 1e-6) -> Judge:
             )
         if expected.get("ordered") and not np.all(np.diag(M)):
             for key, message, rows in expected.get("wrong_orders", ()):
-                if np.all(_dist(np.asarray(rows, dtype=float), arr, rev) < match_tol):
+                if np.all(joint_distance(np.asarray(rows, dtype=float), arr, rev) < match_tol):
                     return Verdict(message, key)
             return Verdict("the right solutions, in another order: sort them as the question asks", "solution_order")
         return Verdict(None)
@@ -156,11 +156,11 @@ def nearest_judge() -> Judge:
         why = _not_reaching(arr, expected, expected["T"])
         if why is not None:
             return why
-        d, ds = float(_dist(arr[0], q_ref, rev)), _dist(sols, q_ref, rev)
+        d, ds = float(joint_distance(arr[0], q_ref, rev)), joint_distance(sols, q_ref, rev)
         best = int(np.argmin(ds))
         if d <= ds[best] + 1e-6:
             return Verdict(None)
-        mine = _dist(sols, arr[0], rev)
+        mine = joint_distance(sols, arr[0], rev)
         label = labels[int(np.argmin(mine))] if np.min(mine) < 1e-6 else "yours"
         not_nearest = (
             f"a solution ({label}), but not the nearest: it is {d:.3g} from q_ref, {labels[best]} is {ds[best]:.3g}"
@@ -207,26 +207,26 @@ def path_judge(slack: float = 0.01) -> Judge:
             i = int(np.flatnonzero(~ok)[0])
             plain = (
                 f"the configuration for pose {i + 1} does not reach it: off by "
-                f"{_off(fk(arr[i : i + 1]), path[i : i + 1])}"
+                f"{offset_text(fk(arr[i : i + 1]), path[i : i + 1])}"
             )
-            if np.all(pose_ok(fk(_radians(arr, rev)), path, scale)):
+            if np.all(pose_ok(fk(revolute_to_radians(arr, rev)), path, scale)):
                 return Verdict("your angles are in degrees: the course works in radians", "degrees", None, plain)
             for key, message, other_fk in expected.get("alternatives", ()):
                 if np.all(pose_ok(other_fk(arr), path, scale)):
                     return Verdict(message, key, None, plain)
             return Verdict(plain, "not_a_solution")
-        start, ref_start = float(_dist(arr[0], q0, rev)), float(_dist(ref[0], q0, rev))
+        start, ref_start = float(joint_distance(arr[0], q0, rev)), float(joint_distance(ref[0], q0, rev))
         if start > ref_start + slack:
             return Verdict(
                 f"your path starts {start:.3g} (joint distance) away from q0, where the arm stands: its "
                 "first configuration must be the solution nearest q0",
                 "start_jump",
             )
-        steps, ref_steps = _dist(arr[1:], arr[:-1], rev), _dist(ref[1:], ref[:-1], rev)
+        steps, ref_steps = joint_distance(arr[1:], arr[:-1], rev), joint_distance(ref[1:], ref[:-1], rev)
         limit = 1.5 * float(np.max(ref_steps, initial=0.0)) + slack
         if np.max(steps, initial=0.0) > limit:
             k = int(np.argmax(steps))
-            moved = np.abs(_wrapped(arr[k + 1] - arr[k], rev))
+            moved = np.abs(wrap_joints(arr[k + 1] - arr[k], rev))
             joints = ", ".join(str(j + 1) for j in np.flatnonzero(moved > 0.1)) or "several"
             return Verdict(
                 f"between poses {k + 1} and {k + 2} joint(s) {joints} jump by up to {np.max(moved):.3g} (a step of "
@@ -248,7 +248,7 @@ def rotation_judge(from_angles: Callable[..., np.ndarray]) -> Judge:
 
     def judge(got: Any, expected: Any, args: tuple[Any, ...]) -> Verdict:
         R = np.asarray(expected["R"], dtype=float)
-        arr = _floats(got)
+        arr = as_floats(got)
         if arr is None or arr.shape != (3,) or not np.all(np.isfinite(arr)):
             return Verdict(f"expected three angles (shape (3,)), got {'no numbers' if arr is None else arr.shape}")
         mine = from_angles(*arr)

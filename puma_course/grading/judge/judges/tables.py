@@ -9,9 +9,9 @@ import numpy as np
 
 from ....kinematics import DHChain, Link
 from ....kinematics.standard_dh import standard_dh
-from ...model import Judge, Verdict
 from ...remake import made
-from ._poses import POS_TOL, _constant, _floats, _off, pose_ok
+from ..verdict import Judge, Verdict
+from .poses import POS_TOL, as_floats, is_constant_transform, offset_text, pose_ok
 
 # ------------------------------------------------------------------------------------------ DH tables
 TableFk = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -57,7 +57,7 @@ def diagnosis_points(Q: Any, revolute: Any, scale: float) -> list[np.ndarray]:
 
     ``Q`` with each joint's value negated (a joint turning the wrong way), then q = 0, then each joint moved
     alone from q = 0 (right only at q = 0). A student edition records the reference's poses at these too
-    (:mod:`puma_course.grading.public`), so that its self-check names the same mistakes as the course.
+    (:mod:`puma_course.grading.publish.public`), so that its self-check names the same mistakes as the course.
 
     >>> [P.tolist() for P in diagnosis_points([[0.1, 0.2]], [True, False], 2.0)]
     [[[-0.1, 0.2]], [[0.1, -0.2]], [[0.0, 0.0]], [[0.7, 0.0]], [[0.0, 0.6]]]
@@ -107,7 +107,7 @@ def table_judge(
         fk, Q = expected["fk"], np.asarray(expected["Q"], dtype=float)
         rev, scale = np.asarray(expected["revolute"], dtype=bool), float(expected["scale"])
         n = len(rev)
-        table = _floats(got)
+        table = as_floats(got)
         if table is None or not np.all(np.isfinite(table)):
             return Verdict(f"expected a table of numbers, {n} rows of (α_(i-1), a_(i-1), θ_i, d_i, σ_i)")
         if table.shape != (n, 5):
@@ -139,7 +139,7 @@ def table_judge(
         except LookupError:  # a student edition without a recorded pose: say what differs, name nothing
             return Verdict(
                 f"your chain reaches other poses: at the hidden joint values the tool is off by up to "
-                f"{_off(T_got, T_ref)}"
+                f"{offset_text(T_got, T_ref)}"
             )
 
     return made(judge, table_judge, chain_fk, standard_fk, standard_section)
@@ -149,7 +149,7 @@ def _named_shift(T_got: np.ndarray, T_ref: np.ndarray, scale: float, shifts: Any
     """The question's own named shift (``(key, message, t)`` of the reference's ``"shifts"``): every pose moved by the
     same translation t in frame {0}, the rotations right (a length of the mechanism left out of the table), or None."""
     M = T_got @ np.linalg.inv(T_ref)
-    if not _constant(M, scale) or np.max(np.abs(M[0, :3, :3] - np.eye(3))) > 1e-6:
+    if not is_constant_transform(M, scale) or np.max(np.abs(M[0, :3, :3] - np.eye(3))) > 1e-6:
         return None
     for key, message, t in shifts:
         if np.max(np.abs(M[0, :3, 3] - np.asarray(t, dtype=float))) <= POS_TOL * scale:
@@ -199,7 +199,7 @@ def _table_mistake(
                 "joint_sign",
             )
     for side, M in (("base", T_got @ np.linalg.inv(T_ref)), ("tool", np.linalg.inv(T_ref) @ T_got)):
-        if not _constant(M, scale):
+        if not is_constant_transform(M, scale):
             continue
         shift = M[0, :3, 3]
         if np.max(np.abs(M[0, :3, :3] - np.eye(3))) <= 1e-6 and np.max(np.abs(shift[:2])) > POS_TOL * scale:
@@ -238,5 +238,5 @@ def _table_mistake(
         return Verdict("your table gives the right pose at q = 0 but not when several joints move", "only_at_zero")
     return Verdict(
         f"your chain reaches other poses: at the hidden joint values the tool is off by up to "
-        f"{_off(T_got, T_ref)}, already at q = 0"
+        f"{offset_text(T_got, T_ref)}, already at q = 0"
     )

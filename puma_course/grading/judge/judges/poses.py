@@ -12,7 +12,8 @@ from ....transforms import wrap_angle
 ROT_TOL, POS_TOL = 1e-6, 1e-6
 
 
-def _floats(value: Any) -> np.ndarray | None:
+def as_floats(value: Any) -> np.ndarray | None:
+    """``value`` as an array of floats, or None when it is not numbers."""
     try:
         return np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -35,27 +36,30 @@ def pose_ok(Ts: Any, T: Any, scale: float = 1.0) -> np.ndarray:
     return (pos <= POS_TOL * max(1.0, scale)) & (rot <= ROT_TOL)
 
 
-def _off(Ts: np.ndarray, T: np.ndarray) -> str:
+def offset_text(Ts: np.ndarray, T: np.ndarray) -> str:
+    """How far the poses ``Ts`` are from ``T`` at most, in words (position, then orientation)."""
     pos, rot = pose_errors(Ts, T)
     return f"{float(np.max(pos)):.3g} in position and {float(np.max(rot)):.3g} in orientation"
 
 
-def _wrapped(d: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+def wrap_joints(d: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+    """Joint differences ``d`` with the revolute ones wrapped to (-π, π]."""
     return np.where(revolute, wrap_angle(d), d)
 
 
-def _dist(a: np.ndarray, b: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+def joint_distance(a: np.ndarray, b: np.ndarray, revolute: np.ndarray) -> np.ndarray:
     """Wrapped joint distance (Euclidean; angle differences in (-π, π]), broadcasting over leading axes."""
-    d = _wrapped(a - b, revolute)
+    d = wrap_joints(a - b, revolute)
     return np.sqrt(np.sum(d * d, axis=-1))
 
 
-def _radians(rows: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+def revolute_to_radians(rows: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+    """``rows`` with the revolute joints' values, read as degrees, turned into radians."""
     out = rows.copy()
     out[..., revolute] = np.radians(out[..., revolute])
     return out
 
 
-def _constant(M: np.ndarray, scale: float) -> bool:
+def is_constant_transform(M: np.ndarray, scale: float) -> bool:
     """True when the transforms M (N, 4, 4) are all the same and not the identity."""
     return bool(np.all(pose_ok(M, M[0], scale)) and not pose_ok(M[:1], np.eye(4), scale)[0])

@@ -11,7 +11,7 @@ with the package (they pickle as their recipe, :mod:`puma_course.grading.remake`
 ``check("qN", fn)`` and ``puma-course check`` judge, diagnose and hint exactly as the instructor's do
 on those cases, and ``hidden`` draws no case at all.
 
-The data lives in the package (``grading/public_data/exercises.pickle``), written only into an
+The data lives in the package (``grading/publish/public_data/exercises.pickle``), written only into an
 edition: in the instructor's course it does not exist and :func:`exercises` raises.
 """
 
@@ -28,10 +28,11 @@ from typing import Any
 
 import numpy as np
 
-from .judge.diagnose import Mistake
-from .judge.judges.tables import record_diagnosis, table_judge
-from .model import BANK_MODULE, Exercise, Question
-from .remake import Made, remake
+from ..bank_loader import BANK_MODULE
+from ..judge.diagnose import Mistake
+from ..judge.judges.tables import record_diagnosis, table_judge
+from ..remake import Made, remake
+from ..spec import Exercise, Question
 
 __all__ = [
     "DATA_FILE",

@@ -11,7 +11,7 @@
 * the notebook gets the metadata JupyterLab 4 writes (:data:`NOTEBOOK_METADATA`), without
   ``language_info.version``, which depends on the student's Python.
 
-**Points are stored once**, in :attr:`Question.points <puma_course.grading.model.Question.points>`.
+**Points are stored once**, in :attr:`Question.points <puma_course.grading.spec.Question.points>`.
 A solution tags each answer cell ``question:qN`` and nothing more; the generator adds the
 ``points:N`` tag to that cell, a heading cell just above it (``**q2** · 3 points · write
 `rotation_between` below``, tagged ``heading:q2``) and, after the notebook's first cell, a
@@ -42,9 +42,10 @@ import re
 from pathlib import Path
 from typing import Any
 
+from ..bank_loader import EXERCISES
+from ..spec import Exercise, Question
+from ..written import ANSWER_TAG, PLACEHOLDER, PROMPT_TAG, prompt_source, written_questions, written_summary
 from . import notebook_json as nbjson
-from .model import EXERCISES, Exercise, Question
-from .written import ANSWER_TAG, PLACEHOLDER, PROMPT_TAG, prompt_source, written_questions, written_summary
 
 __all__ = [
     "STUB",

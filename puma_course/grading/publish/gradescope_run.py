@@ -21,8 +21,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .run.asuser import STUDENT_USER, AsUser, User, end_processes, find_user, make_user, probe
-from .run.sandbox import Sandbox, choose, python_layout
+from ..run.asuser import STUDENT_USER, AsUser, User, end_processes, find_user, make_user, probe
+from ..run.sandbox import Sandbox, choose, python_layout
 
 __all__ = ["Isolation", "isolate", "finish", "write_results", "package_folders"]
 

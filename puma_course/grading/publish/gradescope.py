@@ -13,7 +13,7 @@ Specifications"): ``setup.sh`` and ``run_autograder`` at its root; Gradescope un
   ``PUMA_VENV_OPTIONS`` venv options (the tests install offline). It makes the system user
   ``puma-student`` (:data:`~.run.asuser.STUDENT_USER`; ``PUMA_STUDENT_UID`` fixes its uid) and makes the
   installed package, its record and ``/autograder/source`` root's alone.
-* ``run_autograder`` runs ``python -m puma_course.grading.gradescope``: :func:`run` locks the grader's
+* ``run_autograder`` runs ``python -m puma_course.grading.publish.gradescope``: :func:`run` locks the grader's
   folders and checks the student's user (:func:`~.gradescope_run.isolate`), grades the submitted notebook
   (``<exercise>.ipynb``, or the only notebook submitted) as ``puma-course grade`` does, as that user
   (:mod:`.run.asuser`), with the zip's question bank, ends every process of the user and writes
@@ -44,17 +44,19 @@ import zipfile
 from pathlib import Path
 from typing import Any
 
-from .. import _version
+from ... import __version__
+from ..bank_loader import EXERCISES, load_bank
+from ..intake.submissions import read_path
+from ..output.report import format_question
+from ..output.text import quoted
+from ..results import NotebookResult
+from ..run.asuser import STUDENT_USER
+from ..spec import Exercise
 from .gradescope_run import finish, isolate, write_results
-from .model import EXERCISES, Exercise, NotebookResult, load_bank
-from .output.report import format_question
-from .output.text import quoted
-from .run.asuser import STUDENT_USER
-from .run.submissions import read_path
 
 __all__ = ["build_autograder", "run", "results_json", "wheel_name", "SETUP_SH", "RUN_AUTOGRADER"]
 
-_PACKAGE_DIR = Path(__file__).resolve().parents[1]
+_PACKAGE_DIR = Path(__file__).resolve().parents[2]
 _EPOCH = (1980, 1, 1, 0, 0, 0)
 HIDDEN_MARK = "hidden case"
 
@@ -82,11 +84,11 @@ RUN_AUTOGRADER = """#!/usr/bin/env bash
 # Gradescope runs this for every submission, in /autograder (puma-course {version}, exercise {exercise}).
 PY=python3
 if [ -x /autograder/puma-venv/bin/python ]; then PY=/autograder/puma-venv/bin/python; fi
-exec "$PY" -m puma_course.grading.gradescope /autograder
+exec "$PY" -m puma_course.grading.publish.gradescope /autograder
 """
 
 
-def wheel_name(version: str = _version.__version__) -> str:
+def wheel_name(version: str = __version__) -> str:
     """The wheel's file name (PEP 427).
 
     >>> wheel_name("0.2.0")
@@ -98,7 +100,7 @@ def wheel_name(version: str = _version.__version__) -> str:
 #: The bank/__init__.py of an autograder: it registers the zip's own exercise only.
 BANK_INIT = '''"""The question bank of this autograder: {exercise} alone (puma-course {version} built it)."""
 
-from puma_course.grading.model import register
+from puma_course.grading.bank_loader import register
 
 from . import {exercise} as _exercise
 
@@ -121,7 +123,7 @@ def _bank_files(course: Path, exercise: str | None = None) -> dict[str, bytes]:
     if exercise is not None and (folder / f"{exercise}.py").is_file():
         mine = sorted(_imported(folder, exercise))
         files = {f"bank/{p.relative_to(folder).as_posix()}": p.read_bytes() for p in mine}
-        files["bank/__init__.py"] = BANK_INIT.format(exercise=exercise, version=_version.__version__).encode()
+        files["bank/__init__.py"] = BANK_INIT.format(exercise=exercise, version=__version__).encode()
         return files
     return {
         f"bank/{p.relative_to(folder).as_posix()}": p.read_bytes()
@@ -133,7 +135,7 @@ def _bank_files(course: Path, exercise: str | None = None) -> dict[str, bytes]:
 def _imported(folder: Path, exercise: str) -> set[Path]:
     """The files of the bank at ``folder`` that ``<exercise>.py`` imports, and those they import (relative imports,
     or absolute ones of the bank's package name), with the ``__init__.py`` of every package between them."""
-    from .model import BANK_MODULE
+    from ..bank_loader import BANK_MODULE
 
     seen: set[Path] = set()
     todo = [folder / f"{exercise}.py"]
@@ -207,7 +209,7 @@ def build_autograder(course: str | os.PathLike[str], exercise: str, output: str 
     """Write the autograder zip of ``exercise`` to ``output``; return a few lines saying what is in it."""
     if exercise not in EXERCISES:
         raise ValueError(f"exercise: expected one of {sorted(EXERCISES)}, got {exercise!r}")
-    version = _version.__version__
+    version = __version__
     wheel = wheel_name(version)
     config = {"exercise": exercise, "version": version, "wheel": wheel}
     out = Path(output)
@@ -315,7 +317,7 @@ def _forget_bank(source: Path) -> None:
     import pkgutil
     import shutil
 
-    from .model import BANK_MODULE
+    from ..bank_loader import BANK_MODULE
 
     for info in pkgutil.walk_packages([str(source / "bank")], prefix=BANK_MODULE + "."):
         importlib.import_module(info.name)
@@ -323,7 +325,7 @@ def _forget_bank(source: Path) -> None:
 
 
 def _run(base: Path) -> dict[str, Any]:
-    from .run.runner import grade
+    from ..run.runner import grade
 
     start = time.perf_counter()
     iso = isolate(base)  # before anything else: the grader's files root's alone, the student's user checked
@@ -336,10 +338,8 @@ def _run(base: Path) -> dict[str, Any]:
         out = {"score": 0.0, "output": f"not graded: {iso.refused}. Ask your instructor.", "tests": []}
         write_results(base, out)
         return out
-    if config.get("version") != _version.__version__:
-        notes.append(
-            f"WARNING: the zip was built by puma-course {config.get('version')}, this is {_version.__version__}"
-        )
+    if config.get("version") != __version__:
+        notes.append(f"WARNING: the zip was built by puma-course {config.get('version')}, this is {__version__}")
     path, said = _find_notebook(base / "submission", name)
     if said:
         notes.append(said)
@@ -374,7 +374,7 @@ def _run(base: Path) -> dict[str, Any]:
         feedback = next((Path(tmp) / "feedback").glob("*.md")).read_text(encoding="utf-8")
     notes += [f"status: {result.status}", *result.notes]
     notes.append(f"{name}: {result.score:g} / {result.max_score:g} points")
-    extra = {"exercise": name, "status": result.status, "version": _version.__version__, "seed": seed}
+    extra = {"exercise": name, "status": result.status, "version": __version__, "seed": seed}
     extra["sandbox"] = box.kind
     out = finish(iso, base, results_json(result, exercise, notes, feedback, time.perf_counter() - start, extra))
     print(out["output"])

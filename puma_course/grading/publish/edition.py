@@ -9,8 +9,8 @@ with, and nothing of the answer key:
 * the package source (``puma_course/``, ``pyproject.toml``, ``LICENSE``, and a ``setup.py`` that builds in a
   temporary folder, so installing leaves no ``build/`` or ``*.egg-info`` behind), so ``pip install .`` in
   DIR gives the kinematics, the viewer and the grading engine, and the self-check's data for the
-  public cases only (``puma_course/grading/public_data/exercises.pickle``,
-  :mod:`puma_course.grading.public`): inputs, expected values, the mistaken answers it recognises
+  public cases only (``puma_course/grading/publish/public_data/exercises.pickle``,
+  :mod:`puma_course.grading.publish.public`): inputs, expected values, the mistaken answers it recognises
   on those inputs, hints.
 
 Not written: ``solutions/``, the question bank (``bank/``: reference answers, hidden-case
@@ -26,9 +26,9 @@ import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..course import INDEX
-from ..hub import write_binder_files
-from .model import load_bank
+from ...course import INDEX
+from ...hub import write_binder_files
+from ..bank_loader import load_bank
 from .public import DATA_FILE, dumps, public_exercise
 
 __all__ = ["Edition", "write_edition", "STUDENT_README", "SETUP_PY", "MANAGED"]
@@ -220,7 +220,7 @@ def write_edition(out: str | Path, course: str | Path | None = None) -> Edition:
         (dest / "figures").mkdir()
         for fig in figures:
             shutil.copy2(fig, dest / "figures" / fig.name)
-    package = Path(__file__).resolve().parents[1]
+    package = Path(__file__).resolve().parents[2]
     shutil.copytree(package, dest / "puma_course", ignore=_IGNORE)
     write_binder_files(dest)  # repo2docker/Binder's environment, and the .gitignore nbgitpuller needs
 

@@ -1,9 +1,0 @@
-"""Moved to :mod:`puma_course.grading.judge.diagnose`; this name stays importable for courses' banks (``bank/``)."""
-
-from typing import Any
-
-from .judge import diagnose as _moved
-
-
-def __getattr__(name: str) -> Any:
-    return getattr(_moved, name)
