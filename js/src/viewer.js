@@ -46,14 +46,18 @@ import { placeLabels } from "./labels.js";
 
 const AXIS_COLORS = [0xd62728, 0x2ca02c, 0x1f77b4]; // x red, y green, z blue (matplotlib's tab colours)
 const FOV = 35;
+const KEY_HELP = "arrow keys turn, + and - zoom, 0 resets";
+const TURN = 10; // degrees per arrow key
 
 const CSS = `
 .puma-viewer { position: relative; overflow: hidden; background: #fbfbfb; border: 1px solid #ddd; border-radius: 4px; }
 .puma-viewer canvas { display: block; outline: none; }
+.puma-viewer canvas:focus-visible { outline: 3px solid #1a5fb4; outline-offset: -3px; }
+.puma-viewer .puma-status { position: absolute; width: 1px; height: 1px; overflow: hidden; clip: rect(0 0 0 0); white-space: nowrap; }
 .puma-viewer .puma-labels { position: absolute; inset: 0; pointer-events: none; }
 .puma-viewer .puma-label { position: absolute; font: 600 13px/1 system-ui, sans-serif; color: #222; white-space: nowrap;
   padding: 1px 3px; background: rgba(255, 255, 255, 0.82); border-radius: 3px; }
-.puma-viewer .puma-label.faint { color: #777; font-weight: 400; }
+.puma-viewer .puma-label.faint { color: #595959; font-weight: 400; }
 .puma-viewer .puma-label.target { color: #8a2be2; }
 .puma-viewer svg.puma-leaders { position: absolute; inset: 0; pointer-events: none; }
 .puma-viewer .puma-bar { position: absolute; top: 6px; right: 6px; display: flex; gap: 4px; align-items: center; }
@@ -182,12 +186,20 @@ function render({ model, el }) {
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setClearColor(0xfbfbfb);
   box.appendChild(renderer.domElement);
-  renderer.domElement.setAttribute("aria-label", `3-D view of ${sceneSpec.title || "the arm"}: drag to turn, wheel to zoom, right-drag to pan`);
+  // the canvas is reached by Tab and turned by keys; a polite live region says where the tool is (issue 34)
+  const canvas = renderer.domElement;
+  canvas.tabIndex = 0;
+  canvas.setAttribute("role", "application");
+  canvas.setAttribute("aria-roledescription", "3-D view");
+  canvas.setAttribute("aria-label", `3-D view of ${sceneSpec.title || "the arm"}: ${KEY_HELP}; or drag to turn, wheel to zoom`);
+  canvas.setAttribute("data-lm-suppress-shortcuts", "true");
 
   const leaders = document.createElementNS("http://www.w3.org/2000/svg", "svg");
   leaders.setAttribute("class", "puma-leaders");
+  leaders.setAttribute("aria-hidden", "true");
   const labelLayer = document.createElement("div");
   labelLayer.className = "puma-labels";
+  labelLayer.setAttribute("aria-hidden", "true"); // the frame names drawn over the view: the live region speaks
   box.append(leaders, labelLayer);
 
   if (sceneSpec.title) {
@@ -255,7 +267,7 @@ function render({ model, el }) {
 
   // what was drawn, for the browser tests: counts and times, the frames' origins as drawn, labels' boxes
   const stats = { renders: 0, poseRenders: 0, lastRender: 0, lastPoseRender: 0, lastPoseMessage: 0, poseSeq: -1,
-    labels: [], origins: [], ghosts: 0, selected: -1, animStep: -1, animSteps: 0, reframes: 0 };
+    labels: [], origins: [], ghosts: 0, selected: -1, animStep: -1, animSteps: 0, reframes: 0, keyTurns: 0, status: "" };
   box.__puma = stats;
   box.dataset.poseRenders = "0";
 
@@ -357,6 +369,81 @@ function render({ model, el }) {
     controls.update();
   }
   controls.addEventListener("change", requestDraw);
+
+  // the keyboard: arrows turn the view about its centre (TURN degrees), + and - zoom, 0 (or Home) resets;
+  // JupyterLab's command-mode shortcuts do not see these keys (data-lm-suppress-shortcuts, stopPropagation)
+  function viewAngles() {
+    const o = camera.position.clone().sub(controls.target);
+    const r = o.length() || 1;
+    return { r, azim: (Math.atan2(o.y, o.x) * 180) / Math.PI, elev: (Math.asin(Math.max(-1, Math.min(1, o.z / r))) * 180) / Math.PI };
+  }
+  function turnView(dAzim, dElev, scale) {
+    const a = viewAngles();
+    const elev = Math.max(-85, Math.min(85, a.elev + dElev));
+    camera.position.set(...orbitPosition(controls.target.toArray(), a.r * scale, a.azim + dAzim, elev));
+    camera.updateProjectionMatrix();
+    controls.update();
+    announce();
+  }
+  canvas.addEventListener("keydown", (e) => {
+    const moves = { ArrowLeft: [-TURN, 0, 1], ArrowRight: [TURN, 0, 1], ArrowUp: [0, TURN, 1], ArrowDown: [0, -TURN, 1],
+      "+": [0, 0, 1 / 1.2], "=": [0, 0, 1 / 1.2], "-": [0, 0, 1.2], PageUp: [0, 0, 1 / 1.2], PageDown: [0, 0, 1.2] };
+    if (e.altKey || e.ctrlKey || e.metaKey) return;
+    if (e.key in moves) {
+      turnView(...moves[e.key]);
+    } else if (e.key === "0" || e.key === "Home") {
+      reset.click();
+      announce();
+    } else {
+      return;
+    }
+    e.preventDefault();
+    e.stopPropagation();
+    stats.keyTurns += 1;
+  });
+
+  // a polite live region: the tool's position and the view, said once things settle (not on every frame)
+  const status = document.createElement("div");
+  status.className = "puma-status";
+  status.setAttribute("role", "status");
+  status.setAttribute("aria-live", "polite");
+  box.appendChild(status);
+  let announceTimer = null;
+  function describe() {
+    const k = styles.length - 1;
+    const f = frameAt(pose.frames, k);
+    const p = [f[3], f[7], f[11]].map((x) => Number.parseFloat((x + 0).toPrecision(4)).toString());
+    const a = viewAngles();
+    const name = styles[k].label ? `frame ${styles[k].label}` : "the tool";
+    return `${name} at x ${p[0]}, y ${p[1]}, z ${p[2]}${sceneSpec.units ? ` ${sceneSpec.units}` : ""}; ` +
+      `view from azimuth ${Math.round(a.azim)}°, elevation ${Math.round(a.elev)}°`;
+  }
+  function announce() {
+    if (announceTimer !== null) clearTimeout(announceTimer);
+    announceTimer = setTimeout(() => {
+      announceTimer = null;
+      status.textContent = describe();
+      stats.status = status.textContent;
+    }, 400);
+  }
+
+  // ipywidgets' sliders name no handle: give each handle of the panel this viewer sits in its visible label
+  function nameSliders() {
+    const root = el.closest(".jp-OutputArea-output, .output_subarea, .widget-hbox") || el.parentElement;
+    if (!root) return;
+    for (const s of root.querySelectorAll(".widget-slider")) {
+      const label = s.querySelector(".widget-label");
+      const handle = s.querySelector("[role=slider]");
+      const text = label ? label.textContent.trim() : "";
+      if (handle && text && handle.getAttribute("aria-label") !== text) handle.setAttribute("aria-label", text);
+    }
+  }
+  const sliderWatch = new MutationObserver(nameSliders);
+  requestAnimationFrame(() => {
+    const root = el.closest(".jp-OutputArea-output, .output_subarea, .widget-hbox") || el.parentElement;
+    if (root) sliderWatch.observe(root, { childList: true, subtree: true });
+    nameSliders();
+  });
 
   // the points the view must hold for the pose shown: the links, the frames' origins (and the base)
   function posePoints(withBase) {
@@ -529,6 +616,7 @@ function render({ model, el }) {
     applyPose(model.get("pose"));
     keepInView();
     requestDraw();
+    announce();
   };
   model.on("change:pose", onPose);
   model.on("change:ghosts", buildGhosts);
@@ -547,11 +635,14 @@ function render({ model, el }) {
     homeView();
     controls.saveState();
     requestDraw();
+    announce();
   });
 
   return () => {
     stop();
     resize.disconnect();
+    sliderWatch.disconnect();
+    if (announceTimer !== null) clearTimeout(announceTimer);
     model.off("change:pose", onPose);
     model.off("change:ghosts", buildGhosts);
     model.off("change:targets", buildTargets);

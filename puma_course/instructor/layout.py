@@ -101,7 +101,8 @@ def _markdown_height(source: str) -> int:
 
 def _output_height(output: dict[str, Any]) -> int:
     data = output.get("data", {})
-    if any(k.startswith("image/") for k in data):
+    html = "".join(data.get("text/html", ""))  # a str or a list of lines
+    if any(k.startswith("image/") for k in data) or html.startswith("<img"):  # a figure, bare or with its alt
         return 440  # the template caps an image at 60 % of the slide's height
     if output.get("output_type") == "error":
         text = "\n".join(str(line) for line in output.get("traceback", []))

@@ -9,6 +9,7 @@
   chain or robot, turned with the mouse, ghost arms, targets, animations;
 * :mod:`~puma_course.viz.widgets`: joint sliders and the :class:`Panel` joining them to a viewer;
 * :mod:`~puma_course.viz.animation`: ``jshtml(anim, alt=...)``, an offline player showing its first frame unscripted;
+* :mod:`~puma_course.viz.alt_text`: ``figure_alt(alt)``, the text alternative of a cell's figures in JupyterLab;
 * :mod:`~puma_course.viz.style`: the course's figure style (``use_course_style()``; ``use_projector_style()``
   for a lecture hall);
 * :mod:`~puma_course.viz.panels`: the lectures' panels, :func:`robot_panel` (any robot, optional
@@ -28,7 +29,8 @@ It loads matplotlib, ipywidgets and anywidget; ``import puma_course`` does not i
 
 from __future__ import annotations
 
-from . import animation, arms, frames, panels, style, three_step, viewer, widgets
+from . import alt_text, animation, arms, frames, panels, style, three_step, viewer, widgets
+from .alt_text import figure_alt
 from .animation import jshtml
 from .arms import animate_frames, animate_robot, draw_chain, draw_robot, plot_chain, plot_robot
 from .frames import AXIS_COLORS, draw_frame, draw_frames, draw_points, new_axes, set_equal, triad_letters
@@ -39,6 +41,7 @@ from .widgets import Panel, SliderList, frame_name, joint_sliders, pose_readout
 
 __all__ = [
     "AXIS_COLORS",
+    "alt_text",
     "animation",
     "jshtml",
     "COURSE_STYLE",
@@ -60,6 +63,7 @@ __all__ = [
     "draw_frames",
     "draw_points",
     "draw_robot",
+    "figure_alt",
     "triad_letters",
     "frame_name",
     "frames",

@@ -110,6 +110,8 @@ def draw_robot(
     labels: Sequence[str] | None = None,
     length: float | None = None,
     axes: bool = False,
+    ls: str = "-",
+    marker: str = "o",
 ) -> list[Any]:
     """Draw any robot at ``q`` (n,) or several at (N, n): links ``robot.points(q)``, triads ``robot.frames(q)``.
 
@@ -121,7 +123,9 @@ def draw_robot(
     (:func:`~puma_course.viz.frames.draw_frame`); the others stay bare, as in a ghost arm or an animation's
     frames, where letters would clutter (a still picture names the triads it asks the reader to read, e.g.
     with :func:`~puma_course.viz.frames.triad_letters`). ``length`` (triads) defaults to 8 % of the total link
-    length. Returns the artists, per arm: the links line first, then axes and triads.
+    length. ``ls`` and ``marker`` style the links, so that two arms drawn together differ by more than their
+    colour (e.g. ``ls="--", marker="s"`` for the second). Returns the artists, per arm: the links line first, then
+    axes and triads.
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
@@ -131,6 +135,9 @@ def draw_robot(
     >>> arts = draw_robot(ax, arm, arm.q("qn"), label="qn")
     >>> len(arts), arts[0].get_label()  # the links and the hand triad's 3 lines
     (4, 'qn')
+    >>> dashed = draw_robot(ax, arm, arm.q("qz"), ls="--", marker="s", triads="none")
+    >>> dashed[0].get_linestyle(), dashed[0].get_marker()
+    ('--', 's')
     >>> bool(np.allclose(np.transpose(arts[0].get_data_3d()), arm.points(arm.q("qn"))))
     True
     >>> plt.close(fig)
@@ -150,7 +157,9 @@ def draw_robot(
     artists: list[Any] = []
     for j, (Pj, Fj) in enumerate(zip(P, F, strict=True)):
         L = length if length is not None else _default_length(Pj)
-        artists += draw_points(ax, Pj, color=color, lw=lw, alpha=alpha, label=label if j == 0 else None)
+        artists += draw_points(
+            ax, Pj, color=color, lw=lw, alpha=alpha, marker=marker, ls=ls, label=label if j == 0 else None
+        )
         if axes:
             artists += _joint_axes(ax, Fj, L, alpha)
         for i in idx:

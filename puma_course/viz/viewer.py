@@ -357,7 +357,7 @@ class RobotViewer(Viewer):
         _, r = view_box(R)
         lengths: Any = np.full(m, 0.11 * r)
         lengths[[0, -1]] *= 1.3  # the base and the tool stand out
-        kw.setdefault("note", "drag: turn · wheel: zoom · right-drag: pan")
+        kw.setdefault("note", "drag or arrow keys: turn · wheel or +/-: zoom · right-drag: pan")
         tips = F[:, None, :3, 3] + lengths[:, None, None] * np.swapaxes(F[:, :3, :3], 1, 2)  # (m, 3 axes, 3)
         kw.setdefault("view_points", np.vstack([P0, F[:, :3, 3], tips.reshape(-1, 3), np.zeros((1, 3))]))
         super().__init__(F, P0, labels=_labels(labels, m), lengths=lengths, axes=axes, reach_points=R,
