@@ -49,7 +49,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         "submissions",
         type=Path,
         metavar="SUBMISSIONS",
-        help="folder with one sub-folder per student, holding <exercise>.ipynb files",
+        help="folder with one sub-folder per student holding <exercise>.ipynb (or a platform download: --layout)",
     )
     gr.add_argument("-o", "--output", type=Path, required=True, metavar="FILE", help="CSV file to write")
     gr.add_argument(

@@ -32,7 +32,9 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
     mg.add_argument(
         "--feedback", type=Path, default=None, metavar="DIR", help="folder for one Markdown feedback file per student"
     )
-    mg.add_argument("--secret", type=Path, default=None, metavar="FILE", help="the key file grade used")
+    mg.add_argument(
+        "--secret", type=Path, default=None, metavar="FILE", help="the key file grade used (default: .grading-secret)"
+    )
     mg.add_argument("--seed", type=int, default=None, metavar="N", help="the public seed grade used")
     mg.add_argument("--marks", type=Path, action="append", default=None, metavar="FILE", help="as for grade")
     mg.add_argument(
