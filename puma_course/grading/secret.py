@@ -99,13 +99,19 @@ def load_secret(path: str | os.PathLike[str], create: bool = True) -> Secret:
         if not create:
             raise ValueError(f"secret: expected a key file, got {str(p)!r}, which does not exist")
         p.parent.mkdir(parents=True, exist_ok=True)
+        # written whole to a temporary file, then linked into place: another run starting at the same moment (the
+        # parts of a Slurm array) sees no file or the whole key, never an empty one; the first link wins
+        tmp = p.with_name(f".{p.name}.{secrets.token_hex(8)}.tmp")
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         try:
-            fd = os.open(p, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
-        except FileExistsError:  # another grading run created it meanwhile: use that one
-            pass
-        else:
             with os.fdopen(fd, "w", encoding="ascii") as fh:
                 fh.write(secrets.token_hex(_BYTES) + "\n")
+            try:
+                os.link(tmp, p)
+            except FileExistsError:  # another grading run created it meanwhile: use that one
+                pass
+        finally:
+            tmp.unlink(missing_ok=True)
     if p.is_symlink() or not p.is_file():
         raise ValueError(f"secret: expected a regular key file, got {str(p)!r}")
     text = p.read_text(encoding="ascii", errors="replace").strip()

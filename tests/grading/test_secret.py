@@ -15,7 +15,11 @@ import hmac
 import os
 import shutil
 import stat
+import subprocess
+import sys
+import time
 import warnings
+from subprocess import PIPE
 
 import nbformat
 import numpy as np
@@ -43,6 +47,37 @@ def test_the_key_file_is_created_once_owner_only_and_read_back(tmp_path):
     load_secret(path)
     assert stat.S_IMODE(path.stat().st_mode) == 0o600
     assert ".grading-secret" in (ROOT / ".gitignore").read_text(encoding="utf-8").split()
+
+
+_RACE = """
+import os, sys, time
+sys.path.insert(0, {root!r})
+from puma_course.grading.secret import load_secret
+if float(sys.argv[2]) > 0:  # this run is slow between creating its key file and writing the key into it
+    real = os.fdopen
+    def slow(*args, **kwargs):
+        time.sleep(float(sys.argv[2]))
+        return real(*args, **kwargs)
+    os.fdopen = slow
+print(load_secret(sys.argv[1]).fingerprint)
+"""
+
+
+def test_a_run_that_reads_the_key_while_another_creates_it_gets_the_whole_key(tmp_path):
+    """The parts of a Slurm array started without a key file: a run that looks while another is writing the key
+    must get the one key, never an empty file (before: "expected at least 32 hex digits ... got 0 characters").
+    The first run is held for 1.5 s inside its write; the second starts 0.5 s later."""
+    code = _RACE.format(root=str(ROOT))
+    path = tmp_path / SECRET_FILE
+    slow = subprocess.Popen([sys.executable, "-c", code, str(path), "1.5"], stdout=PIPE, stderr=PIPE)
+    time.sleep(0.5)
+    fast = subprocess.run([sys.executable, "-c", code, str(path), "0"], capture_output=True, timeout=120)
+    out = slow.communicate(timeout=120)
+    assert fast.returncode == 0 and slow.returncode == 0, (fast.stderr.decode()[-300:], out[1].decode()[-300:])
+    prints = {fast.stdout.decode().strip(), out[0].decode().strip()}
+    assert prints == {load_secret(path, create=False).fingerprint}, prints
+    assert sorted(f.name for f in tmp_path.iterdir()) == [SECRET_FILE]  # no temporary file left
+    assert stat.S_IMODE(path.stat().st_mode) == 0o600
 
 
 @pytest.mark.parametrize("content", ["", "not hex at all", "abcd"])

@@ -91,7 +91,7 @@ def read_roster(path: str | os.PathLike[str]) -> dict[str, RosterEntry]:
             f"address, got {have} in {str(path)!r}"
         )
     return {
-        f"{r['First name'].strip()} {r['Last name'].strip()}": RosterEntry(
+        f"{r['First name'].strip()} {r['Last name'].strip()}".strip(): RosterEntry(
             (r.get("ID number") or "").strip(), (r.get("Email address") or "").strip()
         )
         for r in rows

@@ -190,3 +190,18 @@ def test_a_roster_without_moodle_columns_is_refused(tmp_path):
         read_roster(bad)
     with pytest.raises(ValueError, match="roster: expected a readable"):
         read_roster(tmp_path / "nope.csv")
+
+
+def test_a_roster_row_with_one_name_matches_its_student(tmp_path):
+    """A student with no last name in Moodle ("bob", "") is the hand-in folder "bob", not "bob " (found by a
+    review run as a new instructor: the gradebook left bob's identifiers empty)."""
+    from puma_course.grading.output.gradebook import read_roster
+
+    roster = tmp_path / "r.csv"
+    roster.write_text(
+        "First name,Last name,ID number,Email address\nbob,,7,bob@x\nAnn,Lee,8,ann@x\n,Solo,9,solo@x\n",
+        encoding="utf-8",
+    )
+    people = read_roster(roster)
+    assert set(people) == {"bob", "Ann Lee", "Solo"}
+    assert (people["bob"].id_number, people["bob"].email) == ("7", "bob@x")
