@@ -251,11 +251,16 @@ def test_ik_ghosts_and_animation_in_chromium(lab: Lab, page: Any, artifacts: Pat
 
 ALL_LECTURES = sorted(p.name for p in (Path(__file__).resolve().parents[2] / "notebooks").glob("[0-9][0-9]_*.ipynb"))
 
+# the room is the width the renderer gives the image: its parent's content box (JupyterLab's image renderer adds no
+# padding; its HTML renderer, which shows a figure with its alt text as an <img>, keeps 20 px on the right)
 IMAGE_SIZE = """(img) => {
     const r = img.getBoundingClientRect();
-    const box = img.closest('.jp-OutputArea-output') || img.parentElement;
+    const box = img.parentElement || img.closest('.jp-OutputArea-output');
+    const cs = getComputedStyle(box);
+    const room = box.getBoundingClientRect().width - parseFloat(cs.paddingLeft) - parseFloat(cs.paddingRight)
+        - parseFloat(cs.borderLeftWidth) - parseFloat(cs.borderRightWidth);
     return {w: r.width, h: r.height, nw: img.naturalWidth, nh: img.naturalHeight, complete: img.complete,
-            room: box.getBoundingClientRect().width, src: (img.getAttribute('src') || '').slice(0, 40)};
+            room: room, src: (img.getAttribute('src') || '').slice(0, 40)};
 }"""
 
 
