@@ -13,10 +13,10 @@ other than theirs. Part of the ``cli`` layer: the grader is imported only when t
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 from typing import Any
 
+from .grade import report_written
 from .options import course
 
 __all__ = ["add_parser", "run"]
@@ -79,9 +79,5 @@ def run(args: argparse.Namespace) -> int:
     print(
         f"merged {len(args.shards)} shard(s): {len(results)} notebook(s) of {students} student(s); wrote {args.output}"
     )
-    print(files.summary_note)
-    for fmt, path, notes in files.gradebooks:
-        print(f"gradebook ({fmt}): {path}")
-        for note in notes:
-            print(f"  {note}", file=sys.stderr)
+    report_written(args, files, None)  # as grade says it: the summary, the marks merged, each gradebook
     return 0
