@@ -37,7 +37,6 @@ from pathlib import Path
 from ..results import NotebookResult
 from ..written import WrittenQuestion, written_questions
 from .marking import student_code
-from .report import feedback_paths, replace_atomically
 from .text import csv_safe, one_line
 
 __all__ = [
@@ -45,8 +44,6 @@ __all__ = [
     "Marks",
     "read_marks",
     "separator",
-    "merge_csv",
-    "merge_feedback",
     "written_by_student",
     "written_points",
     "written_totals",
@@ -217,15 +214,6 @@ def written_totals(
     return out
 
 
-def merge_csv(output: str | os.PathLike[str], marks: Marks, results: Sequence[NotebookResult]) -> None:
-    """Add the written columns to the grades CSV ``output`` that ``grade`` wrote (see the module docstring)."""
-    with open(output, newline="", encoding="utf-8") as fh:
-        rows = list(csv.reader(fh))
-    buffer = io.StringIO()
-    csv.writer(buffer).writerows(written_columns(rows, marks, results))
-    replace_atomically(Path(output), buffer.getvalue())
-
-
 def written_columns(rows: list[list[str]], marks: Marks, results: Sequence[NotebookResult]) -> list[list[str]]:
     """The grades CSV's ``rows`` (header first, as :func:`.report.csv_rows` makes them) with the written columns
     added (see the module docstring); the rows are extended in place and returned."""
@@ -285,17 +273,3 @@ def feedback_section(marks: Marks, student: str, exercises: Sequence[str]) -> st
     ]
     return "\n".join(intro + lines)
 
-
-def merge_feedback(
-    folder: str | os.PathLike[str], results: Sequence[NotebookResult], marks: Marks, reserved: Sequence[str] = ()
-) -> dict[str, Path]:
-    """Append the written section to each student's feedback file that ``grade`` wrote into ``folder``."""
-    students = list(dict.fromkeys(r.student for r in results))
-    paths = feedback_paths(folder, students, reserved)
-    for student, path in paths.items():
-        names = [r.exercise for r in results if r.student == student]
-        section = feedback_section(marks, student, names)
-        if section and path.is_file():
-            text = path.read_text(encoding="utf-8").rstrip("\n")
-            replace_atomically(path, text + "\n\n" + section.rstrip("\n") + "\n")
-    return paths
