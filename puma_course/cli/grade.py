@@ -331,14 +331,22 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
 
 
 def report_written(args: argparse.Namespace, files: Any, collected: Any) -> None:
-    """Say what grade() wrote besides the CSV: the summary, the written marks merged, each gradebook (and what
-    an import of it will lack)."""
+    """Say what grade() wrote besides the CSV: the summary, the written marks merged (and the answers still to
+    mark), each gradebook (and what an import of it will lack)."""
+    from ..grading.output.text import plural
+
     print(files.summary_note)
     if collected is not None and collected.problems:
         print(f"{len(collected.problems)} file(s) of the download not graded (listed above and in the summary)")
     if files.marked is not None:
         where = f" and the feedback in {args.feedback}" if args.feedback is not None else ""
-        print(f"written marks: {files.marked} answer(s) marked, merged into {args.output}{where}")
+        print(f"written marks: {plural(files.marked, 'answer')} marked, merged into {args.output}{where}")
+    if files.unmarked:
+        print(
+            f"note: {plural(files.unmarked, 'written answer')} not marked yet: counted as nothing in a total said "
+            "to be provisional (feedback, summary), an empty cell in the CSV and the gradebooks (no grade on import)",
+            file=sys.stderr,
+        )
     for fmt, path, notes in files.gradebooks:
         print(f"gradebook ({fmt}): {path}")
         for note in notes:

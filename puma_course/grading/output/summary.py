@@ -164,10 +164,14 @@ def class_summary(
 
 
 def totals_section(totals: Mapping[str, StudentTotal]) -> list[str]:
-    """The summary's table of students: auto-graded points, written points (– without marks), total.
+    """The summary's table of students: auto-graded points, written points (– without marks), total (called
+    provisional while a written answer waits for a mark).
 
-    >>> print("\\n".join(totals_section({"ann": StudentTotal(27, 27, 2.5, 4)})[4:]))
+    >>> from puma_course.grading.output.totals import WrittenScore
+    >>> print("\\n".join(totals_section({"ann": StudentTotal(27, 27, WrittenScore(2.5, 4))})[4:]))
     | `ann` | 27 / 27 | 2.5 / 4 | **29.5 / 31** |
+    >>> print("\\n".join(totals_section({"cy": StudentTotal(12, 27, WrittenScore(None, 4, 1))})[4:]))
+    | `cy` | 12 / 27 | not marked yet (4 points) | **12 / 31** provisional |
     """
     lines = [
         "## Totals per student",
@@ -177,8 +181,8 @@ def totals_section(totals: Mapping[str, StudentTotal]) -> list[str]:
     ]
     for student in sorted(totals):
         t = totals[student]
-        written = "–" if t.written is None else f"{t.written:g} / {t.written_max:g}"
-        total = f"**{t.total:g} / {t.top:g}**"
+        written = "–" if t.written is None else t.written.text()
+        total = f"**{t.total:g} / {t.top:g}**" + (" provisional" if t.provisional else "")
         lines.append(f"| {quoted(student, 120)} | {t.auto:g} / {t.auto_max:g} | {written} | {total} |")
     return [*lines, ""]
 
