@@ -1,4 +1,5 @@
-"""The options more than one command takes, declared once: ``--course``, ``--layout``, ``--exercise``, the timeouts.
+"""The options more than one command takes, declared once: ``--course``, ``--layout``, ``--exercise``, the timeouts,
+``--quiet`` (and :func:`say`, which honours it).
 
 Every command's parser is given :func:`course_option` as a parent (``--course DIR``), and its run function
 finds the course with :func:`course` (``--course DIR``, else the nearest course at or above the current folder).
@@ -8,11 +9,21 @@ Standard library only (cli layer).
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from ..course import course_root
 
-__all__ = ["LAYOUT_SHAPES", "course_option", "course", "add_layout", "add_exercises", "add_timeouts"]
+__all__ = [
+    "LAYOUT_SHAPES",
+    "course_option",
+    "course",
+    "add_layout",
+    "add_exercises",
+    "add_timeouts",
+    "add_quiet",
+    "say",
+]
 
 COURSE_HELP = (
     "the course folder (default: the nearest folder, at or above the current one, that holds solutions/ or notebooks/)"
@@ -56,3 +67,17 @@ def add_timeouts(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)"
     )
+
+
+def add_quiet(parser: argparse.ArgumentParser) -> None:
+    """``--quiet``: only warnings and errors, on stderr (``grade``, ``merge``, ``collect-written``)."""
+    parser.add_argument(
+        "--quiet", action="store_true", help="print only warnings and errors (on stderr): no progress or report lines"
+    )
+
+
+def say(args: argparse.Namespace, text: str, *, err: bool = False) -> None:
+    """Print ``text``, a line that informs (stdout; stderr with ``err``), unless ``--quiet`` was given. Warnings
+    and errors are printed with ``print(..., file=sys.stderr)`` instead: ``--quiet`` keeps them."""
+    if not getattr(args, "quiet", False):
+        print(text, file=sys.stderr if err else sys.stdout)

@@ -83,7 +83,7 @@ def _number(text: str, where: str, most: float) -> float:
     if not math.isfinite(value) or value < 0:
         raise ValueError(f"{where}: expected a number of points from 0 to {most:g}, got {text!r}")
     if value > most + 1e-9:
-        raise ValueError(f"{where}: expected at most {most:g} points, got {text!r}")
+        raise ValueError(f"{where}: expected at most {plural(most, 'point')}, got {text!r}")
     return value
 
 

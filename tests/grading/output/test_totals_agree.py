@@ -22,14 +22,14 @@ import shutil
 import warnings
 from pathlib import Path
 
-import nbformat
 import pytest
 
 from puma_course.cli import main
 from puma_course.grading import EXERCISES, grade
 from puma_course.grading.output.gradebook import CANVAS_IDS
 from puma_course.grading.settings import GradeSettings
-from puma_course.grading.written import ANSWER_TAG, written_questions
+from puma_course.grading.written import written_questions
+from tests.cli.support import hand_in_written
 from tests.support import ROOT
 
 EX1, EX2 = "ex01_rotations", "ex02_dh_frames"
@@ -42,29 +42,14 @@ FILES = ("csv", "canvas", "moodle", "wide", "wide (count)", "feedback", "summary
 TOP = AUTO1 + AUTO2 + WMAX  # every student's points possible: both exercises and the written question
 
 
-def _tags(cell) -> list[str]:
-    return list(cell.get("metadata", {}).get("tags", []))
-
-
-def _ex2(folder: Path, honest: bool, answer: str | None) -> None:
-    exercise = nbformat.read(ROOT / "exercises" / f"{EX2}.ipynb", as_version=4)
-    nb = nbformat.read(ROOT / "solutions" / f"{EX2}.ipynb", as_version=4) if honest else exercise
-    if honest:
-        nb.cells[-1:-1] = [c for c in exercise.cells if any(t.startswith("written") for t in _tags(c))]
-    if answer is not None:
-        next(c for c in nb.cells if ANSWER_TAG + W.qid in _tags(c)).source = answer
-    folder.mkdir(parents=True, exist_ok=True)
-    nbformat.write(nb, folder / f"{EX2}.ipynb")
-
-
 @pytest.fixture(scope="module")
 def handed(tmp_path_factory) -> tuple[Path, Path]:
     base = tmp_path_factory.mktemp("class")
     sub = base / "hand-in"
-    _ex2(sub / "ann", True, "$z_1$ up the column, $z_2 = -y_0$.")
+    hand_in_written(sub / "ann", EX2, True, "$z_1$ up the column, $z_2 = -y_0$.")
     shutil.copy(ROOT / "solutions" / f"{EX1}.ipynb", sub / "ann" / f"{EX1}.ipynb")
-    _ex2(sub / "bob", False, "The origin of {1} is where the column and shoulder axes cross.")
-    _ex2(sub / "cy", True, None)
+    hand_in_written(sub / "bob", EX2, False, "The origin of {1} is where the column and shoulder axes cross.")
+    hand_in_written(sub / "cy", EX2, True, None)
     (sub / "dee").mkdir()
     shutil.copy(ROOT / "solutions" / f"{EX1}.ipynb", sub / "dee" / f"{EX1}.ipynb")
     marking = base / "marking"
