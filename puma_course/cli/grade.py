@@ -29,7 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from .help import drop_stdout
-from .options import LAYOUT_SHAPES, add_exercises, add_layout, add_timeouts, course
+from .options import LAYOUT_SHAPES, add_exercises, add_layout, add_quiet, add_timeouts, course, say
 
 __all__ = [
     "add_parser",
@@ -74,7 +74,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         "else warn loudly; none: never)",
     )
     add_exercises(gr, "grade this exercise (repeatable; default: the course's exercises that some student handed in)")
-    gr.add_argument("--quiet", action="store_true", help="no progress lines")
+    add_quiet(gr)
     gr.add_argument(
         "--marks",
         type=Path,
@@ -127,6 +127,7 @@ def run(args: argparse.Namespace) -> int:
 
     from ..grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, load_bank
     from ..grading.output.summary import run_outcome
+    from ..grading.output.text import plural
     from ..grading.run.runner import LimitsWarning, grade_run
 
     root = course(args)
@@ -158,7 +159,8 @@ def run(args: argparse.Namespace) -> int:
         graded = grade_run(dataclasses.replace(settings, progress=progress))
     results = graded.results
     students = len({r.student for r in results})
-    print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")
+    said = f"graded {plural(len(results), 'notebook')} of {plural(students, 'student')} (sandbox: {box.kind})"
+    say(args, f"{said}; wrote {args.output}")
     report_written(args, graded.files, collected)  # the summary, the marks, the gradebooks: all written by grade
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
@@ -235,18 +237,20 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
             absent = [n for n in names if all(n not in s.files for s in collected.students)]
             names = [n for n in names if n not in absent]
     if absent:
-        print(f"not graded (nobody handed them in; --exercise grades them): {', '.join(absent)}", file=sys.stderr)
+        say(args, f"not graded (nobody handed them in; --exercise grades them): {', '.join(absent)}", err=True)
     return list(names), collected
 
 
-def open_limits(box: Any, timeout_cell: float = 10.0) -> Any:
+def open_limits(box: Any, timeout_cell: float = 10.0, quiet: bool = False) -> Any:
     """A control group per notebook for this run (:func:`puma_course.grading.run.limits.open_run`), said on stderr:
-    the limits in force and the clock each call is timed on, or loudly that they hold per process only."""
+    the limits in force and the clock each call is timed on (not when ``quiet``), or loudly that they hold per
+    process only."""
     from ..grading.run import limits
 
     groups = limits.open_run()
     if groups.enforced:
-        print(f"limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", file=sys.stderr)
+        if not quiet:
+            print(f"limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", file=sys.stderr)
         if groups.delegated and box.kind != "bwrap":  # the notebook runs as this user and sees /sys/fs/cgroup
             print(
                 "WARNING: delegated groups without the sandbox: a notebook could move itself out of its group.",
@@ -286,14 +290,16 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
     """``puma-course grade``'s :class:`~puma_course.grading.settings.GradeSettings`, with the sandbox and the
     control groups it chose (each once, said on stderr, as is the key): grade() uses them as they are."""
     from ..grading.run.sandbox import choose
-    from ..grading.secret import command_key
+    from ..grading.secret import SECRET_FILE, command_key
     from ..grading.settings import GradeSettings
 
+    created = args.seed is None and not (args.secret or root / SECRET_FILE).exists()
     key, said = command_key(args.secret, args.seed, root)  # each student's hidden inputs
-    print(said, file=sys.stderr)
+    if created or not args.quiet:  # a key file just made is to be kept: said even with --quiet
+        print(said, file=sys.stderr)
     box = choose(args.sandbox)
     if box.kind == "bwrap":
-        print(f"sandbox: bubblewrap ({box.binary}); {box.mounts}", file=sys.stderr)
+        say(args, f"sandbox: bubblewrap ({box.binary}); {box.mounts}", err=True)
     else:
         print(
             f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
@@ -303,7 +309,9 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
             "or see docs/safety.md.",
             file=sys.stderr,
         )
-    groups = open_limits(box, args.timeout_cell)  # a control group per notebook: limits for its whole process tree
+    groups = open_limits(
+        box, args.timeout_cell, args.quiet
+    )  # a control group per notebook: limits for its whole process tree
     settings = GradeSettings(
         args.submissions,
         args.output,
@@ -332,15 +340,16 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
 
 def report_written(args: argparse.Namespace, files: Any, collected: Any) -> None:
     """Say what grade() wrote besides the CSV: the summary, the written marks merged (and the answers still to
-    mark), each gradebook (and what an import of it will lack)."""
+    mark), each gradebook (and what an import of it will lack). With ``--quiet``, only what is missing."""
     from ..grading.output.text import plural
 
-    print(files.summary_note)
+    say(args, files.summary_note)
     if collected is not None and collected.problems:
-        print(f"{len(collected.problems)} file(s) of the download not graded (listed above and in the summary)")
+        said = plural(len(collected.problems), "file")
+        say(args, f"{said} of the download not graded (listed above and in the summary)")
     if files.marked is not None:
         where = f" and the feedback in {args.feedback}" if args.feedback is not None else ""
-        print(f"written marks: {plural(files.marked, 'answer')} marked, merged into {args.output}{where}")
+        say(args, f"written marks: {plural(files.marked, 'answer')} marked, merged into {args.output}{where}")
     if files.unmarked:
         print(
             f"note: {plural(files.unmarked, 'written answer')} not marked yet: counted as nothing in a total said "
@@ -348,8 +357,8 @@ def report_written(args: argparse.Namespace, files: Any, collected: Any) -> None
             file=sys.stderr,
         )
     for fmt, path, notes in files.gradebooks:
-        print(f"gradebook ({fmt}): {path}")
+        say(args, f"gradebook ({fmt}): {path}")
         for note in notes:
             print(f"  {note}", file=sys.stderr)
     if files.shard is not None:
-        print(f"shard {args.shard}: {files.shard} (puma-course merge combines it with the other parts)")
+        say(args, f"shard {args.shard}: {files.shard} (puma-course merge combines it with the other parts)")

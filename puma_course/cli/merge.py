@@ -2,7 +2,7 @@
 
     puma-course merge SHARD.json [SHARD.json ...] -o grades.csv [--course DIR] [--feedback DIR]
                       [--secret FILE | --seed N] [--marks FILE ...] [--gradebook canvas|moodle|wide ...]
-                      [--roster MOODLE-EXPORT.csv] [--submissions DIR]
+                      [--roster MOODLE-EXPORT.csv] [--submissions DIR] [--quiet]
 
 Writes the CSV, the feedback, the class summary and the gradebooks that one ``grade`` over the whole class
 writes, row for row (:func:`puma_course.grading.merge.merge_shards`). Refuses (exit code 2, naming the files)
@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from .grade import report_written
-from .options import course
+from .options import add_quiet, course, say
 
 __all__ = ["add_parser", "run"]
 
@@ -52,12 +52,14 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         metavar="DIR",
         help="the platform download the shards graded (needed when they were graded with --layout canvas or moodle)",
     )
+    add_quiet(mg)
 
 
 def run(args: argparse.Namespace) -> int:
     """``puma-course merge``: 0, or 2 (shards that do not make one class, a wrong key, bad input)."""
     from ..grading import load_bank
     from ..grading.merge import merge_shards
+    from ..grading.output.text import plural
     from ..grading.secret import SECRET_FILE, from_seed, load_secret
 
     root = course(args)
@@ -76,8 +78,7 @@ def run(args: argparse.Namespace) -> int:
         submissions=args.submissions,
     )
     students = len({r.student for r in results})
-    print(
-        f"merged {len(args.shards)} shard(s): {len(results)} notebook(s) of {students} student(s); wrote {args.output}"
-    )
+    graded = f"{plural(len(results), 'notebook')} of {plural(students, 'student')}"
+    say(args, f"merged {plural(len(args.shards), 'shard')}: {graded}; wrote {args.output}")
     report_written(args, files, None)  # as grade says it: the summary, the marks merged, each gradebook
     return 0

@@ -45,7 +45,7 @@ from ..intake.collect import Submitter
 from ..results import NotebookResult
 from ..written import written_questions
 from .report import replace_atomically
-from .text import csv_safe
+from .text import csv_safe, plural
 from .totals import WrittenScore
 
 __all__ = ["FORMATS", "gradebook_path", "gradebook_rows", "write_gradebook", "read_roster", "number"]
@@ -111,6 +111,15 @@ def _totals(results: Sequence[NotebookResult], names: Sequence[str]) -> dict[str
     return scores
 
 
+def _students(names: Sequence[str], shown: int = 5) -> str:
+    """``3 students: ann, bob, cy`` (the first ``shown`` names, then ``…``).
+
+    >>> _students(["ann"]), _students(list("abcdefg"))
+    ('1 student: ann', '7 students: a, b, c, d, e …')
+    """
+    return f"{plural(len(names), 'student')}: " + ", ".join(names[:shown]) + (" …" if len(names) > shown else "")
+
+
 def _cell(value: float | None) -> str:
     return "" if value is None else number(value)
 
@@ -153,13 +162,17 @@ def gradebook_rows(
     rows: list[list[str]]
     if fmt == "canvas":
         rows = [[*CANVAS_IDS, *names, "Final Points"], ["    Points Possible", "", "", "", "", *points, ""]]
+        no_id = []
         for student, mine in scores.items():
             who = people.get(student)
             uid = who.user_id if who is not None else ""
             if not uid:
-                notes.append(f"{student}: no Canvas user id (not from a Canvas download, or graded anonymously)")
+                no_id.append(student)
             shown = who.name if who is not None else student
             rows.append([csv_safe(shown), uid, "", "", "", *(_cell(mine[n]) for n in names), _sum(mine)])
+        if no_id:
+            why = "not from a Canvas download" if not people else "graded anonymously, or not in the download"
+            notes.append(f"no Canvas user id (the ID Canvas's import matches a row by) for {_students(no_id)} ({why})")
     elif fmt == "moodle":
         rows = [["Full name", "ID number", "Email address", *names, "Total"]]
         missing = []
@@ -180,11 +193,7 @@ def gradebook_rows(
             )
         if missing:
             why = "no --roster given" if roster is None else "not in the roster"
-            notes.append(
-                f"{len(missing)} student(s) without an ID number or email for Moodle's import ({why}): "
-                + ", ".join(missing[:5])
-                + (" …" if len(missing) > 5 else "")
-            )
+            notes.append(f"no ID number or email for Moodle's import for {_students(missing)} ({why})")
     else:
         late = {(s, ex) for s, p in people.items() for ex in p.late}
         rows = [
