@@ -29,7 +29,17 @@ from pathlib import Path
 from typing import Any
 
 from .help import drop_stdout
-from .options import LAYOUT_SHAPES, add_exercises, add_layout, add_quiet, add_timeouts, course, say
+from .options import (
+    LAYOUT_SHAPES,
+    add_class_files,
+    add_exercises,
+    add_key,
+    add_layout,
+    add_quiet,
+    add_timeouts,
+    course,
+    say,
+)
 
 __all__ = [
     "add_parser",
@@ -51,10 +61,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         metavar="SUBMISSIONS",
         help="folder with one sub-folder per student holding <exercise>.ipynb (or a platform download: --layout)",
     )
-    gr.add_argument("-o", "--output", type=Path, required=True, metavar="FILE", help="CSV file to write")
-    gr.add_argument(
-        "--feedback", type=Path, default=None, metavar="DIR", help="folder for one Markdown feedback file per student"
-    )
+    add_class_files(gr)
     gr.add_argument("--jobs", type=int, default=2, metavar="N", help="notebooks graded at the same time (default 2)")
     add_timeouts(gr)
     gr.add_argument(
@@ -64,8 +71,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         metavar="S",
         help="seconds for all of one student's notebooks together (default 120)",
     )
-    gr.add_argument("--secret", type=Path, default=None, metavar="FILE", help="key file (default: .grading-secret)")
-    gr.add_argument("--seed", type=int, default=None, metavar="N", help="a public key instead (demonstrations, tests)")
+    add_key(gr)
     gr.add_argument(
         "--sandbox",
         choices=("auto", "bwrap", "none"),
@@ -75,27 +81,10 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
     )
     add_exercises(gr, "grade this exercise (repeatable; default: the course's exercises that some student handed in)")
     add_quiet(gr)
-    gr.add_argument(
-        "--marks",
-        type=Path,
-        action="append",
-        default=None,
-        metavar="FILE",
-        help="a filled-in marks file of collect-written (repeatable): merged into the CSV (written columns), "
-        "the gradebooks and the feedback",
-    )
     add_layout(
         gr,
         "how SUBMISSIONS is laid out: folders (<student>/<exercise>.ipynb, the default), canvas (the flat "
         "folder of Canvas's Download Submissions), moodle (Moodle's Download all submissions)",
-    )
-    gr.add_argument(
-        "--gradebook",
-        choices=("canvas", "moodle", "wide"),
-        action="append",
-        default=None,
-        help="also write, next to the CSV, one row per student in this platform's grade-import format "
-        "(repeatable): canvas, moodle or wide (a plain spreadsheet)",
     )
     gr.add_argument(
         "--shard",
@@ -110,14 +99,6 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         default=None,
         metavar="FILE",
         help="where --shard writes its shard file (default: <CSV stem>.shard.json beside the CSV)",
-    )
-    gr.add_argument(
-        "--roster",
-        type=Path,
-        default=None,
-        metavar="CSV",
-        help="Moodle's grade export (First name, Last name, ID number, Email address): the identifiers "
-        "--gradebook moodle needs",
     )
 
 

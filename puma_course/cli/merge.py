@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from .grade import report_written
-from .options import add_quiet, course, say
+from .options import add_class_files, add_key, add_quiet, course, say
 
 __all__ = ["add_parser", "run"]
 
@@ -28,23 +28,8 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         "merge", parents=[common], help="combine the shard files of grade --shard K/N into one class's files"
     )
     mg.add_argument("shards", type=Path, nargs="+", metavar="SHARD", help="the shard files, one per part")
-    mg.add_argument("-o", "--output", type=Path, required=True, metavar="FILE", help="CSV file to write")
-    mg.add_argument(
-        "--feedback", type=Path, default=None, metavar="DIR", help="folder for one Markdown feedback file per student"
-    )
-    mg.add_argument(
-        "--secret", type=Path, default=None, metavar="FILE", help="the key file grade used (default: .grading-secret)"
-    )
-    mg.add_argument("--seed", type=int, default=None, metavar="N", help="the public seed grade used")
-    mg.add_argument("--marks", type=Path, action="append", default=None, metavar="FILE", help="as for grade")
-    mg.add_argument(
-        "--gradebook",
-        choices=("canvas", "moodle", "wide"),
-        action="append",
-        default=None,
-        help="also write this platform's gradebook next to the CSV (repeatable), as for grade",
-    )
-    mg.add_argument("--roster", type=Path, default=None, metavar="CSV", help="as for grade (--gradebook moodle)")
+    add_class_files(mg)
+    add_key(mg, "; the key grade used")
     mg.add_argument(
         "--submissions",
         type=Path,

@@ -10,6 +10,12 @@ from puma_course.cli import main
 from tests.support import ROOT
 
 
+def grade_argv(subs: Path, out: Path, *extra: str, exercise: str = "ex01_rotations") -> list[str]:
+    """``puma-course grade SUBS -o OUT/g.csv --feedback OUT/fb --exercise EXERCISE EXTRA...``: one exercise of a
+    small class graded into files under ``out``, as the command-line tests run it."""
+    return ["grade", str(subs), "-o", str(out / "g.csv"), "--feedback", str(out / "fb"), "--exercise", exercise, *extra]
+
+
 def lab_argv(capsys, *args: str) -> list[str]:
     """``puma-course lab --print-command ARGS``: the JupyterLab command line it prints, split."""
     assert main(["lab", "--print-command", *args]) == 0

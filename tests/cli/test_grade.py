@@ -6,6 +6,7 @@ import csv
 import shutil
 
 from puma_course.cli import main
+from tests.cli.support import grade_argv
 from tests.support import ROOT
 
 
@@ -94,22 +95,7 @@ def test_missing_notebook_feedback_names_misnamed_files(tmp_path):
     subs = tmp_path / "subs"
     (subs / "cat").mkdir(parents=True)
     shutil.copy(ROOT / "solutions" / "ex01_rotations.ipynb", subs / "cat" / "ex01_rotations (1).ipynb")
-    assert (
-        main(
-            [
-                "grade",
-                str(subs),
-                "-o",
-                str(tmp_path / "g.csv"),
-                "--feedback",
-                str(tmp_path / "fb"),
-                "--exercise",
-                "ex01_rotations",
-                "--quiet",
-            ]
-        )
-        == 0
-    )
+    assert main(grade_argv(subs, tmp_path, "--quiet")) == 0
     text = (tmp_path / "fb" / "cat.md").read_text(encoding="utf-8")
     assert "missing" in text and "ex01_rotations (1).ipynb" in text
 
@@ -128,8 +114,8 @@ def _class(tmp_path):
 
 def test_quiet_grade_and_merge_print_only_warnings_and_errors(tmp_path, capsys):
     subs = _class(tmp_path)
-    args = ["grade", str(subs), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations", "--seed", "5"]
-    args += ["--course", str(ROOT), "--sandbox", "none", "--gradebook", "canvas", "--shard", "1/1"]
+    args = grade_argv(subs, tmp_path, "--seed", "5", "--course", str(ROOT), "--sandbox", "none")
+    args += ["--gradebook", "canvas", "--shard", "1/1"]
     assert main(args) == 0
     loud = capsys.readouterr()
     said = (loud.out + loud.err).splitlines()
@@ -157,8 +143,8 @@ def test_grade_says_what_was_graded_in_the_singular_for_one(tmp_path, capsys):
     subs = tmp_path / "subs"
     (subs / "ann").mkdir(parents=True)
     shutil.copy(ROOT / "solutions" / "ex01_rotations.ipynb", subs / "ann")
-    args = ["grade", str(subs), "-o", str(tmp_path / "g.csv"), "--exercise", "ex01_rotations", "--seed", "5"]
-    assert main([*args, "--course", str(ROOT), "--sandbox", "none", "--gradebook", "canvas"]) == 0
+    args = grade_argv(subs, tmp_path, "--seed", "5", "--course", str(ROOT), "--sandbox", "none")
+    assert main([*args, "--gradebook", "canvas"]) == 0
     said = capsys.readouterr()
     assert "graded 1 notebook of 1 student " in said.out
     assert "no Canvas user id (the ID Canvas's import matches a row by) for 1 student: ann" in said.err
