@@ -193,7 +193,8 @@ def gradebook_rows(
             )
         if missing:
             why = "no --roster given" if roster is None else "not in the roster"
-            notes.append(f"no ID number or email for Moodle's import for {_students(missing)} ({why})")
+            by = "what Moodle's import matches a row by"
+            notes.append(f"no ID number or email ({by}) for {_students(missing)} ({why})")
     else:
         late = {(s, ex) for s, p in people.items() for ex in p.late}
         rows = [
