@@ -29,7 +29,17 @@ from pathlib import Path
 from typing import Any
 
 from .help import drop_stdout
-from .options import LAYOUT_SHAPES, add_exercises, add_layout, add_timeouts, course
+from .options import (
+    LAYOUT_SHAPES,
+    add_class_files,
+    add_exercises,
+    add_key,
+    add_layout,
+    add_quiet,
+    add_timeouts,
+    course,
+    say,
+)
 
 __all__ = [
     "add_parser",
@@ -51,10 +61,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         metavar="SUBMISSIONS",
         help="folder with one sub-folder per student holding <exercise>.ipynb (or a platform download: --layout)",
     )
-    gr.add_argument("-o", "--output", type=Path, required=True, metavar="FILE", help="CSV file to write")
-    gr.add_argument(
-        "--feedback", type=Path, default=None, metavar="DIR", help="folder for one Markdown feedback file per student"
-    )
+    add_class_files(gr)
     gr.add_argument("--jobs", type=int, default=2, metavar="N", help="notebooks graded at the same time (default 2)")
     add_timeouts(gr)
     gr.add_argument(
@@ -64,8 +71,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         metavar="S",
         help="seconds for all of one student's notebooks together (default 120)",
     )
-    gr.add_argument("--secret", type=Path, default=None, metavar="FILE", help="key file (default: .grading-secret)")
-    gr.add_argument("--seed", type=int, default=None, metavar="N", help="a public key instead (demonstrations, tests)")
+    add_key(gr)
     gr.add_argument(
         "--sandbox",
         choices=("auto", "bwrap", "none"),
@@ -74,28 +80,11 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         "else warn loudly; none: never)",
     )
     add_exercises(gr, "grade this exercise (repeatable; default: the course's exercises that some student handed in)")
-    gr.add_argument("--quiet", action="store_true", help="no progress lines")
-    gr.add_argument(
-        "--marks",
-        type=Path,
-        action="append",
-        default=None,
-        metavar="FILE",
-        help="a filled-in marks file of collect-written (repeatable): merged into the CSV (written columns), "
-        "the gradebooks and the feedback",
-    )
+    add_quiet(gr)
     add_layout(
         gr,
         "how SUBMISSIONS is laid out: folders (<student>/<exercise>.ipynb, the default), canvas (the flat "
         "folder of Canvas's Download Submissions), moodle (Moodle's Download all submissions)",
-    )
-    gr.add_argument(
-        "--gradebook",
-        choices=("canvas", "moodle", "wide"),
-        action="append",
-        default=None,
-        help="also write, next to the CSV, one row per student in this platform's grade-import format "
-        "(repeatable): canvas, moodle or wide (a plain spreadsheet)",
     )
     gr.add_argument(
         "--shard",
@@ -111,14 +100,6 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         metavar="FILE",
         help="where --shard writes its shard file (default: <CSV stem>.shard.json beside the CSV)",
     )
-    gr.add_argument(
-        "--roster",
-        type=Path,
-        default=None,
-        metavar="CSV",
-        help="Moodle's grade export (First name, Last name, ID number, Email address): the identifiers "
-        "--gradebook moodle needs",
-    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -127,6 +108,7 @@ def run(args: argparse.Namespace) -> int:
 
     from ..grading import EXERCISES, GradingIntegrityWarning, SandboxWarning, load_bank
     from ..grading.output.summary import run_outcome
+    from ..grading.output.text import plural
     from ..grading.run.runner import LimitsWarning, grade_run
 
     root = course(args)
@@ -158,7 +140,8 @@ def run(args: argparse.Namespace) -> int:
         graded = grade_run(dataclasses.replace(settings, progress=progress))
     results = graded.results
     students = len({r.student for r in results})
-    print(f"graded {len(results)} notebook(s) of {students} student(s) (sandbox: {box.kind}); wrote {args.output}")
+    said = f"graded {plural(len(results), 'notebook')} of {plural(students, 'student')} (sandbox: {box.kind})"
+    say(args, f"{said}; wrote {args.output}")
     report_written(args, graded.files, collected)  # the summary, the marks, the gradebooks: all written by grade
     tampered = [w for w in caught if issubclass(w.category, GradingIntegrityWarning)]
     for w in tampered:
@@ -235,18 +218,20 @@ def choose_and_collect(args: argparse.Namespace, course: Path, known: list[str])
             absent = [n for n in names if all(n not in s.files for s in collected.students)]
             names = [n for n in names if n not in absent]
     if absent:
-        print(f"not graded (nobody handed them in; --exercise grades them): {', '.join(absent)}", file=sys.stderr)
+        say(args, f"not graded (nobody handed them in; --exercise grades them): {', '.join(absent)}", err=True)
     return list(names), collected
 
 
-def open_limits(box: Any, timeout_cell: float = 10.0) -> Any:
+def open_limits(box: Any, timeout_cell: float = 10.0, quiet: bool = False) -> Any:
     """A control group per notebook for this run (:func:`puma_course.grading.run.limits.open_run`), said on stderr:
-    the limits in force and the clock each call is timed on, or loudly that they hold per process only."""
+    the limits in force and the clock each call is timed on (not when ``quiet``), or loudly that they hold per
+    process only."""
     from ..grading.run import limits
 
     groups = limits.open_run()
     if groups.enforced:
-        print(f"limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", file=sys.stderr)
+        if not quiet:
+            print(f"limits: {groups.label}; {limits.call_limit(groups, timeout_cell)}", file=sys.stderr)
         if groups.delegated and box.kind != "bwrap":  # the notebook runs as this user and sees /sys/fs/cgroup
             print(
                 "WARNING: delegated groups without the sandbox: a notebook could move itself out of its group.",
@@ -286,14 +271,16 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
     """``puma-course grade``'s :class:`~puma_course.grading.settings.GradeSettings`, with the sandbox and the
     control groups it chose (each once, said on stderr, as is the key): grade() uses them as they are."""
     from ..grading.run.sandbox import choose
-    from ..grading.secret import command_key
+    from ..grading.secret import SECRET_FILE, command_key
     from ..grading.settings import GradeSettings
 
+    created = args.seed is None and not (args.secret or root / SECRET_FILE).exists()
     key, said = command_key(args.secret, args.seed, root)  # each student's hidden inputs
-    print(said, file=sys.stderr)
+    if created or not args.quiet:  # a key file just made is to be kept: said even with --quiet
+        print(said, file=sys.stderr)
     box = choose(args.sandbox)
     if box.kind == "bwrap":
-        print(f"sandbox: bubblewrap ({box.binary}); {box.mounts}", file=sys.stderr)
+        say(args, f"sandbox: bubblewrap ({box.binary}); {box.mounts}", err=True)
     else:
         print(
             f"WARNING: grading WITHOUT the operating-system sandbox: {box.reason}.\n"
@@ -303,7 +290,9 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
             "or see docs/safety.md.",
             file=sys.stderr,
         )
-    groups = open_limits(box, args.timeout_cell)  # a control group per notebook: limits for its whole process tree
+    groups = open_limits(
+        box, args.timeout_cell, args.quiet
+    )  # a control group per notebook: limits for its whole process tree
     settings = GradeSettings(
         args.submissions,
         args.output,
@@ -331,17 +320,26 @@ def grade_settings(args: argparse.Namespace, root: Path, names: Sequence[str], c
 
 
 def report_written(args: argparse.Namespace, files: Any, collected: Any) -> None:
-    """Say what grade() wrote besides the CSV: the summary, the written marks merged, each gradebook (and what
-    an import of it will lack)."""
-    print(files.summary_note)
+    """Say what grade() wrote besides the CSV: the summary, the written marks merged (and the answers still to
+    mark), each gradebook (and what an import of it will lack). With ``--quiet``, only what is missing."""
+    from ..grading.output.text import plural
+
+    say(args, files.summary_note)
     if collected is not None and collected.problems:
-        print(f"{len(collected.problems)} file(s) of the download not graded (listed above and in the summary)")
+        said = plural(len(collected.problems), "file")
+        say(args, f"{said} of the download not graded (listed above and in the summary)")
     if files.marked is not None:
         where = f" and the feedback in {args.feedback}" if args.feedback is not None else ""
-        print(f"written marks: {files.marked} answer(s) marked, merged into {args.output}{where}")
+        say(args, f"written marks: {plural(files.marked, 'answer')} marked, merged into {args.output}{where}")
+    if files.unmarked:
+        print(
+            f"note: {plural(files.unmarked, 'written answer')} not marked yet: counted as nothing in a total said "
+            "to be provisional (feedback, summary), an empty cell in the CSV and the gradebooks (no grade on import)",
+            file=sys.stderr,
+        )
     for fmt, path, notes in files.gradebooks:
-        print(f"gradebook ({fmt}): {path}")
+        say(args, f"gradebook ({fmt}): {path}")
         for note in notes:
             print(f"  {note}", file=sys.stderr)
     if files.shard is not None:
-        print(f"shard {args.shard}: {files.shard} (puma-course merge combines it with the other parts)")
+        say(args, f"shard {args.shard}: {files.shard} (puma-course merge combines it with the other parts)")

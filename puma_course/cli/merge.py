@@ -2,7 +2,7 @@
 
     puma-course merge SHARD.json [SHARD.json ...] -o grades.csv [--course DIR] [--feedback DIR]
                       [--secret FILE | --seed N] [--marks FILE ...] [--gradebook canvas|moodle|wide ...]
-                      [--roster MOODLE-EXPORT.csv] [--submissions DIR]
+                      [--roster MOODLE-EXPORT.csv] [--submissions DIR] [--quiet]
 
 Writes the CSV, the feedback, the class summary and the gradebooks that one ``grade`` over the whole class
 writes, row for row (:func:`puma_course.grading.merge.merge_shards`). Refuses (exit code 2, naming the files)
@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from .grade import report_written
-from .options import course
+from .options import add_class_files, add_key, add_quiet, course, say
 
 __all__ = ["add_parser", "run"]
 
@@ -28,23 +28,8 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         "merge", parents=[common], help="combine the shard files of grade --shard K/N into one class's files"
     )
     mg.add_argument("shards", type=Path, nargs="+", metavar="SHARD", help="the shard files, one per part")
-    mg.add_argument("-o", "--output", type=Path, required=True, metavar="FILE", help="CSV file to write")
-    mg.add_argument(
-        "--feedback", type=Path, default=None, metavar="DIR", help="folder for one Markdown feedback file per student"
-    )
-    mg.add_argument(
-        "--secret", type=Path, default=None, metavar="FILE", help="the key file grade used (default: .grading-secret)"
-    )
-    mg.add_argument("--seed", type=int, default=None, metavar="N", help="the public seed grade used")
-    mg.add_argument("--marks", type=Path, action="append", default=None, metavar="FILE", help="as for grade")
-    mg.add_argument(
-        "--gradebook",
-        choices=("canvas", "moodle", "wide"),
-        action="append",
-        default=None,
-        help="also write this platform's gradebook next to the CSV (repeatable), as for grade",
-    )
-    mg.add_argument("--roster", type=Path, default=None, metavar="CSV", help="as for grade (--gradebook moodle)")
+    add_class_files(mg)
+    add_key(mg, "; the key grade used")
     mg.add_argument(
         "--submissions",
         type=Path,
@@ -52,12 +37,14 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         metavar="DIR",
         help="the platform download the shards graded (needed when they were graded with --layout canvas or moodle)",
     )
+    add_quiet(mg)
 
 
 def run(args: argparse.Namespace) -> int:
     """``puma-course merge``: 0, or 2 (shards that do not make one class, a wrong key, bad input)."""
     from ..grading import load_bank
     from ..grading.merge import merge_shards
+    from ..grading.output.text import plural
     from ..grading.secret import SECRET_FILE, from_seed, load_secret
 
     root = course(args)
@@ -76,8 +63,7 @@ def run(args: argparse.Namespace) -> int:
         submissions=args.submissions,
     )
     students = len({r.student for r in results})
-    print(
-        f"merged {len(args.shards)} shard(s): {len(results)} notebook(s) of {students} student(s); wrote {args.output}"
-    )
+    graded = f"{plural(len(results), 'notebook')} of {plural(students, 'student')}"
+    say(args, f"merged {plural(len(args.shards), 'shard')}: {graded}; wrote {args.output}")
     report_written(args, files, None)  # as grade says it: the summary, the marks merged, each gradebook
     return 0

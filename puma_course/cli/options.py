@@ -1,4 +1,6 @@
-"""The options more than one command takes, declared once: ``--course``, ``--layout``, ``--exercise``, the timeouts.
+"""The options more than one command takes, declared once: ``--course``, ``--layout``, ``--exercise``, the timeouts,
+``--quiet`` (and :func:`say`, which honours it), the key (``--secret``/``--seed``) and the class's files that
+``grade`` and ``merge`` both write (``-o``, ``--feedback``, ``--marks``, ``--gradebook``, ``--roster``).
 
 Every command's parser is given :func:`course_option` as a parent (``--course DIR``), and its run function
 finds the course with :func:`course` (``--course DIR``, else the nearest course at or above the current folder).
@@ -8,11 +10,23 @@ Standard library only (cli layer).
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from ..course import course_root
 
-__all__ = ["LAYOUT_SHAPES", "course_option", "course", "add_layout", "add_exercises", "add_timeouts"]
+__all__ = [
+    "LAYOUT_SHAPES",
+    "course_option",
+    "course",
+    "add_layout",
+    "add_exercises",
+    "add_timeouts",
+    "add_quiet",
+    "add_class_files",
+    "add_key",
+    "say",
+]
 
 COURSE_HELP = (
     "the course folder (default: the nearest folder, at or above the current one, that holds solutions/ or notebooks/)"
@@ -55,4 +69,64 @@ def add_timeouts(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--timeout-total", type=float, default=60.0, metavar="S", help="seconds per notebook (default 60)"
+    )
+
+
+def add_quiet(parser: argparse.ArgumentParser) -> None:
+    """``--quiet``: only warnings and errors, on stderr (``grade``, ``merge``, ``collect-written``)."""
+    parser.add_argument(
+        "--quiet", action="store_true", help="print only warnings and errors (on stderr): no progress or report lines"
+    )
+
+
+def say(args: argparse.Namespace, text: str, *, err: bool = False) -> None:
+    """Print ``text``, a line that informs (stdout; stderr with ``err``), unless ``--quiet`` was given. Warnings
+    and errors are printed with ``print(..., file=sys.stderr)`` instead: ``--quiet`` keeps them."""
+    if not getattr(args, "quiet", False):
+        print(text, file=sys.stderr if err else sys.stdout)
+
+
+def add_key(parser: argparse.ArgumentParser, then: str = "") -> None:
+    """``--secret FILE`` and ``--seed N``: the key of each student's hidden inputs (``grade``; ``merge``, whose
+    ``then`` says it must be the key grade used)."""
+    parser.add_argument(
+        "--secret", type=Path, default=None, metavar="FILE", help=f"key file (default: .grading-secret){then}"
+    )
+    parser.add_argument(
+        "--seed", type=int, default=None, metavar="N", help=f"a public key instead (demonstrations, tests){then}"
+    )
+
+
+def add_class_files(parser: argparse.ArgumentParser) -> None:
+    """The files a graded class is written into, and what goes into them (``grade``, ``merge``): ``-o FILE``,
+    ``--feedback DIR``, ``--marks FILE`` (repeatable), ``--gradebook canvas|moodle|wide`` (repeatable) and
+    ``--roster CSV``."""
+    parser.add_argument("-o", "--output", type=Path, required=True, metavar="FILE", help="CSV file to write")
+    parser.add_argument(
+        "--feedback", type=Path, default=None, metavar="DIR", help="folder for one Markdown feedback file per student"
+    )
+    parser.add_argument(
+        "--marks",
+        type=Path,
+        action="append",
+        default=None,
+        metavar="FILE",
+        help="a filled-in marks file of collect-written (repeatable): merged into the CSV (written columns), "
+        "the gradebooks and the feedback",
+    )
+    parser.add_argument(
+        "--gradebook",
+        choices=("canvas", "moodle", "wide"),
+        action="append",
+        default=None,
+        help="also write, next to the CSV, one row per student in this platform's grade-import format "
+        "(repeatable): canvas, moodle or wide (a plain spreadsheet)",
+    )
+    parser.add_argument(
+        "--roster",
+        type=Path,
+        default=None,
+        metavar="CSV",
+        help="Moodle's grade export (First name, Last name, ID number, Email address): the identifiers "
+        "--gradebook moodle needs",
     )

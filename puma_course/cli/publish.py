@@ -46,10 +46,12 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
 
 def run_edition(args: argparse.Namespace) -> int:
     """``puma-course edition DIR``: the student edition of the course written into DIR."""
+    from ..grading.output.text import plural
     from ..grading.publish.edition import write_edition
 
     ed = write_edition(args.out, course(args))
-    print(f"wrote the student edition ({len(ed.exercises)} exercises, {len(ed.files)} files) to {ed.root}")
+    made = f"{plural(len(ed.exercises), 'exercise')}, {plural(len(ed.files), 'file')}"
+    print(f"wrote the student edition ({made}) to {ed.root}")
     return 0
 
 

@@ -40,6 +40,7 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """``puma-course release``: 0, or 1 when ``--check`` finds exercises/ out of date."""
     from ..grading import release
+    from ..grading.output.text import plural
 
     if args.solutions is None or args.exercises is None:
         root = course(args)
@@ -59,5 +60,6 @@ def run(args: argparse.Namespace) -> int:
             return 1
         print(f"exercises are up to date ({exercises})")
         return 0
-    print(f"wrote {len(changed)} exercise notebook(s) to {exercises}" + (": " + ", ".join(changed) if changed else ""))
+    wrote = f"wrote {plural(len(changed), 'exercise notebook')} to {exercises}"
+    print(wrote + (": " + ", ".join(changed) if changed else ""))
     return 0

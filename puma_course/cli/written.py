@@ -1,7 +1,7 @@
 """``puma-course collect-written``: the written answers gathered for marking by hand.
 
     puma-course collect-written SUBMISSIONS -o DIR [--layout folders|canvas|moodle] [--exercise NAME ...]
-                                [--anonymise] [--course DIR]
+                                [--anonymise] [--course DIR] [--quiet]
 
 It writes, per written question, a marking document and a marks template into DIR
 (:mod:`puma_course.grading.output.marking`); the filled-in templates go to ``grade --marks``
@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from .options import add_exercises, add_layout, course
+from .options import add_exercises, add_layout, add_quiet, course, say
 
 __all__ = ["add_parser", "run"]
 
@@ -39,18 +39,25 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
         action="store_true",
         help="name students by a stable code (S-xxxxxxxx) instead of their names, for blind marking",
     )
+    add_quiet(cw)
 
 
 def run(args: argparse.Namespace) -> int:
     """``puma-course collect-written``."""
     from ..grading import load_bank
     from ..grading.output.marking import collect_written as write
+    from ..grading.output.text import plural
 
     load_bank(course(args))
     done = write(args.submissions, args.output, args.layout, args.exercise, args.anonymise)
     for line in done.problems:
         print(f"not read: {line}", file=sys.stderr)
-    for (name, qid), count in done.answers.items():
-        print(f"{name} {qid}: {count} written answer(s) (blank ones listed too) -> {args.output / f'{name}-{qid}.md'}")
-    print(f"wrote {len(done.files)} file(s) to {args.output}; fill in the *-marks.csv files, then grade ... --marks")
+    for (name, qid), rows in done.rows.items():
+        answered = done.answers[name, qid]
+        sheet, doc = args.output / f"{name}-{qid}-marks.csv", args.output / f"{name}-{qid}.md"
+        who = f"{plural(rows, 'student')} who handed {name} in: {answered} answered, {rows - answered} blank"
+        say(args, f"{name} {qid}: {plural(rows, 'row')} in {sheet} ({who}); their answers in {doc}")
+    files = f"{plural(len(done.rows), 'marking document')} and {plural(len(done.rows), 'marks template')}"
+    to_fill = plural(sum(done.rows.values()), "row")
+    say(args, f"wrote {files} to {args.output}; fill in the {to_fill} of the *-marks.csv files, then grade ... --marks")
     return 0

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .bank_loader import BANK_MODULE, EXERCISES
+from .output.text import plural
 from .spec import Exercise
 
 __all__ = [
@@ -158,7 +159,7 @@ def written_exercises() -> list[str]:
 
 
 def _points(points: float) -> str:
-    return f"{points:g} point" + ("" if points == 1 else "s")
+    return plural(points, "point")
 
 
 def prompt_source(w: WrittenQuestion) -> str:
@@ -326,9 +327,10 @@ def _read_on(cells: list[dict[str, Any]], start: int, release: Release | None, a
     if release is None:
         below = _added_below(cells, start, Release(frozenset(), frozenset()))
         if any(_source(cells[i]).strip() for i in below):
+            were, they = ("was", "it") if len(below) == 1 else ("were", "they")
             answer.notes.append(
-                f"{len(below)} Markdown cell(s) below the answer cell were not read: without the released exercise "
-                "they cannot be told from its own cells"
+                f"{plural(len(below), 'Markdown cell')} below the answer cell {were} not read: without the released "
+                f"exercise {they} cannot be told from its own cells"
             )
         return
     added = [i for i in _added_below(cells, start, release) if _source(cells[i]).strip() or cells[i].get("attachments")]
@@ -338,5 +340,6 @@ def _read_on(cells: list[dict[str, Any]], start: int, release: Release | None, a
         answer.text = "\n\n".join(t for t in (answer.text, _source(cells[i]).replace(PLACEHOLDER, "").strip()) if t)
         _images(cells[i], answer)
     answer.notes.append(
-        f"the answer goes on in {len(added)} cell(s) the student added below the answer cell: shown after it, in order"
+        f"the answer goes on in {plural(len(added), 'cell')} the student added below the answer cell: shown after "
+        "it, in order"
     )

@@ -247,10 +247,10 @@ def test_the_round_trip_collect_mark_merge(handed_in, tmp_path, capsys):
     out = tmp_path / "out" / "grades.csv"
     feedback = tmp_path / "feedback"
     args = ["grade", str(handed_in), "-o", str(out), "--course", str(ROOT), "--exercise", EX, "--seed", "3"]
-    args += ["--feedback", str(feedback), "--marks", str(sheet), "--quiet", "--sandbox", "none"]
+    args += ["--feedback", str(feedback), "--marks", str(sheet), "--sandbox", "none"]
     args += ["--gradebook", "canvas", "--gradebook", "moodle", "--gradebook", "wide"]
     assert main(args) == 0
-    assert "written marks: 2 answer(s) marked" in capsys.readouterr().out
+    assert "written marks: 2 answers marked" in capsys.readouterr().out
 
     grades = {r["student"]: r for r in _dicts(out)}
     assert [float(grades[s]["score"]) for s in ("ann", "bob", "cy")] == [AUTO, 0, AUTO]  # the auto-graded part as is
@@ -262,8 +262,9 @@ def test_the_round_trip_collect_mark_merge(handed_in, tmp_path, capsys):
     canvas = _rows(out.parent / "grades-canvas.csv")
     assert canvas[0][5:] == [EX, f"{EX} written", "Final Points"]
     assert [float(x) for x in canvas[1][5:7]] == [AUTO, 4]
-    body = {r[0]: [float(x) for x in r[5:]] for r in canvas[2:]}
-    assert body == {"ann": [AUTO, 2.5, AUTO + 2.5], "bob": [0, 1, 1], "cy": [AUTO, 0, AUTO]}
+    body = {r[0]: [float(x) if x else None for x in r[5:]] for r in canvas[2:]}
+    # cy's answer is not marked yet: an empty cell, which Canvas's import leaves ungraded (a 0 would grade it)
+    assert body == {"ann": [AUTO, 2.5, AUTO + 2.5], "bob": [0, 1, 1], "cy": [AUTO, None, AUTO]}
     moodle = {r["Full name"]: r for r in _dicts(out.parent / "grades-moodle.csv")}
     assert [float(moodle["ann"][k]) for k in (EX, f"{EX} written", "Total")] == [AUTO, 2.5, AUTO + 2.5]
     wide = {r["student"]: r for r in _dicts(out.parent / "grades-wide.csv")}

@@ -64,7 +64,7 @@ def test_markdown_cells_added_below_the_answer_are_part_of_it():
     assert answer.text == "\n\n".join([FIRST, MORE, sketch.source, LAST])  # in order; the empty cell adds nothing
     assert answer.images == [("s2.png", "png", PNG)]
     assert answer.notes == [
-        "the answer goes on in 3 cell(s) the student added below the answer cell: shown after it, in order"
+        "the answer goes on in 3 cells the student added below the answer cell: shown after it, in order"
     ]
     # the release's closing cell, just below them, is not part of the answer
     closing = _released().cells[_answer_index(_released()) + 1].source
@@ -111,14 +111,14 @@ def test_an_answer_cell_that_lost_its_tag_is_read_on_too():
     nb.cells[i + 1 : i + 1] = [md(MORE)]
     answer = read_answers(nbformat.writes(nb).encode(), EX)[QID]
     assert answer.text == f"{FIRST}\n\n{MORE}"
-    assert answer.notes[0].startswith("the answer cell lost its tag") and "goes on in 1 cell(s)" in answer.notes[1]
+    assert answer.notes[0].startswith("the answer cell lost its tag") and "goes on in 1 cell" in answer.notes[1]
 
 
 def test_without_the_release_the_cells_below_are_left_unread_and_the_marker_told():
     answer = read_answers(_hand_in(md(MORE)), EX, None)[QID]
     assert answer.text == FIRST
     assert answer.notes == [
-        "2 Markdown cell(s) below the answer cell were not read: without the released exercise they cannot be "
+        "2 Markdown cells below the answer cell were not read: without the released exercise they cannot be "
         "told from its own cells"
     ]
 
@@ -141,7 +141,7 @@ def test_collect_written_shows_the_added_cells_in_the_marking_document(tmp_path,
     capsys.readouterr()
     doc = (out / f"{EX}-{QID}.md").read_text(encoding="utf-8")
     answer = doc.split("### `ann`")[1]
-    assert "*the answer goes on in 2 cell(s) the student added below the answer cell: shown after it, in order*" in (
+    assert "*the answer goes on in 2 cells the student added below the answer cell: shown after it, in order*" in (
         answer
     )
     quoted = [line[2:] for line in answer.splitlines() if line.startswith("> ")]

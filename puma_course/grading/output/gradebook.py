@@ -22,7 +22,12 @@
   exercise, ``total``, ``late``.
 
 Scores are plain decimal numbers (``12.5``, never ``1.25e+01``, at most two decimals); a missing or
-ungraded notebook scores 0. Text cells are written by the csv module (quoted when they hold a
+ungraded notebook scores 0. A written column (``grade --marks``) of an exercise none of whose written answers
+is marked yet is an empty cell, never 0: both importers read an empty cell as "no grade" (canvas-lms's
+``GradebookImporter`` treats a blank score as no score, so an ungraded submission stays ungraded; Moodle's
+``gradeimport_csv_load_data::update_grade_item`` maps ``''`` and ``-`` to no grade), and the total, which counts
+only the marks given, is then provisional; the wide gradebook counts the answers not marked yet per student
+(``written not marked``). Text cells are written by the csv module (quoted when they hold a
 comma, quote or line break) and a cell a spreadsheet would read as a formula starts with ``'``.
 """
 
@@ -40,7 +45,8 @@ from ..intake.collect import Submitter
 from ..results import NotebookResult
 from ..written import written_questions
 from .report import replace_atomically
-from .text import csv_safe
+from .text import csv_safe, plural
+from .totals import WrittenScore
 
 __all__ = ["FORMATS", "gradebook_path", "gradebook_rows", "write_gradebook", "read_roster", "number"]
 
@@ -98,11 +104,28 @@ def read_roster(path: str | os.PathLike[str]) -> dict[str, RosterEntry]:
     }
 
 
-def _totals(results: Sequence[NotebookResult], names: Sequence[str]) -> dict[str, dict[str, float]]:
-    scores: dict[str, dict[str, float]] = {}
+def _totals(results: Sequence[NotebookResult], names: Sequence[str]) -> dict[str, dict[str, float | None]]:
+    scores: dict[str, dict[str, float | None]] = {}
     for r in results:
         scores.setdefault(r.student, {n: 0.0 for n in names})[r.exercise] = r.score
     return scores
+
+
+def _students(names: Sequence[str], shown: int = 5) -> str:
+    """``3 students: ann, bob, cy`` (the first ``shown`` names, then ``…``).
+
+    >>> _students(["ann"]), _students(list("abcdefg"))
+    ('1 student: ann', '7 students: a, b, c, d, e …')
+    """
+    return f"{plural(len(names), 'student')}: " + ", ".join(names[:shown]) + (" …" if len(names) > shown else "")
+
+
+def _cell(value: float | None) -> str:
+    return "" if value is None else number(value)
+
+
+def _sum(scores: Mapping[str, float | None]) -> str:
+    return number(sum(v for v in scores.values() if v is not None))
 
 
 def gradebook_rows(
@@ -111,39 +134,45 @@ def gradebook_rows(
     names: Sequence[str],
     people: Mapping[str, Submitter] | None = None,
     roster: Mapping[str, RosterEntry] | None = None,
-    written: Mapping[str, Mapping[str, float]] | None = None,
+    written: Mapping[str, Mapping[str, WrittenScore]] | None = None,
 ) -> tuple[list[list[str]], list[str]]:
     """The gradebook's rows (header first) and what the instructor must know about them.
 
     ``people`` maps a graded student (the ``student`` of the results) to the identifiers collected
     from the download; ``roster`` (Moodle) maps a full name to the identifiers Moodle's import maps.
-    ``written`` (``grade --marks``, :mod:`.marks`) maps a student to the marked written points per exercise:
-    each exercise with written questions then has a column ``<exercise> written`` after the exercises (with
-    its points possible), counted in the total.
+    ``written`` (``grade --marks``, :func:`.marks.written_by_student`) maps a student to the written points per
+    exercise: each exercise with written questions then has a column ``<exercise> written`` after the exercises
+    (with its points possible; empty while none of its answers is marked), counted in the total.
     """
     if fmt not in FORMATS:
         raise ValueError(f"gradebook: expected one of {', '.join(FORMATS)}, got {fmt!r}")
     people = people or {}
     scores = _totals(results, names)
     points = [number(EXERCISES[n].max_score) for n in names]
+    unmarked: dict[str, int] = {}
     if written is not None:
         marked = [n for n in names if written_questions(n)]
         for student, mine in scores.items():
-            mine.update({f"{n} written": float((written.get(student) or {}).get(n, 0.0)) for n in marked})
+            got = written.get(student) or {}
+            unmarked[student] = sum(w.unmarked for w in got.values())
+            mine.update({f"{n} written": got[n].points if n in got else 0.0 for n in marked})
         points += [number(sum(w.points for w in written_questions(n))) for n in marked]
         names = [*names, *(f"{n} written" for n in marked)]
     notes: list[str] = []
     rows: list[list[str]]
     if fmt == "canvas":
         rows = [[*CANVAS_IDS, *names, "Final Points"], ["    Points Possible", "", "", "", "", *points, ""]]
+        no_id = []
         for student, mine in scores.items():
             who = people.get(student)
             uid = who.user_id if who is not None else ""
             if not uid:
-                notes.append(f"{student}: no Canvas user id (not from a Canvas download, or graded anonymously)")
+                no_id.append(student)
             shown = who.name if who is not None else student
-            total = sum(mine.values())
-            rows.append([csv_safe(shown), uid, "", "", "", *(number(mine[n]) for n in names), number(total)])
+            rows.append([csv_safe(shown), uid, "", "", "", *(_cell(mine[n]) for n in names), _sum(mine)])
+        if no_id:
+            why = "not from a Canvas download" if not people else "graded anonymously, or not in the download"
+            notes.append(f"no Canvas user id (the ID Canvas's import matches a row by) for {_students(no_id)} ({why})")
     elif fmt == "moodle":
         rows = [["Full name", "ID number", "Email address", *names, "Total"]]
         missing = []
@@ -158,20 +187,19 @@ def gradebook_rows(
                     csv_safe(full),
                     csv_safe(entry.id_number) if entry else "",
                     csv_safe(entry.email) if entry else "",
-                    *(number(mine[n]) for n in names),
-                    number(sum(mine.values())),
+                    *(_cell(mine[n]) for n in names),
+                    _sum(mine),
                 ]
             )
         if missing:
             why = "no --roster given" if roster is None else "not in the roster"
-            notes.append(
-                f"{len(missing)} student(s) without an ID number or email for Moodle's import ({why}): "
-                + ", ".join(missing[:5])
-                + (" …" if len(missing) > 5 else "")
-            )
+            by = "what Moodle's import matches a row by"
+            notes.append(f"no ID number or email ({by}) for {_students(missing)} ({why})")
     else:
         late = {(s, ex) for s, p in people.items() for ex in p.late}
-        rows = [["student", "name", "user id", *names, "total", "late"]]
+        rows = [
+            ["student", "name", "user id", *names, "total", "late", *(["written not marked"] * (written is not None))]
+        ]
         for student, mine in scores.items():
             who = people.get(student)
             lates = " ".join(n for n in names if (student, n) in late)
@@ -180,9 +208,10 @@ def gradebook_rows(
                     csv_safe(student),
                     csv_safe(who.name) if who else "",
                     who.user_id if who else "",
-                    *(number(mine[n]) for n in names),
-                    number(sum(mine.values())),
+                    *(_cell(mine[n]) for n in names),
+                    _sum(mine),
                     lates,
+                    *([str(unmarked.get(student, 0))] * (written is not None)),
                 ]
             )
     return rows, notes
@@ -195,7 +224,7 @@ def write_gradebook(
     names: Sequence[str],
     people: Mapping[str, Submitter] | None = None,
     roster: Mapping[str, RosterEntry] | None = None,
-    written: Mapping[str, Mapping[str, float]] | None = None,
+    written: Mapping[str, Mapping[str, WrittenScore]] | None = None,
 ) -> tuple[Path, list[str]]:
     """Write the gradebook next to the grades file ``output`` (UTF-8, CRLF rows as the csv module writes them)."""
     rows, notes = gradebook_rows(fmt, results, names, people, roster, written)

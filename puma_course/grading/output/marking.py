@@ -36,7 +36,7 @@ from ..intake.collect import collect
 from ..intake.submissions import StudentFolder, read_student, scan
 from ..written import Answer, WrittenQuestion, read_answers, release_of, written_exercises, written_questions
 from .report import replace_atomically
-from .text import csv_safe, file_stem, quoted
+from .text import csv_safe, file_stem, plural, quoted
 
 __all__ = ["student_code", "Marking", "collect_written", "marking_markdown", "template_rows", "FIXED_COLUMNS"]
 
@@ -54,11 +54,13 @@ def student_code(student: str) -> str:
 
 @dataclass
 class Marking:
-    """What :func:`collect_written` wrote: the files, and the answers read per (exercise, question)."""
+    """What :func:`collect_written` wrote: the files, and per (exercise, question) the answers written (not blank)
+    and the rows of its marks template (one per student who handed the exercise in, blank answers included)."""
 
     folder: Path
     files: list[Path] = field(default_factory=list)
     answers: dict[tuple[str, str], int] = field(default_factory=dict)
+    rows: dict[tuple[str, str], int] = field(default_factory=dict)  # rows of each marks template: one per student
     problems: list[str] = field(default_factory=list)
 
 
@@ -118,7 +120,7 @@ def _quote(text: str) -> list[str]:
 def marking_markdown(w: WrittenQuestion, answers: list[tuple[str, Answer, list[str]]]) -> str:
     """The marking document of ``w``: question, rubric, worked answer, then (shown name, answer, image paths)."""
     spec = w.spec
-    lines = [f"# {w.exercise} {w.qid}: {spec.title} ({w.points:g} points)", "", "## The question", ""]
+    lines = [f"# {w.exercise} {w.qid}: {spec.title} ({plural(w.points, 'point')})", "", "## The question", ""]
     lines += _quote(spec.prompt.strip())
     lines += ["", "## Rubric", "", "| criterion | points | earns them |", "| --- | --- | --- |"]
     lines += [f"| {c.name} | {c.points:g} | {c.text.replace('|', '/')} |" for c in spec.criteria]
@@ -253,4 +255,5 @@ def collect_written(
             replace_atomically(sheet, buffer.getvalue())
             result.files += [doc, sheet]
             result.answers[name, w.qid] = sum(1 for _, a, _ in shown_rows if not a.empty)
+            result.rows[name, w.qid] = len(listed)
     return result

@@ -8,7 +8,8 @@ written questions, a rubric column the question does not have, a number that is 
 above the points of its criterion or question, ``points`` that differ from the sum of the filled rubric
 columns, or the same (student, question) marked twice: each is a ``ValueError`` naming the file, the row
 (as a spreadsheet numbers it, the header being row 1) and the column. A row with neither points nor rubric
-columns is "not marked yet": it counts nothing and its student's feedback says so. A file saved by a
+columns is "not marked yet": it counts nothing, its cells stay empty and its student's total is provisional
+(:mod:`.totals`); an answer of a notebook not handed in scores 0 (:func:`answer_points`). A file saved by a
 spreadsheet set to a decimal comma reads the same: the separator (comma, semicolon or tab) is read off the
 header row (:func:`separator`), and a number may have a decimal comma (``1,5``).
 
@@ -37,18 +38,17 @@ from pathlib import Path
 from ..results import NotebookResult
 from ..written import WrittenQuestion, written_questions
 from .marking import student_code
-from .report import feedback_paths, replace_atomically
-from .text import csv_safe, one_line
+from .text import csv_safe, one_line, plural
+from .totals import WrittenScore
 
 __all__ = [
     "Mark",
     "Marks",
     "read_marks",
     "separator",
-    "merge_csv",
-    "merge_feedback",
+    "answer_points",
+    "exercise_written",
     "written_by_student",
-    "written_points",
     "written_totals",
     "written_columns",
     "feedback_section",
@@ -83,7 +83,7 @@ def _number(text: str, where: str, most: float) -> float:
     if not math.isfinite(value) or value < 0:
         raise ValueError(f"{where}: expected a number of points from 0 to {most:g}, got {text!r}")
     if value > most + 1e-9:
-        raise ValueError(f"{where}: expected at most {most:g} points, got {text!r}")
+        raise ValueError(f"{where}: expected at most {plural(most, 'point')}, got {text!r}")
     return value
 
 
@@ -185,81 +185,82 @@ def _row(w: WrittenQuestion, cells: dict[str, str], where: str, before: Mark | N
     return Mark(points, cells.get("comment", "").strip(), tuple(criteria))
 
 
-def written_points(marks: Marks, student: str, exercise: str) -> float | None:
-    """The student's marked written points in ``exercise`` (None when nothing of it is marked)."""
-    found = [marks.get(student, exercise, w.qid) for w in written_questions(exercise)]
-    got = [m.points for m in found if m is not None and m.points is not None]
-    return round(sum(got), 2) if got else None
+def answer_points(marks: Marks, result: NotebookResult, w: WrittenQuestion) -> float | None:
+    """The points of the answer to ``w`` in ``result``'s notebook: its mark; 0 when no mark is given and the
+    notebook was not handed in (there is nothing to mark); None when it is not marked yet."""
+    m = marks.get(result.student, result.exercise, w.qid)
+    if m is not None and m.points is not None:
+        return m.points
+    return 0.0 if result.status == "missing" else None
 
 
-def written_by_student(marks: Marks, results: Sequence[NotebookResult]) -> dict[str, dict[str, float]]:
-    """student -> exercise -> marked written points, for the gradebooks (exercises with written questions)."""
-    out: dict[str, dict[str, float]] = {}
+def exercise_written(marks: Marks, result: NotebookResult) -> WrittenScore:
+    """The written points of ``result``'s exercise (:func:`answer_points` of each of its written questions)."""
+    questions = written_questions(result.exercise)
+    got = [answer_points(marks, result, w) for w in questions]
+    known = [p for p in got if p is not None]
+    possible = float(sum(w.points for w in questions))
+    return WrittenScore(round(sum(known), 2) if known else None, possible, got.count(None))
+
+
+def written_by_student(marks: Marks, results: Sequence[NotebookResult]) -> dict[str, dict[str, WrittenScore]]:
+    """student -> exercise -> written points, for the gradebooks (the exercises with written questions)."""
+    out: dict[str, dict[str, WrittenScore]] = {}
     for r in results:
         if written_questions(r.exercise):
-            out.setdefault(r.student, {})[r.exercise] = written_points(marks, r.student, r.exercise) or 0.0
+            out.setdefault(r.student, {})[r.exercise] = exercise_written(marks, r)
     return out
 
 
 def written_totals(
-    written: Mapping[str, Mapping[str, float]], results: Sequence[NotebookResult]
-) -> dict[str, tuple[float, float]]:
-    """student -> (marked written points, written points possible) over the exercises graded for them.
+    written: Mapping[str, Mapping[str, WrittenScore]], results: Sequence[NotebookResult]
+) -> dict[str, WrittenScore]:
+    """student -> written points over the exercises graded for them (every student of ``results``).
 
     ``written`` is :func:`written_by_student`'s: the same numbers the gradebooks add to the total.
     """
-    out: dict[str, tuple[float, float]] = {}
-    for r in results:
-        earned, most = out.get(r.student, (0.0, 0.0))
-        top = sum(w.points for w in written_questions(r.exercise))
-        got = float((written.get(r.student) or {}).get(r.exercise, 0.0)) if top else 0.0
-        out[r.student] = (round(earned + got, 2), round(most + top, 2))
-    return out
-
-
-def merge_csv(output: str | os.PathLike[str], marks: Marks, results: Sequence[NotebookResult]) -> None:
-    """Add the written columns to the grades CSV ``output`` that ``grade`` wrote (see the module docstring)."""
-    with open(output, newline="", encoding="utf-8") as fh:
-        rows = list(csv.reader(fh))
-    buffer = io.StringIO()
-    csv.writer(buffer).writerows(written_columns(rows, marks, results))
-    replace_atomically(Path(output), buffer.getvalue())
+    students = dict.fromkeys(r.student for r in results)
+    return {s: WrittenScore.add((written.get(s) or {}).values()) for s in students}
 
 
 def written_columns(rows: list[list[str]], marks: Marks, results: Sequence[NotebookResult]) -> list[list[str]]:
     """The grades CSV's ``rows`` (header first, as :func:`.report.csv_rows` makes them) with the written columns
-    added (see the module docstring); the rows are extended in place and returned."""
+    added (see the module docstring; an answer not marked yet is an empty cell); the rows are extended in place and
+    returned."""
     head, body = rows[0], rows[1:]
     col = {name: i for i, name in enumerate(head)}
-    graded = {csv_safe(r.student): r.student for r in results}
+    graded = {(csv_safe(r.student), r.exercise): r for r in results}
     qids: list[str] = []
     for row in body:
         qids += [w.qid for w in written_questions(row[col["exercise"]]) if w.qid not in qids]
     qids.sort(key=lambda q: int(q[1:]) if q[1:].isdigit() else 0)
     head += [f"written:{q}" for q in qids] + ["written", "written_max"]
     for row in body:
-        student, exercise = row[col["student"]], row[col["exercise"]]
-        student = graded.get(student, student)
-        mine = {w.qid: w for w in written_questions(exercise)}
-        cells = []
-        for q in qids:
-            m = marks.get(student, exercise, q) if q in mine else None
-            cells.append(f"{m.points:g}" if m is not None and m.points is not None else "")
-        total = written_points(marks, student, exercise)
-        top = sum(w.points for w in mine.values())
-        row += cells + ["" if total is None else f"{total:g}", f"{top:g}" if mine else ""]
+        r = graded[row[col["student"]], row[col["exercise"]]]
+        mine = {w.qid: w for w in written_questions(r.exercise)}
+        cells = [_cell(answer_points(marks, r, mine[q])) if q in mine else "" for q in qids]
+        score = exercise_written(marks, r) if mine else None
+        row += cells + [_cell(score.points if score else None), f"{score.possible:g}" if score else ""]
     return [head, *body]
 
 
-def feedback_section(marks: Marks, student: str, exercises: Sequence[str]) -> str:
-    """The "Written questions" section of a student's feedback ("" when no exercise has written questions)."""
+def _cell(points: float | None) -> str:
+    return "" if points is None else f"{points:g}"
+
+
+def feedback_section(marks: Marks, results: Sequence[NotebookResult]) -> str:
+    """The "Written questions" section of a student's feedback (``results``: the student's notebooks; "" when no
+    exercise of them has written questions)."""
     lines: list[str] = []
-    for name in exercises:
-        for w in written_questions(name):
-            m = marks.get(student, name, w.qid)
-            head = f"### {name} {w.qid}: {w.spec.title}"
+    for r in results:
+        for w in written_questions(r.exercise):
+            m = marks.get(r.student, r.exercise, w.qid)
+            head = f"### {r.exercise} {w.qid}: {w.spec.title}"
             if m is None or m.points is None:
-                lines += [head, "", f"Not marked yet ({w.points:g} points).", ""]
+                if answer_points(marks, r, w) is None:
+                    lines += [head, "", f"Not marked yet ({plural(w.points, 'point')}).", ""]
+                else:
+                    lines += [head, "", f"Not handed in: **0 / {w.points:g}** points.", ""]
                 continue
             lines += [head, "", f"**{m.points:g} / {w.points:g}** points.", ""]
             given = dict(m.criteria)
@@ -275,27 +276,9 @@ def feedback_section(marks: Marks, student: str, exercises: Sequence[str]) -> st
             lines.append("")
     if not lines:
         return ""
-    earned = [p for name in exercises if (p := written_points(marks, student, name)) is not None]
-    top = sum(w.points for name in exercises for w in written_questions(name))
-    intro = [
-        "## Written questions (marked by your instructor)",
-        "",
-        f"Written: **{round(sum(earned), 2):g} / {top:g}** points, counted in the total above.",
-        "",
-    ]
-    return "\n".join(intro + lines)
-
-
-def merge_feedback(
-    folder: str | os.PathLike[str], results: Sequence[NotebookResult], marks: Marks, reserved: Sequence[str] = ()
-) -> dict[str, Path]:
-    """Append the written section to each student's feedback file that ``grade`` wrote into ``folder``."""
-    students = list(dict.fromkeys(r.student for r in results))
-    paths = feedback_paths(folder, students, reserved)
-    for student, path in paths.items():
-        names = [r.exercise for r in results if r.student == student]
-        section = feedback_section(marks, student, names)
-        if section and path.is_file():
-            text = path.read_text(encoding="utf-8").rstrip("\n")
-            replace_atomically(path, text + "\n\n" + section.rstrip("\n") + "\n")
-    return paths
+    score = WrittenScore.add(exercise_written(marks, r) for r in results if written_questions(r.exercise))
+    if score.provisional:
+        said = f"Written: {score.text()}; the total above counts only what is marked, until the rest is."
+    else:
+        said = f"Written: **{score.points:g} / {score.possible:g}** points, counted in the total above."
+    return "\n".join(["## Written questions (marked by your instructor)", "", said, "", *lines])

@@ -28,6 +28,8 @@ import zlib
 from collections.abc import Iterator
 from typing import Any
 
+from .text import plural
+
 __all__ = ["MIN_BLOB", "MAX_UNPACKED", "SUSPECT_CALLS", "REACHES", "payloads", "notebook_strings"]
 
 #: Base64 runs shorter than this (characters) are not reported: about 1.5 kB of data.
@@ -126,7 +128,7 @@ def _unpack(data: bytes) -> tuple[str, list[tuple[str, str]]]:
                         with z.open(info) as f:
                             sources.append((info.filename, f.read(info.file_size).decode("utf-8", "replace")))
             shown = ", ".join(names[:4]) + (", ..." if len(names) > 4 else "")
-            return f"a zip archive of {len(names)} file(s): {shown}", sources
+            return f"a zip archive of {plural(len(names), 'file')}: {shown}", sources
         if kind in ("a gzip stream", "a bzip2 stream", "an xz stream", "a zlib stream"):
             inner = _decompress(kind, data)
             what, found = _unpack(inner)
@@ -137,7 +139,7 @@ def _unpack(data: bytes) -> tuple[str, list[tuple[str, str]]]:
                         member = t.extractfile(m) if m.name.endswith(".py") else None
                         if member is not None:
                             sources.append((m.name, member.read().decode("utf-8", "replace")))
-                return f"{kind} of a tar archive of {len(members)} file(s)", sources
+                return f"{kind} of a tar archive of {plural(len(members), 'file')}", sources
             return f"{kind} of {what}", found
         if kind:
             return kind, sources

@@ -30,6 +30,7 @@ from ..run.worker import NOT_ATTEMPTED
 from ..secret import Secret
 from ..spec import Exercise, Question
 from .text import csv_safe, file_stem, one_line, quoted
+from .totals import WrittenScore
 
 __all__ = [
     "verdict",
@@ -133,7 +134,7 @@ def feedback_markdown(
     unsandboxed: str | None = None,
     key: Secret | None = None,
     as_user: str | None = None,
-    written: tuple[float, float] | None = None,
+    written: WrittenScore | None = None,
     section: str = "",
 ) -> str:
     """One student's feedback file: per exercise the status, the score, one table row per question, hints.
@@ -142,10 +143,10 @@ def feedback_markdown(
     code, so the file shows them literally (no headings, links or table rows of the student's
     making). ``unsandboxed`` is the reason the notebooks ran without the operating-system sandbox,
     if they did: the file then says so first. ``key`` is the grading run's key: the file ends by
-    saying where the hidden inputs came from (:func:`hidden_inputs_note`). ``written`` is the student's marked
-    written points and their maximum (``grade --marks``): the total then counts them, as the gradebooks do, and
-    says how it is made up; ``section`` (the written questions' marks, :func:`.marks.feedback_section`) follows
-    the exercises.
+    saying where the hidden inputs came from (:func:`hidden_inputs_note`). ``written`` is the student's
+    written points (``grade --marks``): the total then counts those marked, as the gradebooks do, says how it is
+    made up, and is called provisional while an answer waits for a mark; ``section`` (the written questions'
+    marks, :func:`.marks.feedback_section`) follows the exercises.
 
     >>> feedback_markdown("x\\n# Total: 56 / 56", [], seed=1).splitlines()[0]
     '# Feedback for `x\\\\x0a# Total: 56 / 56`'
@@ -170,12 +171,13 @@ def feedback_markdown(
     if written is None:
         lines += [f"Total: **{total:g} / {top:g}** points.", ""]
     else:
-        earned, most = written
-        lines += [
-            f"Total: **{round(total + earned, 2):g} / {round(top + most, 2):g}** points "
-            f"(auto-graded {total:g} / {top:g}, written questions {earned:g} / {most:g}).",
-            "",
-        ]
+        both = f"**{round(total + (written.points or 0.0), 2):g} / {round(top + written.possible, 2):g}** points"
+        if written.provisional:  # the same total as the gradebooks', said to leave out what is not marked yet
+            lines.append(f"Total: {both}, provisional (auto-graded {total:g} / {top:g}; written questions: "
+                         f"{written.text()}).")  # fmt: skip
+        else:
+            lines.append(f"Total: {both} (auto-graded {total:g} / {top:g}, written questions {written.text()}).")
+        lines.append("")
     for r in results:
         ex = EXERCISES[r.exercise]
         lines += [
@@ -266,7 +268,7 @@ def write_feedback(
     reserved: Sequence[str] = (),
     key: Secret | None = None,
     as_user: str | None = None,
-    written: Mapping[str, tuple[float, float]] | None = None,
+    written: Mapping[str, WrittenScore] | None = None,
     sections: Mapping[str, str] | None = None,
 ) -> dict[str, Path]:
     """One Markdown file per student in ``folder`` (created); returns the file of each student.
@@ -289,7 +291,7 @@ def write_feedback(
             unsandboxed,
             key,
             as_user,
-            written=None if written is None else written.get(student, (0.0, 0.0)),
+            written=None if written is None else written.get(student, WrittenScore(0.0, 0.0)),
             section=(sections or {}).get(student, ""),
         )
         replace_atomically(files[student], text)

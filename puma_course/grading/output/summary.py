@@ -24,7 +24,7 @@ from ..results import NotebookResult
 from ..spec import Question
 from .copies import CopyReport, copies_section
 from .report import replace_atomically, verdict
-from .text import one_line, quoted
+from .text import one_line, plural, quoted
 from .totals import StudentTotal
 
 __all__ = [
@@ -121,12 +121,12 @@ def class_summary(
     >>> from puma_course.grading import EXERCISES
     >>> r = NotebookResult.blank("ann", EXERCISES["ex01_rotations"])
     >>> print(class_summary([r]).splitlines()[0])
-    # Class summary: 1 student(s), 1 exercise(s)
+    # Class summary: 1 student, 1 exercise
     """
     students = sorted({r.student for r in results})
     summaries = question_summaries(results)
     names = list(dict.fromkeys(s.exercise for s in summaries))
-    lines = [f"# Class summary: {len(students)} student(s), {len(names)} exercise(s)", ""]
+    lines = [f"# Class summary: {plural(len(students), 'student')}, {plural(len(names), 'exercise')}", ""]
     lines += [
         "Per question: how many of the students who handed the exercise in passed it (full points), passed it "
         "partly, failed it or did not attempt it; their mean points; and the mistakes the grader recognised, each "
@@ -139,7 +139,7 @@ def class_summary(
         lines += [
             f"## {name}: {EXERCISES[name].title}",
             "",
-            f"Handed in by {handed} of {len(students)} student(s).",
+            f"Handed in by {handed} of {plural(len(students), 'student')}.",
             "",
         ]
         lines += [
@@ -164,10 +164,14 @@ def class_summary(
 
 
 def totals_section(totals: Mapping[str, StudentTotal]) -> list[str]:
-    """The summary's table of students: auto-graded points, written points (– without marks), total.
+    """The summary's table of students: auto-graded points, written points (– without marks), total (called
+    provisional while a written answer waits for a mark).
 
-    >>> print("\\n".join(totals_section({"ann": StudentTotal(27, 27, 2.5, 4)})[4:]))
+    >>> from puma_course.grading.output.totals import WrittenScore
+    >>> print("\\n".join(totals_section({"ann": StudentTotal(27, 27, WrittenScore(2.5, 4))})[4:]))
     | `ann` | 27 / 27 | 2.5 / 4 | **29.5 / 31** |
+    >>> print("\\n".join(totals_section({"cy": StudentTotal(12, 27, WrittenScore(None, 4, 1))})[4:]))
+    | `cy` | 12 / 27 | not marked yet (4 points) | **12 / 31** provisional |
     """
     lines = [
         "## Totals per student",
@@ -177,8 +181,8 @@ def totals_section(totals: Mapping[str, StudentTotal]) -> list[str]:
     ]
     for student in sorted(totals):
         t = totals[student]
-        written = "–" if t.written is None else f"{t.written:g} / {t.written_max:g}"
-        total = f"**{t.total:g} / {t.top:g}**"
+        written = "–" if t.written is None else t.written.text()
+        total = f"**{t.total:g} / {t.top:g}**" + (" provisional" if t.provisional else "")
         lines.append(f"| {quoted(student, 120)} | {t.auto:g} / {t.auto_max:g} | {written} | {total} |")
     return [*lines, ""]
 
@@ -250,7 +254,7 @@ def run_outcome(results: Sequence[Any], submissions: Path, names: Sequence[str])
         )
     if found and all(r.status == "crashed" for r in found):
         return 5, (
-            f"every one of the {len(found)} notebook(s) found crashed: the grader or its sandbox is broken "
+            f"every one of the {plural(len(found), 'notebook')} found crashed: the grader or its sandbox is broken "
             "here, not the students (see the CSV's notes)"
         )
     return 0, ""

@@ -16,10 +16,19 @@ import os
 import re
 import unicodedata
 
-__all__ = ["one_line", "quoted", "display_name", "csv_safe", "file_stem"]
+__all__ = ["one_line", "quoted", "display_name", "csv_safe", "file_stem", "plural"]
 
 #: Characters that start a formula in spreadsheet programs (OWASP's list for CSV injection).
 _FORMULA_START = ("=", "+", "-", "@", "\t", "\r", "\n")
+
+
+def plural(count: float, noun: str, nouns: str | None = None) -> str:
+    """``count`` with its noun, singular for exactly one (``nouns``: the plural, default ``noun + "s"``).
+
+    >>> plural(1, "point"), plural(0.5, "point"), plural(2, "answer"), plural(0, "file")
+    ('1 point', '0.5 points', '2 answers', '0 files')
+    """
+    return f"{count:g} {noun if count == 1 else nouns or noun + 's'}"
 
 
 def _escape_char(ch: str) -> str:

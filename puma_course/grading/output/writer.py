@@ -34,7 +34,7 @@ from .gradebook import RosterEntry, write_gradebook
 from .marks import Marks, feedback_section, written_by_student, written_columns, written_totals
 from .report import csv_rows, replace_atomically, write_feedback
 from .summary import summary_path, write_summary
-from .totals import StudentTotal, student_totals
+from .totals import StudentTotal, WrittenScore, student_totals
 
 __all__ = ["RunFacts", "Written", "write_run", "reserved_stems"]
 
@@ -63,6 +63,7 @@ class Written:
     feedback: dict[str, Path] = field(default_factory=dict)
     gradebooks: list[tuple[str, Path, list[str]]] = field(default_factory=list)
     marked: int | None = None  # answers with marks (None: no marks given)
+    unmarked: int = 0  # answers handed in and not marked yet: their students' totals are provisional
     shard: Path | None = None  # the shard file written (``grade --shard K/N``), for ``puma-course merge``
 
 
@@ -92,7 +93,7 @@ def write_run(
     (:func:`.gradebook.read_roster`) before grading."""
     names = list(facts.names)
     written = written_by_student(marks, results) if marks is not None else None
-    per_student: Mapping[str, tuple[float, float]] | None = None
+    per_student: Mapping[str, WrittenScore] | None = None
     if written is not None:
         per_student = written_totals(written, results)
     totals = student_totals(results, per_student)
@@ -113,10 +114,10 @@ def write_run(
         user = getattr(box, "user", None)  # AsUser (Gradescope): alone, as an unprivileged user
         sections = None
         if marks is not None:
-            mine: dict[str, list[str]] = {}
+            mine: dict[str, list[NotebookResult]] = {}
             for r in results:
-                mine.setdefault(r.student, []).append(r.exercise)
-            sections = {s: feedback_section(marks, s, exs) for s, exs in mine.items()}
+                mine.setdefault(r.student, []).append(r)
+            sections = {s: feedback_section(marks, own) for s, own in mine.items()}
         done.feedback = write_feedback(
             feedback,
             results,
@@ -137,4 +138,5 @@ def write_run(
         done.gradebooks.append((fmt, path, notes))
     if marks is not None:
         done.marked = sum(1 for m in marks.marks.values() if m.points is not None)
+        done.unmarked = sum(t.written.unmarked for t in totals.values() if t.written is not None)
     return done
