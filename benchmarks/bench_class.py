@@ -21,7 +21,8 @@ process of its own whose only addition is a timer around ``make_plan`` (planning
 - peak memory: the grader's resident high-water mark (``VmHWM``, read while it runs) and the largest
   resident set of any other process of its tree (sampled every 0.2 s; short-lived peaks can be missed);
 - the marginal cost per notebook, from two class sizes: the first ``--small`` students (default a fifth) graded
-  as a class of their own, then the whole class; ``(T(N) - T(M)) / (notebooks(N) - notebooks(M))``;
+  as a class of their own, then the whole class; the line ``T = fixed + notebooks x marginal`` through them (with
+  ``--parts``, fitted to every part's run, each of which pays the fixed cost once);
 - planning: seconds of the grader's threads' CPU spent in ``make_plan``, against the grader's and the total.
 
 From these the sizing table: notebooks per core-hour (3,600 CPU-s over the CPU-s per notebook), memory per
@@ -158,6 +159,7 @@ class Run:
     plan_wall: float
     statuses: dict[str, int] = field(default_factory=dict)
     load: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    points: list[list[float]] = field(default_factory=list)  # (notebooks, wall, CPU) of each grading run in it
 
     @property
     def cpu(self) -> float:
@@ -299,6 +301,7 @@ def grade_class(subs: Path, out: Path, key: Path, jobs: int, names: list[str], l
         timed["wall"],
         statuses,
         os.getloadavg(),
+        [[len(rows) - 1, wall, total_cpu]],
     )
 
 
@@ -311,19 +314,33 @@ def estimate(notebooks: int, jobs: int, per: float | None = None) -> str:
 def sizing(small: Run | None, whole: Run, jobs: int, exercises: int, kernel: float | None) -> list[str]:
     """The sizing table, as Markdown lines."""
     n = whole.notebooks
-    cpu_per = whole.cpu / n
-    marginal = 0.0
-    if small is not None and whole.notebooks > small.notebooks:
-        marginal = (whole.wall - small.wall) / (whole.notebooks - small.notebooks)
-        fixed = max(0.0, small.wall - small.notebooks * marginal)
-        how = f"from {small.notebooks} and {whole.notebooks} notebooks"
+    cpu_per, marginal = whole.cpu / n, 0.0
+    # every grading run is a point (notebooks, wall, CPU): wall = fixed + notebooks x marginal, fitted (each
+    # part of a class graded in parts pays the fixed cost once)
+    pts = [p for p in (small.points if small else []) + whole.points if p[0] > 0]
+    if len({p[0] for p in pts}) >= 2:
+        xs = [p[0] for p in pts]
+        mx = sum(xs) / len(xs)
+        sxx = sum((x - mx) ** 2 for x in xs)
+
+        def slope(i: int) -> tuple[float, float]:
+            my = sum(p[i] for p in pts) / len(pts)
+            b = sum((p[0] - mx) * (p[i] - my) for p in pts) / sxx
+            return b, my - b * mx
+
+        marginal, fixed = slope(1)
+        cpu_marginal = slope(2)[0]
+        cpu_per = cpu_marginal if cpu_marginal > 0 else cpu_per
+        fixed = max(0.0, fixed)
+        how = f"fitted to {len(pts)} runs of {min(xs):.0f} to {max(xs):.0f} notebooks"
     if marginal <= 0:  # no second size, or sizes too close for the machine's noise: the average, fixed cost in it
         marginal, fixed, how = whole.wall / n, 0.0, f"average of {n} notebooks, no usable second class size"
     lines = [
         f"| figure | value ({how}; {jobs} job(s) on {os.cpu_count()} cores, load {whole.load[0]:.1f}) |",
         "| --- | --- |",
         f"| wall time per notebook, marginal | {marginal:.3f} s (fixed cost per run {fixed:.1f} s) |",
-        f"| CPU per notebook (grader + children) | {cpu_per:.3f} s |",
+        f"| CPU per notebook (grader + children; marginal where two sizes give one) | {cpu_per:.3f} s "
+        f"(all of the class: {whole.cpu / n:.3f} s) |",
         f"| notebooks per core-hour | {3600 / cpu_per:,.0f} |",
         f"| memory: grader peak RSS | {whole.grader_rss_mib:.0f} MiB |",
         f"| memory: per worker (largest process of the tree besides the grader) | {whole.worker_rss_mib:.0f} MiB |",
@@ -383,6 +400,7 @@ def _run_parts(work: Path, subs: Path, key: Path, jobs: int, names: list[str], p
         sum(r.plan_wall for r in runs),
         statuses,
         runs[-1].load,
+        [p for r in runs for p in r.points],
     )
 
 

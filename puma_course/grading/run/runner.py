@@ -20,6 +20,7 @@ from __future__ import annotations
 import concurrent.futures
 import dataclasses
 import os
+import threading
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -64,6 +65,10 @@ PACKAGE_PARENT = Path(__file__).resolve().parents[3]
 _PACKAGE_DIR = PACKAGE_PARENT / "puma_course"
 #: Notebooks of a class read into memory before any student code runs, when there is no OS sandbox.
 PRE_READ_BYTES = 512 << 20
+#: One plan at a time: the bank's references silence warnings with ``warnings.catch_warnings``, which swaps the
+#: process's filters and is not thread-safe (two at once can leave "ignore" behind, and the grader's own
+#: warnings, GradingIntegrityWarning among them, with it). Planning is Python under the GIL: nothing is lost.
+_PLANNING = threading.Lock()
 
 
 class GradingIntegrityWarning(UserWarning):
@@ -361,7 +366,8 @@ def _grade_class(settings: GradeSettings, run: _Run) -> tuple[list[NotebookResul
                         # other students' notebooks run) and dropped once it is judged; a plan that cannot be
                         # made is the grader's error on this notebook, and the class goes on
                         try:
-                            plan = make_plan(ex, key, s.name)
+                            with _PLANNING:
+                                plan = make_plan(ex, key, s.name)
                         except Exception as exc:  # noqa: BLE001 - a bank bug must not stop the class
                             why = f"{type(exc).__name__}: {exc}"[:300]
                             plan, note = None, f"the grader could not draw this notebook's cases: {why}"

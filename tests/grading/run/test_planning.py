@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import shutil
 import threading
+import time
 import warnings
 import weakref
 from pathlib import Path
@@ -38,6 +39,8 @@ class _Spy:
     def __init__(self, fail_for: str | None = None) -> None:
         self.log: list[tuple[str, str, str]] = []
         self.live = self.peak = 0
+        self.inside = self.most_inside = 0
+        self.pause = 0.0
         self.fail_for = fail_for
         self._lock = threading.Lock()
         self._real = runner.make_plan
@@ -49,7 +52,13 @@ class _Spy:
     def __call__(self, exercise, seed, student=""):
         if student == self.fail_for:
             raise RuntimeError(f"no cases for {student}")
+        with self._lock:
+            self.inside += 1
+            self.most_inside = max(self.most_inside, self.inside)
+        time.sleep(self.pause)
         plan = _Tracked(self._real(exercise, seed, student))
+        with self._lock:
+            self.inside -= 1
         with self._lock:
             self.log.append(("plan", student, exercise.name))
             self.live += 1
@@ -91,11 +100,14 @@ def test_a_students_plans_are_made_when_that_student_is_graded(tmp_path, monkeyp
 
 def test_the_live_plans_are_bounded_by_the_jobs_not_the_class(tmp_path, monkeypatch):
     spy = _Spy()
+    spy.pause = 0.2  # a slow plan: two threads would be inside make_plan at once, were it not for the lock
     students = [f"s{k}" for k in range(6)]
     results = _grade(_class(tmp_path, students), tmp_path / "g.csv", spy, 2, monkeypatch)
     assert len(results) == 12 and {r.status for r in results} == {"ok"}
     assert sorted(e[1:] for e in spy.log if e[0] == "plan") == [(s, n) for s in students for n in NAMES]
     assert 1 <= spy.peak <= 2 and spy.live == 0
+    # one plan at a time (the bank's warnings.catch_warnings is not thread-safe), the notebooks still in parallel
+    assert spy.most_inside == 1
     for s in students:  # a notebook is planned before it is graded, by the thread that grades it
         for n in NAMES:
             assert spy.log.index(("plan", s, n)) < spy.log.index(("done", s, n))
