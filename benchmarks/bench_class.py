@@ -417,6 +417,7 @@ def _print_run(r: Run) -> None:
 def compare_blank(count: int, jobs: int, rounds: int, work: Path, key: Path) -> dict[str, object]:
     """Grade ``count`` blank ex10 notebooks and ``count`` blank ex01 ones, alternating, best of ``rounds``."""
     best: dict[str, float] = {}
+    cpu: dict[str, float] = {}
     for name in ("ex01_rotations", "ex10_trajectories"):
         subs = work / f"blank-{name}"
         for s in range(count):
@@ -431,13 +432,17 @@ def compare_blank(count: int, jobs: int, rounds: int, work: Path, key: Path) -> 
             loads.append(r.load[0])
             _print_run(r)
             best[name] = min(best.get(name, float("inf")), r.wall)
+            cpu[name] = min(cpu.get(name, float("inf")), r.cpu)
     ratio = best["ex10_trajectories"] / best["ex01_rotations"]
+    cpu_ratio = cpu["ex10_trajectories"] / cpu["ex01_rotations"]
     print(
         f"{count} blank notebooks, {jobs} job(s), best of {rounds}: ex01 {best['ex01_rotations']:.1f} s, "
-        f"ex10 {best['ex10_trajectories']:.1f} s: ex10/ex01 = {ratio:.2f} (done when <= 2); "
+        f"ex10 {best['ex10_trajectories']:.1f} s: ex10/ex01 = {ratio:.2f} (done when <= 2); CPU (grader + "
+        f"children) {cpu['ex01_rotations']:.1f} and {cpu['ex10_trajectories']:.1f} s, ex10/ex01 = {cpu_ratio:.2f}; "
         f"load average during the rounds {min(loads):.1f}-{max(loads):.1f} on {os.cpu_count()} cores"
     )
-    return {"count": count, "jobs": jobs, "best": best, "ratio": ratio, "load": [min(loads), max(loads)]}
+    return {"count": count, "jobs": jobs, "best": best, "ratio": ratio, "cpu": cpu, "cpu_ratio": cpu_ratio,
+            "load": [min(loads), max(loads)]}  # fmt: skip
 
 
 def main() -> None:

@@ -49,4 +49,5 @@ def test_bench_class_compares_blank_ex10_with_blank_ex01(tmp_path):
     got = json.loads(out.read_text(encoding="utf-8"))["compare_blank"]
     assert got["count"] == 1 and set(got["best"]) == {"ex01_rotations", "ex10_trajectories"}
     assert got["ratio"] == pytest.approx(got["best"]["ex10_trajectories"] / got["best"]["ex01_rotations"])
+    assert got["cpu_ratio"] == pytest.approx(got["cpu"]["ex10_trajectories"] / got["cpu"]["ex01_rotations"])
     assert "ex10/ex01 =" in printed
