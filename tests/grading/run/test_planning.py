@@ -153,3 +153,23 @@ def test_the_plans_are_the_ones_make_plan_gives_for_the_key_student_and_exercise
     for (s, n), plan in seen.items():  # the same draws whichever thread made them, in whichever order
         assert [c.args for c in plan] == [c.args for c in real(EXERCISES[n], key, s)]
     assert [c.args for c in seen["s1", NAMES[0]]] != [c.args for c in seen["s2", NAMES[0]]]
+
+
+def test_without_the_sandbox_only_pre_read_bytes_are_read_ahead(tmp_path, monkeypatch):
+    # no OS sandbox: notebooks are read before any student code runs, up to PRE_READ_BYTES; the rest as graded
+    subs = _class(tmp_path, [f"s{k}" for k in range(5)])
+    one = sum(p.stat().st_size for p in (subs / "s0").iterdir())
+    monkeypatch.setattr(runner, "PRE_READ_BYTES", 2 * one)  # two students' notebooks fit, a third does not
+    spy, real_read = _Spy(), runner.read_student
+
+    def read(*args, **kwargs):
+        spy.log.append(("read", args[1].name, ""))
+        return real_read(*args, **kwargs)
+
+    monkeypatch.setattr(runner, "read_student", read)
+    results = _grade(subs, tmp_path / "g.csv", spy, 1, monkeypatch)
+    assert [r.status for r in results] == ["ok"] * 10
+    first_plan = next(i for i, e in enumerate(spy.log) if e[0] == "plan")
+    # s0 and s1 kept; s2 read, found beyond the budget and dropped; then s2, s3, s4 each read when graded
+    assert [e[1] for e in spy.log[:first_plan]] == ["s0", "s1", "s2"]
+    assert [e[1] for e in spy.log[first_plan:] if e[0] == "read"] == ["s2", "s3", "s4"]
