@@ -342,6 +342,8 @@ def sizing(small: Run | None, whole: Run, jobs: int, exercises: int, kernel: flo
         f"| CPU per notebook (grader + children; marginal where two sizes give one) | {cpu_per:.3f} s "
         f"(all of the class: {whole.cpu / n:.3f} s) |",
         f"| notebooks per core-hour | {3600 / cpu_per:,.0f} |",
+        f"| the grader's own CPU per notebook (planning, judging: one interpreter, so one process grades at most "
+        f"{n / max(whole.cpu_grader, 1e-9):.1f} notebooks/s, whatever its cores) | {whole.cpu_grader / n:.3f} s |",
         f"| memory: grader peak RSS | {whole.grader_rss_mib:.0f} MiB |",
         f"| memory: per worker (largest process of the tree besides the grader) | {whole.worker_rss_mib:.0f} MiB |",
         f"| memory: the whole tree at its largest (control group peak, tmpfs and cache in it) | "
