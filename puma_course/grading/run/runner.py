@@ -1,14 +1,16 @@
 """The grader's side: plan the calls, run each notebook in a fresh sandboxed worker, score what comes back.
 
-:func:`grade` grades ``SUBMISSIONS/<student>/<exercise>.ipynb`` for a class. It computes every
-expected value first (:func:`make_plan`, in this process), chooses the operating-system sandbox
-(:mod:`.sandbox`: bubblewrap where it runs, else none, loudly), builds the run's stage (the worker
-and a student-side ``puma_course`` per exercise holding only what the exercise allows:
-:mod:`.stage`), and then grades the students, ``jobs`` at a time, each within a total time limit
-of its own. Each notebook is read without following links (:mod:`.submissions`) and handed, as
-bytes, to a fresh worker (:mod:`.worker`, run by :mod:`.child`), which parses it, runs its code
-cells and calls the student's functions on the planned inputs, with a time limit per cell, per
-call and per notebook. Only the numbers the functions return come back; the comparison, and the
+:func:`grade` grades ``SUBMISSIONS/<student>/<exercise>.ipynb`` for a class. It chooses the
+operating-system sandbox (:mod:`.sandbox`: bubblewrap where it runs, else none, loudly), builds the
+run's stage (the worker and a student-side ``puma_course`` per exercise holding only what the exercise
+allows: :mod:`.stage`), and then grades the students, ``jobs`` at a time, each within a total time limit
+of its own. A notebook's expected values are computed in this process just before it runs
+(:func:`make_plan`, while other students' notebooks run in their sandboxes) and dropped once it is
+judged, so the grader holds the plans of the notebooks in flight, never the class's. Each notebook is
+read without following links (:mod:`.submissions`) and handed, as bytes, to a fresh worker
+(:mod:`.worker`, run by :mod:`.child`), which parses it, runs its code cells and calls the student's
+functions on the planned inputs, with a time limit per cell, per call and per notebook.
+Only the numbers the functions return come back; the comparison, and the
 wording of every message, happen here (:mod:`.events`). Results go to a CSV and feedback files
 (:mod:`.report`).
 """
@@ -18,6 +20,7 @@ from __future__ import annotations
 import concurrent.futures
 import dataclasses
 import os
+import threading
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -62,6 +65,10 @@ PACKAGE_PARENT = Path(__file__).resolve().parents[3]
 _PACKAGE_DIR = PACKAGE_PARENT / "puma_course"
 #: Notebooks of a class read into memory before any student code runs, when there is no OS sandbox.
 PRE_READ_BYTES = 512 << 20
+#: One plan at a time: the bank's references silence warnings with ``warnings.catch_warnings``, which swaps the
+#: process's filters and is not thread-safe (two at once can leave "ignore" behind, and the grader's own
+#: warnings, GradingIntegrityWarning among them, with it). Planning is Python under the GIL: nothing is lost.
+_PLANNING = threading.Lock()
 
 
 class GradingIntegrityWarning(UserWarning):
@@ -312,8 +319,6 @@ def _grade_class(settings: GradeSettings, run: _Run) -> tuple[list[NotebookResul
         return read_student(sub_dir, s, names) if collected is None else collected.read(s, names)
 
     students = run.students
-    # every expected value, each student's own, before any child runs
-    plans = {(s.name, name): make_plan(EXERCISES[name], key, s.name) for s in students for name in names}
     package_before = package_digest(_PACKAGE_DIR, EXERCISES.course)
     hidden = [_PACKAGE_DIR, *_checkouts(), sub_dir, settings.output, *settings.private]
     hidden += [Path(feedback)] if feedback is not None else []
@@ -357,23 +362,25 @@ def _grade_class(settings: GradeSettings, run: _Run) -> tuple[list[NotebookResul
                         )
                         res = _blank(s.name, ex, "timeout", note)
                     else:
-                        limit = min(timeout_total, left)
-                        note = stop_note(limit, limit < timeout_total)
-                        res = grade_data(
-                            nb.data,
-                            ex,
-                            s.name,
-                            plans[s.name, name],
-                            stage,
-                            box,
-                            timeout_cell,
-                            limit,
-                            note,
-                            hidden,
-                            groups,
-                            limit,
-                            spent,
-                        )
+                        # this notebook's expected values, the student's own, drawn now (by this thread, while
+                        # other students' notebooks run) and dropped once it is judged; a plan that cannot be
+                        # made is the grader's error on this notebook, and the class goes on
+                        try:
+                            with _PLANNING:
+                                plan = make_plan(ex, key, s.name)
+                        except Exception as exc:  # noqa: BLE001 - a bank bug must not stop the class
+                            why = f"{type(exc).__name__}: {exc}"[:300]
+                            plan, note = None, f"the grader could not draw this notebook's cases: {why}"
+                        if plan is None:
+                            res = _blank(s.name, ex, "grader-error", note)
+                        else:
+                            limit = min(timeout_total, left)
+                            note = stop_note(limit, limit < timeout_total)
+                            res = grade_data(
+                                nb.data, ex, s.name, plan, stage, box, timeout_cell, limit, note, hidden, groups,
+                                limit, spent,
+                            )  # fmt: skip
+                        del plan
                 except Exception as exc:  # noqa: BLE001 - one broken submission must not stop the class
                     why = f"{type(exc).__name__}: {exc}"[:300]
                     res = _blank(s.name, ex, "grader-error", f"the grader failed on this notebook: {why}")
