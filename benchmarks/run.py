@@ -126,7 +126,8 @@ def _ik_peer(arm, q: np.ndarray, T: np.ndarray) -> str:  # noqa: ANN001
     Ts = [p.fkine(qq) for qq in q[:20]]  # its own poses of the same joint vectors (its table differs from ours)
     rtb = best(lambda: [p.ikine_a(t, c) for t in Ts for c in CONFIGS], 3) / len(Ts)
     ours = best(lambda: [arm.ik(t) for t in T[:20]], 5) / len(Ts)
-    return f"`ikine_a` for the 8 configurations {_us(rtb)} ({rtb / ours:.1f}x ours)"
+    # the ratio is to our figure timed beside the peer's (printed with it), not to the row's own timing
+    return f"`ikine_a` for the 8 configurations {_us(rtb)} ({rtb / ours:.1f}x ours at {_us(ours)}, timed beside it)"
 
 
 def ik_rows(n: int, batch: bool = True) -> None:
@@ -179,8 +180,9 @@ def jacobian_rows() -> None:
         c = best(lambda: [ets.jacob0(q) for q in Q], 7) / len(Q)
         dh = best(lambda: [p.jacob0(q) for q in Q[:20]], 3) / 20
         mine = ours()
-        return (f"ETS.jacob0 (C) {_us(c)} ({c / mine:.1f}x ours), DHRobot.jacob0 {_us(dh)} "
-                f"({dh / mine:.0f}x ours)")  # fmt: skip
+        # the ratios are to our figure timed beside the peer's (printed with them), not to the row's own timing
+        return (f"ETS.jacob0 (C) {_us(c)} ({c / mine:.1f}x ours at {_us(mine)}, timed beside it), "
+                f"DHRobot.jacob0 {_us(dh)} ({dh / mine:.0f}x ours)")  # fmt: skip
 
     row("Jacobian PUMA-560, one pose (closed form)", "≤ ETS.jacob0", lambda: _us(ours()), peer)
     row("Jacobian PUMA-560, one pose, generic DH walk (`geometric_jacobian`)", "",
