@@ -9,6 +9,7 @@ import base64
 import re
 import struct
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -38,3 +39,45 @@ def assert_no_overlap(boxes: list, pad: float = 0.0) -> None:
     for i, a in enumerate(boxes):
         for b in boxes[i + 1 :]:
             assert not a.padded(pad).overlaps(b.padded(pad)), f"{a} overlaps {b}"
+
+
+def course_site(tmp_path_factory: Any) -> tuple[Path, str]:
+    """The course site as ``puma-course site -o DIR`` builds it (docs/website.md): ``(DIR, what it printed)``.
+
+    Built once per test run and shared by every test that reads it (tests/site/test_build.py,
+    tests/browser/test_site.py, tests/browser/test_axe.py), whichever pytest worker runs them: the first
+    to ask builds it under a lock in the folder the run's workers share, keyed by the course's files (git's
+    tracked and untracked, not ignored), and the others wait and read it. Nothing may write into it.
+    """
+    import fcntl
+    import hashlib
+    import os
+    import subprocess
+    import sys
+
+    base = Path(tmp_path_factory.getbasetemp())
+    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base  # pytest-N/ holds every worker's popen-gwK
+    files = subprocess.run(
+        ["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+        cwd=ROOT, capture_output=True, check=True,
+    ).stdout.split(b"\0")  # fmt: skip
+    digest = hashlib.sha256(sys.version.encode())
+    for name in sorted(f for f in files if f):
+        path = ROOT / os.fsdecode(name)
+        if path.is_file():
+            digest.update(name + b"\0" + path.read_bytes())
+    folder = shared / f"course-site-{digest.hexdigest()[:16]}"
+    folder.mkdir(parents=True, exist_ok=True)
+    out, printed = folder / "html", folder / "printed.txt"
+    with open(folder / "lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not printed.exists():
+            command = Path(sys.executable).with_name("puma-course")
+            argv = [str(command)] if command.exists() else [sys.executable, "-m", "puma_course.cli"]
+            proc = subprocess.run(
+                [*argv, "site", "--course", str(ROOT), "-o", str(out)],
+                capture_output=True, text=True, timeout=1200,
+            )  # fmt: skip
+            assert proc.returncode == 0, f"puma-course site failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
+            printed.write_text(proc.stdout, encoding="utf-8")
+    return out, printed.read_text(encoding="utf-8")

@@ -437,6 +437,10 @@ function render({ model, el }) {
       const text = label ? label.textContent.trim() : "";
       if (handle && text && handle.getAttribute("aria-label") !== text) handle.setAttribute("aria-label", text);
     }
+    // the panel's drop-downs (the IK selector) keep their arrow keys: JupyterLab's command-mode shortcuts skip them
+    for (const select of root.querySelectorAll("select:not([data-lm-suppress-shortcuts])")) {
+      select.setAttribute("data-lm-suppress-shortcuts", "true");
+    }
   }
   const sliderWatch = new MutationObserver(nameSliders);
   requestAnimationFrame(() => {

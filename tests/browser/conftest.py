@@ -12,28 +12,42 @@ from typing import Any
 
 import pytest
 
-from .lab import Lab, browser, missing
+from .lab import Lab, Tab, browser, missing, new_page
 
 ARTIFACTS = Path(__file__).resolve().parents[1] / "artifacts"
 
 WHY = missing()
 
 
+@pytest.hookimpl(trylast=True)  # after pytest's own reordering by fixture parameter, which interleaves them
 def pytest_collection_modifyitems(config: Any, items: list[pytest.Item]) -> None:
-    """Skip this folder's tests (each module is marked ``browser``) when Chromium or Playwright is missing."""
+    """Skip this folder's tests (each module is marked ``browser``) when Chromium or Playwright is missing.
+
+    In a module with ``CHECKS`` (``test_lectures_*``), run a lecture's checks together, in CHECKS's order, the
+    lectures in name order: one page per lecture (the ``tab`` fixture), the read-only checks before the others.
+    """
     here = Path(__file__).parent
     for item in items:
         if WHY and here in Path(str(item.fspath)).parents:
             item.add_marker(pytest.mark.skip(reason=f"browser tests skipped: {WHY}"))
+    slots = [i for i, item in enumerate(items) if hasattr(item.module, "CHECKS") and hasattr(item, "callspec")]
+
+    def key(item: Any) -> tuple[str, str, int]:
+        order = list(item.module.CHECKS)
+        return str(item.fspath), item.callspec.params["name"], order.index(item.function)
+
+    for i, item in zip(slots, sorted((items[i] for i in slots), key=key), strict=True):
+        items[i] = item
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def lab() -> Iterator[Lab]:
+    """One JupyterLab server per pytest worker, shared by every browser test that worker runs."""
     with Lab() as server:
         yield server
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def chromium() -> Iterator[Any]:
     with browser() as b:
         yield b
@@ -41,15 +55,29 @@ def chromium() -> Iterator[Any]:
 
 @pytest.fixture
 def page(chromium: Any) -> Iterator[Any]:
-    context = chromium.new_context(viewport={"width": 1400, "height": 1000}, device_scale_factor=1)
-    pg = context.new_page()
-    errors: list[str] = []
-    pg.on("pageerror", lambda e: errors.append(str(e)))
-    pg.errors = errors
+    pg = new_page(chromium)
     try:
         yield pg
     finally:
-        context.close()
+        pg.context.close()
+
+
+#: the lectures walked by keyboard alone (tests/browser/checks_keyboard.py): their one run is Shift+Enter on every cell
+BY_KEYBOARD = {"03_puma560_forward_kinematics.ipynb", "08_three_step_wrist_frame.ipynb"}
+
+
+@pytest.fixture(scope="module")
+def tab(name: str, lab: Lab, chromium: Any) -> Iterator[Tab]:
+    """Lecture ``name`` opened once and run once for every check of a ``test_lectures_*`` module (``lab.Tab``).
+
+    ``name`` is parametrized with scope "module" by those modules, so pytest runs a lecture's checks one after
+    another, in the order they are defined, and closes the page (and shuts its kernel down) before the next lecture.
+    """
+    t = Tab(chromium, lab, name, by_keyboard=name in BY_KEYBOARD)
+    try:
+        yield t
+    finally:
+        t.close()
 
 
 @pytest.fixture(scope="session")

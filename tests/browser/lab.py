@@ -8,7 +8,9 @@ student gets (windowed notebooks included); no news, no update check: nothing le
 It stops the server by its PID. :func:`browser` launches the system Chromium (Playwright's own
 browser download does not work offline).
 
-Used by ``tests/browser/test_lectures.py`` and ``benchmarks/bench_viewer.py``.
+One server per pytest worker (the session fixture ``lab`` of ``tests/browser/conftest.py``) serves every lecture;
+:class:`Tab` opens one lecture once and runs it once for all the checks made on it (``tests/browser/checks_*.py``).
+Used by the browser tests and ``benchmarks/bench_viewer.py``.
 """
 
 from __future__ import annotations
@@ -156,6 +158,18 @@ class Lab:
                 time.sleep(0.3)
         self.stop()
         raise TimeoutError(f"jupyter lab did not answer on {self.base} in {timeout} s")
+
+    def shutdown_kernels(self) -> None:
+        """Shut down every kernel of the server (a lecture's checks are done: its kernel's memory is given back)."""
+        try:  # the sessions first (a notebook opened again then starts a kernel of its own), then any kernel left
+            for kind in ("sessions", "kernels"):
+                with urllib.request.urlopen(f"{self.base}/api/{kind}?token={self.token}", timeout=10) as r:
+                    items = json.loads(r.read())
+                for item in items:
+                    url = f"{self.base}/api/{kind}/{item['id']}?token={self.token}"
+                    urllib.request.urlopen(urllib.request.Request(url, method="DELETE"), timeout=30).close()
+        except OSError:
+            pass  # the server is gone: nothing to give back
 
     def server_log(self) -> str:
         self.log.flush()
@@ -318,3 +332,82 @@ def press_and_time_parts(page: Any, handle: Any, box: Any, key: str = "ArrowRigh
     t_key = page.evaluate("() => window.__pumaKeyT")
     t_msg = box.evaluate("b => b.__puma.lastPoseMessage")
     return total, float(t_msg - t_key)
+
+
+def run_by_keyboard(page: Any, lab: Lab, name: str) -> int:
+    """Shift+Enter on every cell from the first (keys only); returns the number of cells."""
+    n = len(json.loads((lab.root / name).read_text(encoding="utf-8"))["cells"])
+    page.locator(".jp-Notebook").focus()  # the notebook has the keyboard focus, as after opening it
+    page.keyboard.press("Escape")
+    page.keyboard.press("Control+Home")
+    for _ in range(n):
+        page.keyboard.press("Shift+Enter")
+        page.wait_for_timeout(40)
+    page.wait_for_function(
+        """() => [...document.querySelectorAll('.jp-Notebook .jp-CodeCell .jp-InputPrompt')]
+            .every((p) => !/\\[\\*\\]/.test(p.textContent))""",
+        timeout=300_000,
+    )
+    wait_idle(page, 300_000)
+    return n
+
+
+def new_page(chromium: Any) -> Any:
+    """A page in a context of its own (1400 x 1000), its uncaught errors gathered in ``page.errors``."""
+    context = chromium.new_context(viewport={"width": 1400, "height": 1000}, device_scale_factor=1)
+    pg = context.new_page()
+    errors: list[str] = []
+    pg.on("pageerror", lambda e: errors.append(str(e)))
+    pg.errors = errors
+    return pg
+
+
+class Tab:
+    """One lecture in the worker's JupyterLab, opened once and run once for every check made on it.
+
+    :meth:`opened` is the notebook as a student first opens it (saved outputs, untrusted, no cell run);
+    :meth:`executed` is the same page after every cell ran: Shift+Enter on every cell (keys alone) for
+    the lectures walked by keyboard (``by_keyboard``), else the menu's Run All after clearing the outputs.
+    A check that wants the opened notebook after the run gets a fresh page (correct in any order; the
+    test modules order the checks so that it does not happen). ``dirty_after_open`` is the count of tabs
+    JupyterLab marked modified half a second after the notebook opened.
+    """
+
+    def __init__(self, chromium: Any, lab: Lab, name: str, by_keyboard: bool = False) -> None:
+        self.chromium, self.lab, self.name, self.by_keyboard = chromium, lab, name, by_keyboard
+        self.page: Any = None
+        self.ran = False
+        self.opens = 0
+        self.dirty_after_open = -1
+        self._open()
+
+    def _open(self) -> None:
+        self.close()
+        if self.opens:  # as committed, not as the run before autosaved it
+            shutil.copyfile(NOTEBOOKS / self.name, self.lab.root / self.name)
+        self.page = new_page(self.chromium)
+        open_notebook(self.page, self.lab, self.name)
+        self.page.wait_for_timeout(500)
+        self.dirty_after_open = self.page.locator(".lm-DockPanel-tabBar .lm-TabBar-tab.jp-mod-dirty").count()
+        self.ran = False
+        self.opens += 1
+
+    def opened(self) -> Any:
+        if self.ran:
+            self._open()
+        return self.page
+
+    def executed(self) -> Any:
+        if not self.ran:
+            if self.by_keyboard:
+                run_by_keyboard(self.page, self.lab, self.name)
+            else:
+                run_all(self.page)
+            self.ran = True
+        return self.page
+
+    def close(self) -> None:
+        if self.page is not None:
+            self.page.context.close()
+            self.page = None
+            self.lab.shutdown_kernels()

@@ -22,19 +22,18 @@ from urllib.parse import unquote, urldefrag, urljoin, urlparse
 import nbformat
 import pytest
 
-from tests.support import ROOT
+from tests.support import ROOT, course_site
 
 pytestmark = pytest.mark.browser
 
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    from puma_course.grading.publish.edition import write_edition
-    from puma_course.site import build_site
-
-    report = build_site(ROOT, tmp_path_factory.mktemp("site") / "html", edition=write_edition)
-    assert len(report.pages) >= 20
-    return report.out
+    """The site as ``puma-course site`` builds it (once per test run: :func:`tests.support.course_site`)."""
+    out, printed = course_site(tmp_path_factory)
+    pages = re.search(r"built (\d+) pages", printed)
+    assert pages and int(pages.group(1)) >= 20, printed
+    return out
 
 
 @pytest.fixture(scope="module")

@@ -16,21 +16,15 @@ import pytest
 
 from puma_course.cli import main
 from puma_course.course import CourseNotFoundError
-from tests.support import ROOT
+from tests.support import ROOT, course_site
 
 pytest.importorskip("myst_nb", reason="website build not tested: MyST-NB is missing (pip install -e '.[site]')")
 
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
-    import contextlib
-    import io
-
-    out = tmp_path_factory.mktemp("site") / "html"
-    printed = io.StringIO()
-    with contextlib.redirect_stdout(printed):
-        assert main(["site", "--course", str(ROOT), "-o", str(out)]) == 0
-    return out, printed.getvalue()
+    """``puma-course site --course ROOT -o DIR``, built once per test run for every test that reads the site."""
+    return course_site(tmp_path_factory)
 
 
 def test_the_command_reports_pages_time_and_size(built):

@@ -6,9 +6,11 @@ notebook untrusted); the lectures with a joint panel are also run (Run All) so t
 viewers are checked. axe is scoped to the notebook's output areas (``.jp-OutputArea``): JupyterLab's own
 interface is not the course's. JupyterLab's default windowed notebook attaches only the cells in view, so each
 code cell is scrolled into view and its output area checked in turn. The test fails on any violation and
-lists, per lecture, each rule with its node count; the counts of the last run are written to
-``tests/artifacts/axe_lab.json``. One exception, open work (docs/accessibility.md): the saved picture of a joint
-panel, shown before its cell runs, has no alt in JupyterLab (its ``image-alt`` is counted, not failed on).
+lists, per lecture, each rule with its node count. Both checks are made on the one page per lecture of
+``lab.Tab`` (collected by ``test_lectures_01_to_05.py`` and ``test_lectures_06_to_10.py``); the counts of the
+last run are written to ``tests/artifacts/axe_lab.json``. One exception, open work (docs/accessibility.md): the
+saved picture of a joint panel, shown before its cell runs, has no alt in JupyterLab (its ``image-alt`` is
+counted, not failed on).
 """
 
 from __future__ import annotations
@@ -19,10 +21,8 @@ from typing import Any
 
 import pytest
 
-from .lab import NOTEBOOKS, Lab, open_notebook, run_all
+from .lab import NOTEBOOKS, Tab
 from .test_axe import TAGS, axe_script
-
-pytestmark = pytest.mark.browser
 
 LECTURES = sorted(p.name for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb"))
 
@@ -95,18 +95,15 @@ def _check(key: str, found: dict[str, dict[str, Any]], panels: frozenset[int] | 
     )
 
 
-@pytest.mark.parametrize("name", LECTURES)
-def test_saved_outputs_meet_wcag21_aa_in_jupyterlab(name: str, lab: Lab, page: Any, axe: str, artifacts: Path) -> None:
-    open_notebook(page, lab, name)
+def test_saved_outputs_meet_wcag21_aa_in_jupyterlab(name: str, tab: Tab, axe: str, artifacts: Path) -> None:
+    page = tab.opened()
     found = audit_outputs(page, axe)
     _record(artifacts, f"opened/{name}", found)
     _check(f"{name} (opened)", found, _panel_code_cells(name))
 
 
-@pytest.mark.parametrize("name", RUN)
-def test_live_panels_meet_wcag21_aa_in_jupyterlab(name: str, lab: Lab, page: Any, axe: str, artifacts: Path) -> None:
-    open_notebook(page, lab, name)
-    run_all(page)
+def test_live_panels_meet_wcag21_aa_in_jupyterlab(name: str, tab: Tab, axe: str, artifacts: Path) -> None:
+    page = tab.executed()
     found = audit_outputs(page, axe)
     _record(artifacts, f"run/{name}", found)
     _check(f"{name} (after Run All)", found)

@@ -7,6 +7,7 @@ windowed notebook), the student scrolls down with the mouse wheel to each animat
 Play once: the picture must be drawn at its size and change. The slider's arrow keys step the
 animation (JupyterLab's command-mode shortcuts do not take them). Screenshots in tests/artifacts/:
 NN_untrusted_animation_K.png, NN_run_animation_K.png, NN_untrusted.png, NN_after_run_all.png.
+Made on the one page per lecture of ``lab.Tab`` (collected by ``test_lectures_06_to_10.py``).
 """
 
 from __future__ import annotations
@@ -15,11 +16,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-import pytest
-
-from .lab import Lab, open_notebook, run_all
-
-pytestmark = pytest.mark.browser
+from .lab import Lab, Tab
 
 LECTURES = ("08_three_step_wrist_frame.ipynb", "10_trajectories.ipynb")
 PLAYERS = ".jp-Notebook .jp-OutputArea-output .animation"
@@ -67,14 +64,11 @@ PICTURE = """(img) => ({complete: img.complete, nw: img.naturalWidth, nh: img.na
     src: (img.getAttribute('src') || '').slice(0, 30)})"""
 
 
-@pytest.mark.parametrize("name", LECTURES)
-def test_animations_show_a_picture_untrusted_and_play_on_one_click_after_run_all(
-    name: str, lab: Lab, page: Any, artifacts: Path
-) -> None:
+def test_animations_show_a_picture_untrusted(name: str, tab: Tab, artifacts: Path) -> None:
     stem = name.split("_")[0]
-    expected = _saved_animations(lab, name)
+    expected = _saved_animations(tab.lab, name)
     assert expected >= 1, f"{name}: no saved animation"
-    open_notebook(page, lab, name)
+    page = tab.opened()
 
     # 1. untrusted, as first opened: a picture with a text alternative, controls that say why they wait
     players = page.locator(PLAYERS)
@@ -95,8 +89,12 @@ def test_animations_show_a_picture_untrusted_and_play_on_one_click_after_run_all
         player.screenshot(path=str(artifacts / f"{stem}_untrusted_animation_{k}.png"))
     page.screenshot(path=str(artifacts / f"{stem}_untrusted.png"))
 
+
+def test_animations_play_on_one_click_after_run_all(name: str, tab: Tab, artifacts: Path) -> None:
+    stem = name.split("_")[0]
+    expected = _saved_animations(tab.lab, name)
     # 2. Run All, then from the top: wheel down to each animation, one click on Play changes the picture
-    run_all(page)
+    page = tab.executed()
     page.locator(".jp-Notebook .jp-Cell").first.click()
     page.keyboard.press("Escape")
     page.keyboard.press("Control+Home")  # command mode: the notebook's first cell, the view at the top
