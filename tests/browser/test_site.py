@@ -79,6 +79,9 @@ def _pages(site: Path) -> list[str]:
 
 def _offline_page(chromium: Any, external: list[str], errors: list[str]) -> Any:
     context = chromium.new_context(viewport={"width": 1300, "height": 900})
+    # a lecture page with its figures and MathJax can take over Playwright's default 30 s to load on a busy
+    # machine (seen at load 15); what is checked is what the page shows, not how fast it came
+    context.set_default_navigation_timeout(120_000)
 
     def route(r: Any) -> None:
         host = urlparse(r.request.url).hostname
