@@ -13,7 +13,10 @@ and ends the worker, with its whole process tree, once a limit is passed by more
   leaves the clock running; a call that never answers is charged until the grader ends it;
 * **the code cells** are held by the notebook's limit only (a cell's end is known from the worker's own
   report, which the notebook could write itself as often as it likes; a cell computes no answer);
-* **the notebook**: its CPU time since it started, and a wall-clock backstop for one that sleeps or waits.
+* **the notebook**: its CPU time since it started, and a wall-clock backstop for one that sleeps or waits;
+  and a cap on the wall clock, :data:`.limits.WALL_FACTOR` times its own-time limit, lengthened by the time it
+  waited for a CPU while the grader's calls ran (at most :data:`.limits.WAIT_CREDIT` times the CPU seconds they
+  used: :attr:`Watch.credit`), so that a busy machine cannot end an honest notebook on it either.
 
 Every clock counts the notebook's own CPU time, never the machine's, so an honest notebook beside a CPU-hungry
 classmate or on a busy server keeps its marks; a call that sleeps or waits is ended by the wall-clock backstop
@@ -238,7 +241,8 @@ class Waits:
 @dataclass
 class Stop:
     """Why the grader ended the worker: ``what`` ("call", "notebook") passed its limit on ``clock``
-    ("cpu", or "backstop": the wall clock of a limit timed on CPU time; "wall": no CPU time counter);
+    ("cpu", or "backstop": the wall clock of a limit timed on CPU time; "wall": no CPU time counter, or the
+    notebook's wall-clock cap);
     ``index``: the call's place in the plan."""
 
     what: str
@@ -261,6 +265,9 @@ class Watch:
         self.waits, self.section_waits = Waits(0), 0.0
         self.phase = "cells"
         self.section: tuple[str, int, float, float] | None = None  # (what, index, wall, cpu) of what runs now
+        #: the run delay and CPU seconds while the grader's calls ran (:attr:`credit`), and their last reading
+        self.call_waits = self.call_cpu = 0.0
+        self.mark = (0.0, 0.0)
 
     def _read(self) -> float | None:
         got = self.meter() if self.meter is not None else None
@@ -274,6 +281,7 @@ class Watch:
         self.waits = Waits(pid)
         self.wall0 = now
         self.cpu0 = self.cpu = self._read() or 0.0
+        self.mark = (self.waits(), self.cpu)
 
     @property
     def used(self) -> float:
@@ -289,10 +297,34 @@ class Watch:
         """The grader sent call ``index``: its clock starts."""
         self._read()
         self.section_waits = self.waits()
+        self._account()
         self.phase, self.section = "calls", ("call", index, now, self.cpu)
 
     def answered(self) -> None:
+        self._read()
+        self.waits()
+        self._account()
         self.section = None
+
+    def _account(self) -> None:
+        """Add the run delay and CPU time since the last reading to the calls' figures if a call ran meanwhile."""
+        waits, cpu = self.waits.last, self.cpu
+        if self.section is not None and self.section[0] == "call":
+            self.call_waits += max(0.0, waits - self.mark[0])
+            self.call_cpu += max(0.0, cpu - self.mark[1])
+        self.mark = (waits, cpu)
+
+    @property
+    def credit(self) -> float:
+        """What the notebook's wall-clock cap is lengthened by: its waits for a CPU others held while the grader's
+        calls ran, at most :data:`.limits.WAIT_CREDIT` times the CPU seconds they used (0.0 without a meter).
+
+        A notebook on a busy machine waits about as long per CPU second as the machine is loaded; one that lowers
+        its priority or yields the CPU in a loop waits far longer per CPU second it uses, and gains no more than
+        the machine's load would give it. Its own code cells (where a notebook may loop on anything) earn
+        nothing: the calls are the grader's requests, each held by its own limits, and their number is the plan's.
+        """
+        return min(self.call_waits, limits.WAIT_CREDIT * self.call_cpu)
 
     def close(self) -> None:
         if self.meter is not None:
@@ -309,10 +341,13 @@ class Watch:
         cpu = self._read()
         self.elapsed = now - self.wall0
         self.waits()
+        self._account()
         if cpu is not None and cpu - self.cpu0 > self.cpu_total:
             return Stop("notebook", "cpu")
         if self.own > self.wall_total:
             return Stop("notebook", "wall" if self.meter is None else "backstop")
+        if self.elapsed - self.credit > limits.WALL_FACTOR * self.wall_total + 1.0:
+            return Stop("notebook", "wall")  # the wall-clock cap: however the notebook's own clock was held back
         if self.section is None:
             return None
         what, index, wall0, cpu0 = self.section

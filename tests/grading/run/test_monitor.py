@@ -75,6 +75,49 @@ def test_waiting_for_a_cpu_others_hold_is_not_the_notebooks_time():
     assert w.check(118.5) == monitor.Stop("notebook", "backstop")  # 10.5 s of its own
 
 
+def _fixed_waits(w):
+    w.waits.pid, w.waits.last = -1, 0.0  # a worker found; its run delay set by hand
+    w.waits.__class__ = type("FixedWaits", (monitor.Waits,), {"__call__": lambda self: self.last})
+
+
+def test_the_wall_clock_cap_grows_by_the_waits_during_calls_only_and_at_most_so_much():
+    cap = limits.WALL_FACTOR * 10.0 + 1.0  # 31 s of wall clock for a notebook of 10 s
+    # in its own cells, waits earn nothing: 25 s of waiting and 6.5 s of its own end it on the wall clock
+    m = _Meter()
+    w = _watch(m, cell=10.0)
+    _fixed_waits(w)
+    w.waits.last, m.cpu = 25.0, 1.0
+    assert w.check(100.0 + cap - 0.01) is None
+    assert w.check(100.0 + cap + 0.01) == monitor.Stop("notebook", "wall")
+    assert w.credit == 0.0
+    # in the grader's calls, on a busy machine (a few seconds of waiting per CPU second): all of it counts, and
+    # only from the call's start (the 5 s it waited in its cells do not)
+    m = _Meter()
+    w = _watch(m, cell=10.0)
+    _fixed_waits(w)
+    w.waits.last, m.cpu = 5.0, 0.2
+    assert w.check(106.0) is None
+    w.event("cells", 106.0)
+    w.sent(0, 106.0)
+    w.waits.last, m.cpu = 40.0, 2.2  # 35 s of waiting in the call, 2 s of CPU: at most 20 x 2 s
+    assert w.check(146.0) is None and w.credit == pytest.approx(35.0)  # 46 s of wall clock, 6 s its own
+    w.answered()
+    w.waits.last, m.cpu = 58.0, 2.3  # between calls (18 s more waiting): nothing more
+    assert w.check(100.0 + cap + 35.0 - 0.01) is None and w.credit == pytest.approx(35.0)
+    assert w.check(100.0 + cap + 35.0 + 0.01) == monitor.Stop("notebook", "wall")
+    # a call that waits far longer per CPU second (a low priority, a loop yielding the CPU) gains at most
+    # WAIT_CREDIT times its CPU time
+    m = _Meter()
+    w = _watch(m, cell=10.0)
+    _fixed_waits(w)
+    w.event("cells", 100.0)
+    w.sent(0, 100.0)
+    w.waits.last, m.cpu = 40.0, 0.5
+    assert w.check(100.0 + cap + limits.WAIT_CREDIT * 0.5 - 0.01) is None
+    assert w.credit == pytest.approx(limits.WAIT_CREDIT * 0.5)
+    assert w.check(100.0 + cap + limits.WAIT_CREDIT * 0.5 + 0.01) == monitor.Stop("notebook", "wall")
+
+
 #: A fake worker: reads the job line, says ready and cells, then checks that each call comes alone.
 _WORKER = textwrap.dedent(
     """
