@@ -112,10 +112,11 @@ def test_the_wall_clock_cap_grows_by_the_waits_during_calls_only_and_at_most_so_
     _fixed_waits(w)
     w.event("cells", 100.0)
     w.sent(0, 100.0)
-    w.waits.last, m.cpu = 40.0, 0.5
-    assert w.check(100.0 + cap + limits.WAIT_CREDIT * 0.5 - 0.01) is None
-    assert w.credit == pytest.approx(limits.WAIT_CREDIT * 0.5)
-    assert w.check(100.0 + cap + limits.WAIT_CREDIT * 0.5 + 0.01) == monitor.Stop("notebook", "wall")
+    most = limits.WAIT_CREDIT * 0.1
+    w.waits.last, m.cpu = cap + most - 3.0, 0.1  # it waited all but 3 s, for 0.1 s of CPU
+    assert w.check(100.0 + cap + most - 0.01) is None
+    assert w.credit == pytest.approx(most)
+    assert w.check(100.0 + cap + most + 0.01) == monitor.Stop("notebook", "wall")
 
 
 #: A fake worker: reads the job line, says ready and cells, then checks that each call comes alone.
