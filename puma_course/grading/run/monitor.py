@@ -238,6 +238,28 @@ class Waits:
         return self.last
 
 
+class ThreadWaits:
+    """The calling thread's run delay (s), from ``/proc/thread-self/schedstat`` opened once (``ok``: it could be)."""
+
+    def __init__(self) -> None:
+        self.fd = -1
+        with contextlib.suppress(OSError):
+            self.fd = os.open("/proc/thread-self/schedstat", os.O_RDONLY | os.O_CLOEXEC)
+
+    @property
+    def ok(self) -> bool:
+        return self.fd >= 0
+
+    def __call__(self) -> float:
+        return int(os.pread(self.fd, 256, 0).split()[1]) / 1e9
+
+    def close(self) -> None:
+        if self.fd >= 0:
+            with contextlib.suppress(OSError):
+                os.close(self.fd)
+            self.fd = -1
+
+
 @dataclass
 class Stop:
     """Why the grader ended the worker: ``what`` ("call", "notebook") passed its limit on ``clock``
@@ -268,6 +290,8 @@ class Watch:
         #: the run delay and CPU seconds while the grader's calls ran (:attr:`credit`), and their last reading
         self.call_waits = self.call_cpu = 0.0
         self.mark = (0.0, 0.0)
+        #: the grader's own waits for a CPU before it read an answer (:meth:`answered`), and its counter
+        self.grader_waits, self.grader = 0.0, cast("ThreadWaits | None", None)
 
     def _read(self) -> float | None:
         got = self.meter() if self.meter is not None else None
@@ -278,6 +302,7 @@ class Watch:
     def begin(self, now: float, pid: int) -> None:
         """The worker ``pid`` started: its meter (``meters(pid)``), and every clock, start now."""
         self.meter = self.meters(pid)
+        self.grader = ThreadWaits()  # the thread that runs the grader's loop: this one
         self.waits = Waits(pid)
         self.wall0 = now
         self.cpu0 = self.cpu = self._read() or 0.0
@@ -300,7 +325,19 @@ class Watch:
         self._account()
         self.phase, self.section = "calls", ("call", index, now, self.cpu)
 
-    def answered(self) -> None:
+    def grader_delay(self) -> float:
+        """The seconds the grader's loop has waited for a CPU so far (0.0 where the kernel does not say)."""
+        if self.grader is not None and self.grader.ok:
+            try:
+                return self.grader()
+            except (OSError, ValueError, IndexError):
+                self.grader.close()
+        return 0.0
+
+    def answered(self, grader_wait: float = 0.0) -> None:
+        """The answer to the call sent last arrived; ``grader_wait``: how long the grader's loop, woken to read it,
+        waited for a CPU first (the notebook had answered and waited for the next call meanwhile)."""
+        self.grader_waits += max(0.0, grader_wait)
         self._read()
         self.waits()
         self._account()
@@ -330,11 +367,14 @@ class Watch:
         if self.meter is not None:
             self._read()  # the last figure (what the notebook used) stays in self.cpu
             self.meter.close()
+        if self.grader is not None:
+            self.grader.close()
 
     @property
     def own(self) -> float:
-        """The notebook's own wall-clock seconds so far: less the time it waited for a CPU others held."""
-        return self.elapsed - self.waits.last
+        """The notebook's own wall-clock seconds so far: less the time it waited for a CPU others held, and the
+        time its answers waited for the grader's loop to get a CPU (:meth:`answered`)."""
+        return self.elapsed - self.waits.last - self.grader_waits
 
     def check(self, now: float) -> Stop | None:
         """A limit passed (beyond its grace), or None."""
