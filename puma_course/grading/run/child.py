@@ -325,7 +325,7 @@ class _Feed:
             self._send_next()
         elif kind == "call" and self.waiting is not None and (event.get("qid"), event.get("case")) == self.waiting:
             if self.watch is not None:
-                self.watch.answered(self.woke)
+                self.watch.answered(self.woke, time.monotonic())
                 self.woke = 0.0  # once per wake: one answer only
             self._send_next()
 

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -211,6 +212,7 @@ class Waits:
 
     def __init__(self, root: int) -> None:
         self.root, self.pid, self.last = root, 0, 0.0
+        self.ran = 0.0  # the seconds it ran on a CPU (the same file's first figure)
 
     def _find(self) -> int:
         todo = [self.root]
@@ -232,7 +234,9 @@ class Waits:
         if self.pid:
             try:
                 with open(f"/proc/{self.pid}/schedstat", "rb") as fh:
-                    self.last = max(self.last, int(fh.read().split()[1]) / 1e9)
+                    fields = fh.read().split()
+                self.ran = max(self.ran, int(fields[0]) / 1e9)
+                self.last = max(self.last, int(fields[1]) / 1e9)
             except (OSError, ValueError, IndexError):
                 pass
         return self.last
@@ -292,6 +296,7 @@ class Watch:
         self.mark = (0.0, 0.0)
         #: the grader's own waits for a CPU before it read an answer (:meth:`answered`), and its counter
         self.grader_waits, self.grader = 0.0, cast("ThreadWaits | None", None)
+        self.seen: tuple[float, float, float] | None = None  # (time, worker's run, its run delay) at the last check
 
     def _read(self) -> float | None:
         got = self.meter() if self.meter is not None else None
@@ -334,12 +339,18 @@ class Watch:
                 self.grader.close()
         return 0.0
 
-    def answered(self, grader_wait: float = 0.0) -> None:
+    def answered(self, grader_wait: float = 0.0, now: float | None = None) -> None:
         """The answer to the call sent last arrived; ``grader_wait``: how long the grader's loop, woken to read it,
         waited for a CPU first (the notebook had answered and waited for the next call meanwhile)."""
-        self.grader_waits += max(0.0, grader_wait)
         self._read()
         self.waits()
+        if grader_wait > 0 and self.seen is not None:
+            # at most the time the worker's main thread slept since the last check (neither ran nor waited for a
+            # CPU): the loop may have been woken before the answer came, while the notebook still computed
+            then, ran, waited = self.seen
+            now = time.monotonic() if now is None else now
+            slept = (now - then) - (self.waits.ran - ran) - (self.waits.last - waited)
+            self.grader_waits += max(0.0, min(grader_wait, slept))
         self._account()
         self.section = None
 
@@ -382,6 +393,7 @@ class Watch:
         self.elapsed = now - self.wall0
         self.waits()
         self._account()
+        self.seen = (now, self.waits.ran, self.waits.last)
         if cpu is not None and cpu - self.cpu0 > self.cpu_total:
             return Stop("notebook", "cpu")
         if self.own > self.wall_total:

@@ -128,10 +128,16 @@ def test_an_answer_that_waited_for_the_graders_loop_is_not_the_notebooks_time():
     w.event("cells", 100.0)
     w.sent(0, 100.0)
     assert w.check(103.0) is None and w.own == pytest.approx(3.0)
-    w.answered(0.8)  # the loop waited 0.8 s for a CPU before it read the answer
-    assert w.check(103.0) is None and w.own == pytest.approx(2.2)
-    w.sent(1, 103.0)
-    w.answered(-1.0)  # a counter read wrong: nothing
+    # the loop waited 0.8 s for a CPU before it read the answer, but the worker slept only 0.5 s of it (it was
+    # still computing when the loop woke): 0.5 s
+    w.answered(0.8, 103.5)
+    assert w.check(103.5) is None and w.own == pytest.approx(3.0)
+    w.sent(1, 103.5)
+    assert w.check(104.0) is None
+    w.answered(0.3, 104.6)  # slept 0.6 s, of which the loop's 0.3 s
+    assert w.check(104.6) is None and w.own == pytest.approx(3.8)
+    w.sent(2, 104.6)
+    w.answered(-1.0, 105.0)  # a counter read wrong: nothing
     assert w.check(110.79) is None
     assert w.check(110.81) == monitor.Stop("notebook", "backstop")  # 10.01 s of its own
     g = monitor.ThreadWaits()
