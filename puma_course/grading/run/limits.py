@@ -56,10 +56,31 @@ __all__ = [
     "describe",
     "call_limit",
     "WALL_FACTOR",
+    "WAIT_CREDIT",
+    "hard_deadline",
 ]
 
 #: The wall-clock backstop of a call timed on its CPU time: this many times the per-call limit.
 WALL_FACTOR = 3.0
+
+#: The notebook's wall-clock cap (:data:`WALL_FACTOR` times its own-time limit) is lengthened by the time its
+#: process waited for a CPU others held while the grader's calls ran, up to this many times the CPU seconds those
+#: calls used (:class:`.monitor.Watch`): a busy machine stretches an honest notebook's wall clock by about its load
+#: (measured: 4-6 s of waiting per CPU second at a load of 16 on 2 cores; 29 beside a fork storm), while a notebook
+#: that waits on purpose (a low priority, a loop yielding the CPU) waits far more per CPU second it uses and gains
+#: no more than this: the cap never passes :func:`hard_deadline`.
+WAIT_CREDIT = 50.0
+
+
+def hard_deadline(wall: float, cpu: float) -> float:
+    """The wall-clock seconds after which the grader ends a worker whatever its clocks say: its cap (``wall`` s
+    of its own time, :data:`WALL_FACTOR` times over) plus the most the waits for a CPU during calls can add
+    (:data:`WAIT_CREDIT` times ``cpu``, its CPU time limit), plus 1 s.
+
+    >>> hard_deadline(6.0, 6.0)
+    319.0
+    """
+    return WALL_FACTOR * wall + WAIT_CREDIT * cpu + 1.0
 
 
 def call_limit(run: Run, seconds: float, proc: bool | None = None) -> str:

@@ -13,7 +13,10 @@ and ends the worker, with its whole process tree, once a limit is passed by more
   leaves the clock running; a call that never answers is charged until the grader ends it;
 * **the code cells** are held by the notebook's limit only (a cell's end is known from the worker's own
   report, which the notebook could write itself as often as it likes; a cell computes no answer);
-* **the notebook**: its CPU time since it started, and a wall-clock backstop for one that sleeps or waits.
+* **the notebook**: its CPU time since it started, and a wall-clock backstop for one that sleeps or waits;
+  and a cap on the wall clock, :data:`.limits.WALL_FACTOR` times its own-time limit, lengthened by the time it
+  waited for a CPU while the grader's calls ran (at most :data:`.limits.WAIT_CREDIT` times the CPU seconds they
+  used: :attr:`Watch.credit`), so that a busy machine cannot end an honest notebook on it either.
 
 Every clock counts the notebook's own CPU time, never the machine's, so an honest notebook beside a CPU-hungry
 classmate or on a busy server keeps its marks; a call that sleeps or waits is ended by the wall-clock backstop
@@ -34,6 +37,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -208,6 +212,7 @@ class Waits:
 
     def __init__(self, root: int) -> None:
         self.root, self.pid, self.last = root, 0, 0.0
+        self.ran = 0.0  # the seconds it ran on a CPU (the same file's first figure)
 
     def _find(self) -> int:
         todo = [self.root]
@@ -229,16 +234,41 @@ class Waits:
         if self.pid:
             try:
                 with open(f"/proc/{self.pid}/schedstat", "rb") as fh:
-                    self.last = max(self.last, int(fh.read().split()[1]) / 1e9)
+                    fields = fh.read().split()
+                self.ran = max(self.ran, int(fields[0]) / 1e9)
+                self.last = max(self.last, int(fields[1]) / 1e9)
             except (OSError, ValueError, IndexError):
                 pass
         return self.last
 
 
+class ThreadWaits:
+    """The calling thread's run delay (s), from ``/proc/thread-self/schedstat`` opened once (``ok``: it could be)."""
+
+    def __init__(self) -> None:
+        self.fd = -1
+        with contextlib.suppress(OSError):
+            self.fd = os.open("/proc/thread-self/schedstat", os.O_RDONLY | os.O_CLOEXEC)
+
+    @property
+    def ok(self) -> bool:
+        return self.fd >= 0
+
+    def __call__(self) -> float:
+        return int(os.pread(self.fd, 256, 0).split()[1]) / 1e9
+
+    def close(self) -> None:
+        if self.fd >= 0:
+            with contextlib.suppress(OSError):
+                os.close(self.fd)
+            self.fd = -1
+
+
 @dataclass
 class Stop:
     """Why the grader ended the worker: ``what`` ("call", "notebook") passed its limit on ``clock``
-    ("cpu", or "backstop": the wall clock of a limit timed on CPU time; "wall": no CPU time counter);
+    ("cpu", or "backstop": the wall clock of a limit timed on CPU time; "wall": no CPU time counter, or the
+    notebook's wall-clock cap);
     ``index``: the call's place in the plan."""
 
     what: str
@@ -261,6 +291,12 @@ class Watch:
         self.waits, self.section_waits = Waits(0), 0.0
         self.phase = "cells"
         self.section: tuple[str, int, float, float] | None = None  # (what, index, wall, cpu) of what runs now
+        #: the run delay and CPU seconds while the grader's calls ran (:attr:`credit`), and their last reading
+        self.call_waits = self.call_cpu = 0.0
+        self.mark = (0.0, 0.0)
+        #: the grader's own waits for a CPU before it read an answer (:meth:`answered`), and its counter
+        self.grader_waits, self.grader = 0.0, cast("ThreadWaits | None", None)
+        self.seen: tuple[float, float, float] | None = None  # (time, worker's run, its run delay) at the last check
 
     def _read(self) -> float | None:
         got = self.meter() if self.meter is not None else None
@@ -271,9 +307,11 @@ class Watch:
     def begin(self, now: float, pid: int) -> None:
         """The worker ``pid`` started: its meter (``meters(pid)``), and every clock, start now."""
         self.meter = self.meters(pid)
+        self.grader = ThreadWaits()  # the thread that runs the grader's loop: this one
         self.waits = Waits(pid)
         self.wall0 = now
         self.cpu0 = self.cpu = self._read() or 0.0
+        self.mark = (self.waits(), self.cpu)
 
     @property
     def used(self) -> float:
@@ -289,30 +327,79 @@ class Watch:
         """The grader sent call ``index``: its clock starts."""
         self._read()
         self.section_waits = self.waits()
+        self._account()
         self.phase, self.section = "calls", ("call", index, now, self.cpu)
 
-    def answered(self) -> None:
+    def grader_delay(self) -> float:
+        """The seconds the grader's loop has waited for a CPU so far (0.0 where the kernel does not say)."""
+        if self.grader is not None and self.grader.ok:
+            try:
+                return self.grader()
+            except (OSError, ValueError, IndexError):
+                self.grader.close()
+        return 0.0
+
+    def answered(self, grader_wait: float = 0.0, now: float | None = None) -> None:
+        """The answer to the call sent last arrived; ``grader_wait``: how long the grader's loop, woken to read it,
+        waited for a CPU first (the notebook had answered and waited for the next call meanwhile)."""
+        self._read()
+        self.waits()
+        if grader_wait > 0 and self.seen is not None:
+            # at most the time the worker's main thread slept since the last check (neither ran nor waited for a
+            # CPU): the loop may have been woken before the answer came, while the notebook still computed
+            then, ran, waited = self.seen
+            now = time.monotonic() if now is None else now
+            slept = (now - then) - (self.waits.ran - ran) - (self.waits.last - waited)
+            self.grader_waits += max(0.0, min(grader_wait, slept))
+        self._account()
         self.section = None
+
+    def _account(self) -> None:
+        """Add the run delay and CPU time since the last reading to the calls' figures if a call ran meanwhile."""
+        waits, cpu = self.waits.last, self.cpu
+        if self.section is not None and self.section[0] == "call":
+            self.call_waits += max(0.0, waits - self.mark[0])
+            self.call_cpu += max(0.0, cpu - self.mark[1])
+        self.mark = (waits, cpu)
+
+    @property
+    def credit(self) -> float:
+        """What the notebook's wall-clock cap is lengthened by: its waits for a CPU others held while the grader's
+        calls ran, at most :data:`.limits.WAIT_CREDIT` times the CPU seconds they used (0.0 without a meter).
+
+        A notebook on a busy machine waits about as long per CPU second as the machine is loaded; one that lowers
+        its priority or yields the CPU in a loop waits far longer per CPU second it uses, and gains no more than
+        the machine's load would give it. Its own code cells (where a notebook may loop on anything) earn
+        nothing: the calls are the grader's requests, each held by its own limits, and their number is the plan's.
+        """
+        return min(self.call_waits, limits.WAIT_CREDIT * self.call_cpu)
 
     def close(self) -> None:
         if self.meter is not None:
             self._read()  # the last figure (what the notebook used) stays in self.cpu
             self.meter.close()
+        if self.grader is not None:
+            self.grader.close()
 
     @property
     def own(self) -> float:
-        """The notebook's own wall-clock seconds so far: less the time it waited for a CPU others held."""
-        return self.elapsed - self.waits.last
+        """The notebook's own wall-clock seconds so far: less the time it waited for a CPU others held, and the
+        time its answers waited for the grader's loop to get a CPU (:meth:`answered`)."""
+        return self.elapsed - self.waits.last - self.grader_waits
 
     def check(self, now: float) -> Stop | None:
         """A limit passed (beyond its grace), or None."""
         cpu = self._read()
         self.elapsed = now - self.wall0
         self.waits()
+        self._account()
+        self.seen = (now, self.waits.ran, self.waits.last)
         if cpu is not None and cpu - self.cpu0 > self.cpu_total:
             return Stop("notebook", "cpu")
         if self.own > self.wall_total:
             return Stop("notebook", "wall" if self.meter is None else "backstop")
+        if self.elapsed - self.credit > limits.WALL_FACTOR * self.wall_total + 1.0:
+            return Stop("notebook", "wall")  # the wall-clock cap: however the notebook's own clock was held back
         if self.section is None:
             return None
         what, index, wall0, cpu0 = self.section

@@ -92,7 +92,8 @@ def run_worker(
     own, and whatever of its process tree is left when it ends is killed with the group. The grader keeps the
     limits (:mod:`.monitor`): ``timeout_cell`` s of CPU time per cell and call, ``timeout`` s per notebook, and
     ``wall`` s of its own wall-clock time (default ``timeout``; the time it waited for a CPU others held does
-    not count), and :data:`.limits.WALL_FACTOR` times that on the wall clock, whatever the machine does.
+    not count), and :data:`.limits.WALL_FACTOR` times that on the wall clock, lengthened by its waits for a CPU
+    during the grader's calls (:attr:`.monitor.Watch.credit`; at most :func:`.limits.hard_deadline` in all).
     """
     wall_total = timeout if wall is None else wall
 
@@ -113,7 +114,7 @@ def run_worker(
                 watch = monitor.Watch(lambda pid: monitor.meter_for(group, pid), timeout_cell, timeout, wall_total)
                 return child.run(
                     cmd, job + data, cwd=work or "/", env=child_env(seen_work),
-                    timeout=limits_mod.WALL_FACTOR * wall_total + 1.0,
+                    timeout=limits_mod.hard_deadline(wall_total, timeout),
                     calls=calls(plan), watch=watch, **fds,
                 )  # fmt: skip
         finally:

@@ -75,6 +75,78 @@ def test_waiting_for_a_cpu_others_hold_is_not_the_notebooks_time():
     assert w.check(118.5) == monitor.Stop("notebook", "backstop")  # 10.5 s of its own
 
 
+def _fixed_waits(w):
+    w.waits.pid, w.waits.last = -1, 0.0  # a worker found; its run delay set by hand
+    w.waits.__class__ = type("FixedWaits", (monitor.Waits,), {"__call__": lambda self: self.last})
+
+
+def test_the_wall_clock_cap_grows_by_the_waits_during_calls_only_and_at_most_so_much():
+    cap = limits.WALL_FACTOR * 10.0 + 1.0  # 31 s of wall clock for a notebook of 10 s
+    # in its own cells, waits earn nothing: 25 s of waiting and 6.5 s of its own end it on the wall clock
+    m = _Meter()
+    w = _watch(m, cell=10.0)
+    _fixed_waits(w)
+    w.waits.last, m.cpu = 25.0, 1.0
+    assert w.check(100.0 + cap - 0.01) is None
+    assert w.check(100.0 + cap + 0.01) == monitor.Stop("notebook", "wall")
+    assert w.credit == 0.0
+    # in the grader's calls, on a busy machine (a few seconds of waiting per CPU second): all of it counts, and
+    # only from the call's start (the 5 s it waited in its cells do not)
+    m = _Meter()
+    w = _watch(m, cell=10.0)
+    _fixed_waits(w)
+    w.waits.last, m.cpu = 5.0, 0.2
+    assert w.check(106.0) is None
+    w.event("cells", 106.0)
+    w.sent(0, 106.0)
+    w.waits.last, m.cpu = 40.0, 2.2  # 35 s of waiting in the call, 2 s of CPU: at most 20 x 2 s
+    assert w.check(146.0) is None and w.credit == pytest.approx(35.0)  # 46 s of wall clock, 6 s its own
+    w.answered()
+    w.waits.last, m.cpu = 58.0, 2.3  # between calls (18 s more waiting): nothing more
+    assert w.check(100.0 + cap + 35.0 - 0.01) is None and w.credit == pytest.approx(35.0)
+    assert w.check(100.0 + cap + 35.0 + 0.01) == monitor.Stop("notebook", "wall")
+    # a call that waits far longer per CPU second (a low priority, a loop yielding the CPU) gains at most
+    # WAIT_CREDIT times its CPU time
+    m = _Meter()
+    w = _watch(m, cell=10.0)
+    _fixed_waits(w)
+    w.event("cells", 100.0)
+    w.sent(0, 100.0)
+    most = limits.WAIT_CREDIT * 0.1
+    w.waits.last, m.cpu = cap + most - 3.0, 0.1  # it waited all but 3 s, for 0.1 s of CPU
+    assert w.check(100.0 + cap + most - 0.01) is None
+    assert w.credit == pytest.approx(most)
+    assert w.check(100.0 + cap + most + 0.01) == monitor.Stop("notebook", "wall")
+
+
+def test_an_answer_that_waited_for_the_graders_loop_is_not_the_notebooks_time():
+    """The worker answers, then waits for the next call; on a busy machine the grader's loop, woken by the answer,
+    first waits for a CPU (at a load of 16 on 2 cores: 9 s over 51 calls, 1.5 s of the notebook's 5 s own time)."""
+    m = _Meter()
+    w = _watch(m)
+    _fixed_waits(w)
+    w.event("cells", 100.0)
+    w.sent(0, 100.0)
+    assert w.check(103.0) is None and w.own == pytest.approx(3.0)
+    # the loop waited 0.8 s for a CPU before it read the answer, but the worker slept only 0.5 s of it (it was
+    # still computing when the loop woke): 0.5 s
+    w.answered(0.8, 103.5)
+    assert w.check(103.5) is None and w.own == pytest.approx(3.0)
+    w.sent(1, 103.5)
+    assert w.check(104.0) is None
+    w.answered(0.3, 104.6)  # slept 0.6 s, of which the loop's 0.3 s
+    assert w.check(104.6) is None and w.own == pytest.approx(3.8)
+    w.sent(2, 104.6)
+    w.answered(-1.0, 105.0)  # a counter read wrong: nothing
+    assert w.check(110.79) is None
+    assert w.check(110.81) == monitor.Stop("notebook", "backstop")  # 10.01 s of its own
+    g = monitor.ThreadWaits()
+    try:
+        assert not g.ok or g() >= 0.0
+    finally:
+        g.close()
+
+
 #: A fake worker: reads the job line, says ready and cells, then checks that each call comes alone.
 _WORKER = textwrap.dedent(
     """

@@ -21,6 +21,7 @@ import os
 import subprocess
 import sys
 import textwrap
+import time
 from pathlib import Path
 
 import pytest
@@ -130,6 +131,49 @@ def test_a_tick_decides_on_the_cpu_time_then_on_the_backstop():
     with pytest.raises(CellTimeout) as backstop:
         tick(14, None)
     assert backstop.value.args == ("backstop",)
+
+
+def test_the_backstop_is_the_calls_own_wall_clock_less_its_waits_for_a_cpu():
+    """On a busy machine (fork storms beside the grader, load ~19 on 2 cores) an honest call of 0.2 s of CPU
+    took over 3 s of wall clock and the worker's own backstop failed it ("ran longer than 3 s on the wall
+    clock"): the time the call waited for a CPU others held does not count, as in the grader's monitor."""
+    clock = _Clock()
+    waited = [0.5]  # before the call: not the call's
+    tick = worker._ticker(clock.cpu_now, 0.0, 1.0, 3.0, 0.0, clock.monotonic, lambda: waited[0])
+    clock.cpu, clock.wall, waited[0] = 0.2, 3.5, 2.0  # 1.5 s of the 3.5 s waiting for a CPU: 2 s its own
+    assert tick(14, None) is None
+    clock.wall = 5.01  # 3.01 s its own
+    with pytest.raises(CellTimeout) as backstop:
+        tick(14, None)
+    assert backstop.value.args == ("backstop",)
+    clock = _Clock()  # a counter that cannot be read: the wall clock as it is
+    tick = worker._ticker(clock.cpu_now, 0.0, 1.0, 3.0, 0.0, clock.monotonic, lambda: int("x"))
+    clock.wall = 3.01
+    with pytest.raises(CellTimeout):
+        tick(14, None)
+
+
+@pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="no CPU affinity here")
+def test_the_run_delay_counter_grows_while_another_process_holds_the_cpu():
+    waits = worker._run_delay()
+    if waits is None:
+        pytest.skip("no /proc/thread-self/schedstat here")
+    core = min(os.sched_getaffinity(0))
+    before = os.sched_getaffinity(0)
+    code = f"import os\nos.sched_setaffinity(0, {{{core}}})\nwhile True: pass"
+    busy = subprocess.Popen([sys.executable, "-c", code], start_new_session=True)
+    try:
+        time.sleep(0.2)
+        os.sched_setaffinity(0, {core})
+        w0, t0 = waits(), time.process_time()
+        while time.process_time() < t0 + 0.3:  # 0.3 s of CPU on a core shared with a busy process
+            pass
+        waited = waits() - w0
+    finally:
+        os.sched_setaffinity(0, before)
+        busy.kill()
+        busy.wait()
+    assert waited > 0.1, waited  # about as long as it ran (a fair share of the core): at least a third of it
 
 
 def test_a_tick_raises_once_and_never_again_in_that_call():

@@ -14,7 +14,8 @@ followed by the submitted notebook's ``notebook_bytes`` bytes, which it parses h
 process): its code cells, with hidden-test blocks removed as the release removes them (they check a
 solution against the package, which the student side does not have). It executes the cells in
 order in one namespace (a cell that raises or runs past ``timeout_cell`` is recorded and the next
-cell still runs; the limit is CPU time, with a wall-clock backstop of ``wall`` s: with ``cpu_clock``,
+cell still runs; the limit is CPU time, with a backstop of ``wall`` s of its own wall-clock time (less its
+waits for a CPU others held): with ``cpu_clock``,
 the descriptor of the notebook's control-group counter, the whole notebook's, else this process's and its
 waited-for children's), then reads the calls from its stdin, one JSON line ``{"qid", "case", "function",
 "args"}`` at a time (the grader sends the next once this one is answered, and ends its stdin after the last;
@@ -130,17 +131,45 @@ def _cpu_clock(spec: Any) -> Any:
     return now
 
 
-def _ticker(cpu_now: Any, cpu0: float, limit: float, wall: float, wall0: float, monotonic: Any) -> Any:
+def _run_delay() -> Any:
+    """A function giving the seconds this thread (the main one, which runs the alarm's handler) has waited for a
+    CPU others held, from ``/proc/thread-self/schedstat`` opened now (None where the kernel does not say)."""
+    try:
+        fd = os.open("/proc/thread-self/schedstat", os.O_RDONLY | os.O_CLOEXEC)
+    except OSError:
+        return None
+    pread = os.pread
+
+    def now() -> float:
+        return int(pread(fd, 256, 0).split()[1]) / 1e9
+
+    try:
+        now()
+    except (OSError, ValueError, IndexError):
+        os.close(fd)
+        return None
+    return now
+
+
+def _ticker(
+    cpu_now: Any, cpu0: float, limit: float, wall: float, wall0: float, monotonic: Any, waits: Any = None
+) -> Any:
     """The SIGALRM handler of a call timed on CPU time: every :data:`TICK` s, is the call past its limit?
 
     It raises :class:`CellTimeout` ("cpu") once the group has used more than ``limit`` CPU seconds since
-    ``cpu0``, or ("backstop") once more than ``wall`` seconds have passed since ``wall0``. A tick that comes
+    ``cpu0``, or ("backstop") once more than ``wall`` seconds of its own have passed since ``wall0``: the wall
+    clock less what ``waits()`` (:func:`_run_delay`) grew by meanwhile, the time this process waited for a CPU
+    others held, as the grader's monitor counts it (a busy machine must not end an honest call). A tick that comes
     while another is still running returns at once (the running one decides), and a tick that cannot read
     the counter decides nothing about CPU time (the next tick reads again; the backstop still holds): a late
     tick must never surface as an error inside the student's function. It raises once: code that catches it runs
     on until the grader's limits end it, never out by a later tick that lands outside its ``try`` (luck, not work).
     """
     busy = [False]
+    try:
+        waits0 = waits() if waits is not None else 0.0
+    except (OSError, ValueError, IndexError):
+        waits = None
 
     def on_tick(signum: int, frame: Any) -> None:
         if busy[0]:
@@ -152,6 +181,11 @@ def _ticker(cpu_now: Any, cpu0: float, limit: float, wall: float, wall0: float, 
             except (OSError, ValueError, IndexError):
                 used = None
             elapsed = monotonic() - wall0
+            if waits is not None:
+                try:
+                    elapsed -= max(0.0, waits() - waits0)
+                except (OSError, ValueError, IndexError):
+                    pass  # the wall clock as it is
         finally:
             busy[0] = False
         if (used is not None and used > limit) or elapsed > wall:
@@ -323,13 +357,14 @@ def _run(job: dict[str, Any], sources: list[str], emit: Any, next_call: Any, ask
     cpu_now = _cpu_clock(job.get("cpu_clock")) or _own_clock(job.get("wall"))
     wall = float(job.get("wall") or (job.get("cpu_clock") or {}).get("wall", timeout))
     monotonic = time.monotonic
+    waits = _run_delay() if cpu_now is not None else None  # opened before any student code runs
 
     def run_timed(fn: Any, *args: Any) -> Any:
         if cpu_now is None:  # no CPU time counter: the wall clock
             signal.signal(signal.SIGALRM, on_alarm)
             setitimer(ITIMER_REAL, timeout)
         else:  # the notebook's (or this process's) CPU time, checked every TICK s, and the wall-clock backstop
-            signal.signal(signal.SIGALRM, _ticker(cpu_now, cpu_now(), timeout, wall, monotonic(), monotonic))
+            signal.signal(signal.SIGALRM, _ticker(cpu_now, cpu_now(), timeout, wall, monotonic(), monotonic, waits))
             setitimer(ITIMER_REAL, TICK, TICK)
         try:
             return fn(*args)
