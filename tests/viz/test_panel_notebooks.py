@@ -87,3 +87,25 @@ def test_no_test_machinery_and_stored_as_jupyterlab_4_writes_it(path):
     assert not [c.id for c in nb.cells if "NBVAL" in c.source], "an nbval pragma in a cell: use the cell tag"
     assert (nb.nbformat, nb.nbformat_minor) == (4, 5) and all("id" in c for c in nb.cells)
     assert nb.metadata.kernelspec == {"display_name": "Python 3 (ipykernel)", "language": "python", "name": "python3"}
+
+
+WITH_WIDGETS = [p for p in ALL if "application/vnd.jupyter.widget-view+json" in p.read_text(encoding="utf-8")]
+
+
+@pytest.mark.parametrize("path", WITH_WIDGETS, ids=lambda p: p.stem[:2])
+def test_every_saved_still_is_an_img_with_its_cells_alt(path):
+    """Issue 34: a panel's or viewer's saved picture reaches JupyterLab with alt text (no bare image/png beside it)."""
+    nb = nbformat.read(path, as_version=4)
+    stills = 0
+    for k, cell in enumerate(nb.cells):
+        for out in cell.get("outputs", []):
+            data = out.get("data", {})
+            if WIDGET not in data:
+                continue
+            stills += 1
+            assert "image/png" not in data, f"{path.name} cell {k}: a bare PNG beside the widget"
+            png, alt = _picture(data)
+            assert base64.b64decode(png)[:8] == b"\x89PNG\r\n\x1a\n"
+            assert alt == cell.metadata["mystnb"]["image"]["alt"], f"{path.name} cell {k}: not the site's alt"
+            assert not cell.metadata["mystnb"]["image"].get("alt_auto"), f"{path.name} cell {k}: a generated alt"
+    assert stills > 0
