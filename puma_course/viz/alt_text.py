@@ -8,6 +8,8 @@ is shown through that (HTML ranks before PNG, and an untrusted notebook keeps an
 figure the cell then shows is the inline backend's PNG as ``<img src="data:image/png;base64,..." alt="...">``
 in a ``text/html`` output, instead of a bare ``image/png`` (one copy of the picture: a notebook keeps its size).
 The alt is forgotten when the cell ends. Outside IPython (a script, a doctest) it does nothing.
+A joint panel or viewer shown by the cell uses the same alt for its still picture (:func:`current_alt`,
+``viz.viewer.with_picture``), which is also an ``<img alt>`` in ``text/html``.
 
 The text is the one the cell's ``metadata.mystnb.image.alt`` gives the site (``site/alt_text.py``);
 ``tests/viz/test_alt_text.py`` checks that both say the same.
@@ -21,7 +23,7 @@ from typing import Any
 
 from matplotlib.figure import Figure
 
-__all__ = ["figure_alt", "img_html"]
+__all__ = ["current_alt", "figure_alt", "img_html"]
 
 _STATE: dict[str, Any] = {"alt": None, "shell": None, "png": None, "wrapper": None}
 
@@ -60,6 +62,16 @@ def _png_unless_alt(fig: Figure) -> Any:
     return None if _STATE["alt"] is not None else _STATE["png"](fig)
 
 
+def current_alt() -> str | None:
+    """The text alternative :func:`figure_alt` gave the running cell, or None (a joint panel's still picture uses it).
+
+    >>> current_alt() is None  # no IPython cell running here
+    True
+    """
+    alt: str | None = _STATE["alt"]
+    return alt
+
+
 def _forget(*_: Any) -> None:
     _STATE["alt"] = None
 
@@ -87,11 +99,11 @@ def figure_alt(alt: str) -> None:
         shell.display_formatter.formatters["text/html"].for_type(Figure, _figure_html)
         shell.events.register("post_run_cell", _forget)  # after post_execute, where the inline backend shows
         _STATE["shell"] = shell
+    _STATE["alt"] = alt  # a joint panel's still picture takes it too (current_alt), with or without matplotlib's
     png = shell.display_formatter.formatters["image/png"]
     current = png.lookup_by_type(Figure) if Figure in png.type_printers else None
     if current is None:
-        return  # no inline backend (no PNG of figures): nothing to give an alt to
+        return  # no inline backend (no PNG of figures): no figure to give the alt to
     if current is not _png_unless_alt:  # the inline backend's printer, (re)registered by %matplotlib inline
         _STATE["png"] = current
         png.for_type(Figure, _png_unless_alt)
-    _STATE["alt"] = alt

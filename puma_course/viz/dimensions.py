@@ -13,7 +13,7 @@ import numpy as np
 
 from ..kinematics.frame_assignment import FrameWalk
 from .frames import AXIS_COLORS
-from .style import AXIS_LINE, JOINT_COLOR, NORMAL_COLOR
+from .style import AXIS_LINE, JOINT_COLOR, NORMAL_COLOR, text_color
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -46,13 +46,14 @@ def _dimension(ax: Any, a: np.ndarray, b: np.ndarray, side: np.ndarray, gap: flo
     if outside:  # the text after the outer arrow of b, clear of the extension lines
         u = (b2 - a2) / np.linalg.norm(b2 - a2)
         at = b2 + 0.95 * abs(gap) * u
-        return ax.text(*at, text, color=color, ha="left" if u[0] >= 0 else "right", va="center", fontsize=12, bbox=box)
+        return ax.text(*at, text, color=text_color(color), ha="left" if u[0] >= 0 else "right", va="center",
+                       fontsize=12, bbox=box)  # fmt: skip
     mid = (a2 + b2) / 2
     horizontal = abs(float((b2 - a2)[0])) >= abs(float((b2 - a2)[1]))
     ha = "center" if horizontal else ("right" if side[0] < 0 else "left")
     va = ("bottom" if side[1] > 0 else "top") if horizontal else "center"
     pad = 0.35 * abs(gap) * side
-    return ax.text(*(mid + pad), text, color=color, ha=ha, va=va, fontsize=12, bbox=box)
+    return ax.text(*(mid + pad), text, color=text_color(color), ha=ha, va=va, fontsize=12, bbox=box)
 
 
 def _symbol(ax: Any, p: np.ndarray, into: bool, r: float, color: str) -> None:
@@ -106,11 +107,11 @@ def step_dimensions_figure(walk: FrameWalk, k: int, *, units: str = "m", digits:
                                                                                 AXIS_COLORS[2])):  # fmt: skip
         left.annotate("", tuple(L * d), (0, 0), arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.8,
                                                             "shrinkA": 0, "shrinkB": 0}, zorder=5)  # fmt: skip
-        left.text(*(L * d + 0.12 * m * d), name, color=col, ha="left" if d[0] else "center",
+        left.text(*(L * d + 0.12 * m * d), name, color=text_color(col), ha="left" if d[0] else "center",
                   va="center" if d[0] else "bottom", fontsize=12)  # fmt: skip
     r = 0.09 * m
     _symbol(left, np.zeros(2), True, r, AXIS_COLORS[1])  # Y_k = Z_k x X_k points away from the reader
-    left.text(-1.3 * r, -1.3 * r, f"Y{sub}", color=AXIS_COLORS[1], ha="right", va="top", fontsize=12)
+    left.text(-1.3 * r, -1.3 * r, f"Y{sub}", color=text_color(AXIS_COLORS[1]), ha="right", va="top", fontsize=12)
     left.text(-1.3 * r, 1.3 * r, f"{{{sub}}}", color="k", ha="right", va="bottom", fontsize=13, weight="bold")
     # axis k+1 through the end of the normal: a line in the page, or a circle where it stands normal to it
     zn = plan(O + nxt.z) - plan(O)
@@ -146,7 +147,7 @@ def step_dimensions_figure(walk: FrameWalk, k: int, *, units: str = "m", digits:
         right.annotate("", tuple(d), (0, 0), arrowprops={"arrowstyle": "-|>", "color": col, "lw": 2.2,
                                                          "shrinkA": 0, "shrinkB": 0})  # fmt: skip
         off = np.array([-d[1], d[0]]) * (1.0 if d[0] < -0.3 or d[1] < -0.3 else -1.0)  # beside the tip, off the line
-        right.text(*(0.92 * d + 0.14 * off), name, color=col, ha="left" if off[0] > 0.3 else "center",
+        right.text(*(0.92 * d + 0.14 * off), name, color=text_color(col), ha="left" if off[0] > 0.3 else "center",
                    va="top" if off[1] < -0.3 else ("bottom" if off[1] > 0.3 else "center"), fontsize=12)  # fmt: skip
     right.text(-1.2, 0.06, f"axis {sub}", color="0.3", ha="left", va="bottom", fontsize=11)
     right.text(*(-1.2 * zk1 + np.array([0.06, 0.0])), f"axis {nk}", color="0.3", ha="left",
@@ -157,10 +158,10 @@ def step_dimensions_figure(walk: FrameWalk, k: int, *, units: str = "m", digits:
     right.annotate("", tuple(arc[-1]), tuple(arc[-6]), arrowprops={"arrowstyle": "-|>", "color": NORMAL_COLOR,
                                                                     "lw": 2.2, "shrinkA": 0, "shrinkB": 0})  # fmt: skip
     mid = 0.72 * np.array([np.cos(st.alpha / 2), np.sin(st.alpha / 2)])
-    right.text(*mid, f"α{sub} = {np.degrees(st.alpha):+.0f}°", color=NORMAL_COLOR, ha="left", va="center",
+    right.text(*mid, f"α{sub} = {np.degrees(st.alpha):+.0f}°", color=text_color(NORMAL_COLOR), ha="left", va="center",
                fontsize=13, bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.9})  # fmt: skip
     _symbol(right, np.zeros(2), False, 0.08, AXIS_COLORS[0])
-    right.text(-0.12, 0.12, f"X{sub}", color=AXIS_COLORS[0], ha="right", va="bottom", fontsize=12)
+    right.text(-0.12, 0.12, f"X{sub}", color=text_color(AXIS_COLORS[0]), ha="right", va="bottom", fontsize=12)
     right.set(xlim=(-1.35, 1.6), ylim=(-1.4, 1.4), aspect="equal")
     right.set_axis_off()
     right.set_title(f"seen along X{sub} (towards you): the twist α{sub}\nfrom Z{sub} to Z{nk}, about X{sub}",

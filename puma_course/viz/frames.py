@@ -15,6 +15,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .._validate import as_array
+from .style import text_color
 
 __all__ = [
     "AXIS_COLORS",
@@ -145,13 +146,15 @@ def draw_frame(
     artists: list[Any] = []
     for k in range(3):
         e = o + length * T[:3, k]
-        artists += ax.plot([o[0], e[0]], [o[1], e[1]], [o[2], e[2]], color=AXIS_COLORS[k], alpha=alpha, lw=lw)
+        artists += ax.plot([o[0], e[0]], [o[1], e[1]], [o[2], e[2]], color=AXIS_COLORS[k], alpha=alpha, lw=lw,
+                           gid=f"triad-{AXIS_LETTERS[k]}")  # fmt: skip
     if label:
-        artists.append(ax.text(*(o + 0.25 * length * (T[:3, 0] + T[:3, 1])), label, fontsize=9, alpha=alpha))
+        # a frame's name and letters stay opaque on a faint triad: a text keeps 4.5:1 (issue 34)
+        artists.append(ax.text(*(o + 0.25 * length * (T[:3, 0] + T[:3, 1])), label, fontsize=9))
     if (TRIAD_LETTERS and bool(label)) if letters is None else letters:
         for k in range(3):
             tip = o + 1.18 * length * T[:3, k]
-            artists.append(ax.text(*tip, AXIS_LETTERS[k], color=AXIS_COLORS[k], fontsize=8, alpha=alpha,
+            artists.append(ax.text(*tip, AXIS_LETTERS[k], color=text_color(AXIS_COLORS[k]), fontsize=8,
                                    ha="center", va="center", fontweight="bold"))  # fmt: skip
     return artists
 

@@ -27,6 +27,7 @@ from .arms import draw_robot
 from .frames import draw_frame, set_equal, triad_letters
 from .ik_sweeps import DECIDED_JOINT, SWEPT_JOINT, as_puma, branch_gaps, plot_singularity_sweeps, singularity_sweep
 from .labels import Label, place_labels
+from .style import text_color
 
 __all__ = [
     "DECIDED_JOINT",
@@ -253,7 +254,7 @@ def plot_shoulder_top_view(arm: Puma560, T: Any) -> Figure:
                 label=f"shoulder {shoulder}: θ1 = {math.degrees(q[0]):.1f}°")  # fmt: skip
         ax.plot(*np.stack([P[2], P[5]]).T, color=color, lw=9, alpha=0.22, solid_capstyle="butt")
         ax.annotate("", (float(x1[0]), float(x1[1])), (0, 0), arrowprops={"arrowstyle": "->", "color": color})
-        ax.text(float(1.15 * x1[0]), float(1.15 * x1[1]), "x1", color=color, ha="center", va="center")
+        ax.text(float(1.15 * x1[0]), float(1.15 * x1[1]), "x1", color=text_color(color), ha="center", va="center")
         t1 = math.degrees(q[0])
         ax.add_patch(Arc((0, 0), 1.5 * arrow, 1.5 * arrow, theta1=min(0.0, t1), theta2=max(0.0, t1), color=color,
                          lw=1.5))  # fmt: skip
@@ -310,7 +311,7 @@ def plot_workspace(points: Any, *, units: str, title: str, color: str = "tab:blu
         zs = np.append(P[:, 2], z0)
         room = 0.06 * float(zs.max() - zs.min() or 1.0)
         side.axhspan(z0 - 2 * room, z0, color="0.85", lw=0)
-        side.axhline(z0, color="0.25", lw=2.2, label=label)
+        side.axhline(z0, color="0.25", lw=2.6, label=label)  # the edge of the shaded band, wider than the bounds
         side.set_ylim(bottom=z0 - room)
     top.set(aspect="equal", xlabel=f"x [{units}]", ylabel=f"y [{units}]", title="top view")
     side.set(aspect="equal", xlabel=f"ρ [{units}]", ylabel=f"z [{units}]", title="side view (every θ1)")

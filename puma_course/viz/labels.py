@@ -21,6 +21,7 @@ import numpy as np
 from matplotlib.ticker import FixedLocator, MaxNLocator
 
 from .._validate import as_array, as_count
+from .style import text_color
 
 __all__ = ["Label", "place_labels", "label_points", "overlapping_labels", "tidy_axes", "fit_ticks",
            "tick_label_boxes", "screen_points"]  # fmt: skip
@@ -116,7 +117,7 @@ def place_labels(ax: Any, labels: Sequence[Label], *, avoid: Any = None, lines: 
         start = 45.0 if lb.prefer is None else lb.prefer
         sides = sorted(_SIDES, key=lambda a: min(abs(a - start) % 360, 360 - abs(a - start) % 360))
         best, best_score = None, np.inf
-        ann = ax.annotate(lb.text, xy=anchors[k], xytext=(0, 0), textcoords="offset points", color=lb.color,
+        ann = ax.annotate(lb.text, xy=anchors[k], xytext=(0, 0), textcoords="offset points", color=text_color(lb.color),
                           fontsize=lb.size or fontsize, bbox=_BOX, zorder=20, annotation_clip=False)  # fmt: skip
         ann.set_in_layout(False)
         for r in _RADII:

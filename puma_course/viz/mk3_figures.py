@@ -21,6 +21,7 @@ from .._validate import as_count, as_transform
 from ..kinematics.mk3 import MK3
 from ..kinematics.mk3_reach import wrist_arcs
 from ..transforms import wrap_angle
+from .style import text_color
 
 __all__ = ["plot_nearest_attainable", "plot_wrist_circle", "ARROW"]
 
@@ -73,6 +74,8 @@ def plot_nearest_attainable(arm: MK3, goals: Sequence[Any], names: Sequence[str]
         seen += [p[:2], p[:2] + ARROW * zg[:2], p[:2] + ARROW * zn[:2]]
         top.plot([0.0, 1.5 * p[0]], [0.0, 1.5 * p[1]], ":", color=colour, lw=1.5)  # its arm plane
         top.plot(*p[:2], "o", color=colour, ms=8, label=name)
+        # named beside its point too, in its colour: the goals are not told apart by colour alone (issue 34)
+        top.annotate(name, p[:2], xytext=(7, -13), textcoords="offset points", color=text_color(colour), fontsize=9)
         _arrow(top, p[:2], zg[:2], colour, True)
         if math.hypot(zn[0], zn[1]) > 1e-9:
             _arrow(top, p[:2], zn[:2], colour, False)
@@ -155,13 +158,15 @@ def plot_wrist_circle(arm: MK3, goal: Any, name: str = "goal") -> Figure:
     )
     for ax in (whole, zoom):
         for k, (jr, label) in enumerate(((a1, "front"), (-a1, "back (over the base)"))):
-            colour = ("tab:green", "tab:olive")[k]
+            # front and back told apart by line style and marker too, not by green and olive alone (issue 34)
+            colour, line, mark = (("tab:green", "-", "^"), ("tab:olive", "--", "v"))[k]
             outer, inner = (a2 + a3) * ring + (jr, d1), abs(a2 - a3) * ring[::-1] + (jr, d1)
             ax.fill(*np.concatenate([outer, inner]).T, color=colour, alpha=0.12, lw=0)
-            ax.plot(*outer.T, "-", color=colour, lw=1.0, alpha=0.8)
-            ax.plot(*inner.T, "-", color=colour, lw=1.0, alpha=0.8)
+            ax.plot(*outer.T, line, color=colour, lw=1.0, alpha=0.8)
+            ax.plot(*inner.T, line, color=colour, lw=1.0, alpha=0.8)
             reach = f"{abs(a2 - a3):g} to {a2 + a3:g} {arm.units}"
-            ax.plot(jr, d1, "^", color=colour, ms=9, label=f"joint 2, {label}: reaches {reach} (shaded)")
+            edge = "solid" if k == 0 else "dashed"
+            ax.plot(jr, d1, mark, color=colour, ms=9, label=f"joint 2, {label}: reaches {reach} (shaded, {edge} edge)")
         ax.plot(*W.T, ":", color="0.3", lw=1.5, label="wrist points p − d5 z′ the arm does not reach")
         ax.plot(*np.where(ok[:, None], W, np.nan).T, "-", color="tab:blue", lw=3.5, label="wrist points it reaches")
         ax.plot(*p, "ko", ms=6)

@@ -29,6 +29,7 @@ from matplotlib.figure import Figure
 from .._validate import as_array, as_rotation
 from ..transforms import axis_angle, homogeneous, rotx, roty, rotz
 from .frames import AXIS_COLORS, draw_frame
+from .style import text_color
 
 __all__ = ["CONVENTIONS", "draw_triad", "plot_frame_sequence", "plot_fixed_vs_moving", "plot_euler_steps",
            "draw_angle_sweep", "draw_lock_gain"]  # fmt: skip
@@ -75,7 +76,7 @@ def draw_triad(ax: Any, rotation: Any, *, turn_axis: Any = None, length: float =
     artists += draw_frame(ax, homogeneous(R, np.zeros(3)), length=length, lw=lw)
     for k, name in enumerate("xyz"):
         tip = _TIP * length * R[:, k]
-        artists.append(ax.text(*tip, name, color=AXIS_COLORS[k], fontsize=12, fontweight="bold",
+        artists.append(ax.text(*tip, name, color=text_color(AXIS_COLORS[k]), fontsize=12, fontweight="bold",
                                ha="center", va="center"))  # fmt: skip
     if turn_axis is not None:
         v = as_array(turn_axis, "turn_axis", (3,))

@@ -24,6 +24,7 @@ from ..kinematics.three_step import Motion, ThreeStepArm, ThreeStepSolution, mot
 from ..transforms import wrap_angle
 from .frames import AXIS_COLORS, draw_points, set_equal
 from .labels import Label, place_labels
+from .style import text_color
 
 __all__ = ["PHASE_TITLES", "draw_triad", "draw_state", "plot_steps", "plot_triangle", "animate"]
 
@@ -65,10 +66,11 @@ def draw_triad(
     for k in range(3):
         tip = o + length * R[:, k]
         c = color or AXIS_COLORS[k]
-        artists += ax.plot(*np.stack([o, tip]).T, color=c, lw=lw, alpha=alpha)
-        artists.append(ax.text(*(o + 1.12 * length * R[:, k]), f"f{k + 1}", color=c, fontsize=7, alpha=alpha))
+        artists += ax.plot(*np.stack([o, tip]).T, color=c, lw=lw, alpha=alpha, gid=f"triad-f{k + 1}")
+        # the letters stay opaque on a faint triad: a text keeps 4.5:1 (issue 34)
+        artists.append(ax.text(*(o + 1.12 * length * R[:, k]), f"f{k + 1}", color=text_color(c), fontsize=7))
     if label:
-        artists.append(ax.text(*(o - 0.25 * length * R[:, 2]), label, fontsize=8, color=color or "k"))
+        artists.append(ax.text(*(o - 0.25 * length * R[:, 2]), label, fontsize=8, color=text_color(color or "k")))
     return artists
 
 

@@ -13,8 +13,8 @@ milliseconds, with no picture made on the kernel. The front end is ``static/view
 built from ``js/src`` with three.js bundled (nothing is fetched at run time).
 
 Displayed in a notebook, a viewer (and a :class:`~puma_course.viz.widgets.Panel`) also leaves
-a static PNG of its first pose (matplotlib) in the output, which a reader sees before the
-kernel runs and a static page shows.
+a static PNG of its first pose (matplotlib) in the output, as an ``<img alt>`` in ``text/html``
+(:func:`with_picture`), which a reader sees before the kernel runs and a static page shows.
 
 >>> from puma_course import Puma560
 >>> v = RobotViewer(Puma560(), "qz")
@@ -27,7 +27,6 @@ kernel runs and a static page shows.
 
 from __future__ import annotations
 
-import base64
 import io
 from collections.abc import Sequence
 from pathlib import Path
@@ -41,6 +40,7 @@ import traitlets
 from .._validate import as_array
 from ..kinematics.ik import IKSolutions
 from ..kinematics.robot import Robot
+from .alt_text import current_alt, img_html
 from .frames import AXIS_COLORS, draw_frame, draw_points, new_axes, note_below, set_equal
 
 __all__ = ["Viewer", "RobotViewer", "view_box"]
@@ -268,6 +268,26 @@ class Viewer(anywidget.AnyWidget):
             plt.close(fig)
         return buf.getvalue()
 
+    def still_alt(self) -> str:
+        """A text alternative of the still picture: the title, what is drawn, where the last frame's origin is.
+
+        >>> Viewer(np.eye(4)[None], title="one frame").still_alt()
+        "A still picture of the 3-D view of one frame: 1 frame drawn as an x, y, z triad (x red, y green, z blue) \
+and a ground grid; the last frame's origin at (0, 0, 0). Run the cell in JupyterLab for the live view."
+        """
+        sc = self.scene
+        F, _ = self._last
+        m = len(F)
+        what = "1 frame drawn as an x, y, z triad" if m == 1 else f"{m} frames drawn as x, y, z triads"
+        links = ", their links" if m > 1 else ""
+        ghosts = len(self.ghosts.get("arms", []))
+        extra = f", {ghosts} other solutions as grey ghost arms" if ghosts else ""
+        units = f" {sc['units']}" if sc.get("units") else ""
+        origin = ", ".join(f"{v:.4g}" for v in np.round(F[-1][:3, 3], 4) + 0.0)
+        return (f"A still picture of the 3-D view of {sc['title'] or 'a chain of frames'}: {what} (x red, y green, "
+                f"z blue){links}{extra} and a ground grid; the last frame's origin at ({origin}){units}. "
+                "Run the cell in JupyterLab for the live view.")  # fmt: skip
+
     def __repr__(self) -> str:
         """What a text-only front end shows: the title and the number of frames, never a memory address."""
         title = self.scene.get("title") or "frames"
@@ -283,13 +303,39 @@ STILL_NOTE = "A still picture: run the cell in JupyterLab to turn the view and m
 
 
 def with_picture(data: Any, viewer: Viewer) -> Any:
-    """Add the viewer's static PNG to a widget's display bundle (frontends without the live model show it)."""
+    """Add the viewer's still picture to a widget's display bundle, for front ends without the live model.
+
+    The picture is an ``<img alt>`` in ``text/html`` (JupyterLab shows an untrusted notebook's HTML with its
+    alt; its image renderer gives an ``image/png`` none), one copy of the PNG, reduced to a 256-colour palette
+    (:func:`small_png`). The alt is the one :func:`~.alt_text.figure_alt` gave the cell, else
+    :meth:`Viewer.still_alt`.
+    """
     if isinstance(data, tuple):  # (data, metadata)
         return (with_picture(data[0], viewer), data[1])
     if isinstance(data, dict):
-        data = dict(data)
-        data["image/png"] = base64.b64encode(viewer.static_png(note=STILL_NOTE)).decode("ascii")
+        data = {k: v for k, v in data.items() if k != "image/png"}
+        png = small_png(viewer.static_png(note=STILL_NOTE))
+        data["text/html"] = img_html(png, current_alt() or viewer.still_alt())
     return data
+
+
+def small_png(png: bytes) -> bytes:
+    """The same picture in a 256-colour palette (median cut, no dither: white stays white), dpi kept; 2-3 x smaller.
+
+    >>> from puma_course import MK3
+    >>> png = RobotViewer(MK3(), "qr").static_png()
+    >>> small = small_png(png)
+    >>> small[:8] == png[:8], len(small) < len(png) / 2
+    (True, True)
+    """
+    from PIL import Image  # noqa: PLC0415 - Pillow comes with matplotlib; only a saved picture needs it
+
+    with Image.open(io.BytesIO(png)) as im:
+        dpi = im.info.get("dpi")
+        small = im.convert("RGB").quantize(256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+    buf = io.BytesIO()
+    small.save(buf, format="png", optimize=True, **({"dpi": dpi} if dpi else {}))
+    return buf.getvalue()
 
 
 def _labels(labels: str | Sequence[str], m: int) -> list[str]:

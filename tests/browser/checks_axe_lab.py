@@ -8,9 +8,8 @@ interface is not the course's. JupyterLab's default windowed notebook attaches o
 code cell is scrolled into view and its output area checked in turn. The test fails on any violation and
 lists, per lecture, each rule with its node count. Both checks are made on the one page per lecture of
 ``lab.Tab`` (collected by ``test_lectures_01_to_05.py`` and ``test_lectures_06_to_10.py``); the counts of the
-last run are written to ``tests/artifacts/axe_lab.json``. One exception, open work (docs/accessibility.md): the
-saved picture of a joint panel, shown before its cell runs, has no alt in JupyterLab (its ``image-alt`` is
-counted, not failed on).
+last run are written to ``tests/artifacts/axe_lab.json``. No exception: a joint panel's saved picture, shown
+before its cell runs, is an ``<img alt>`` too (``viz.viewer.with_picture``).
 """
 
 from __future__ import annotations
@@ -78,18 +77,8 @@ def _record(artifacts: Path, key: str, found: dict[str, dict[str, Any]]) -> None
     path.write_text(json.dumps(data, indent=1, sort_keys=True), encoding="utf-8")
 
 
-def _panel_code_cells(name: str) -> set[int]:
-    """Indices, among the code cells, of the cells whose saved output is a joint panel (a picture beside a widget)."""
-    cells = [c for c in json.loads((NOTEBOOKS / name).read_text(encoding="utf-8"))["cells"] if c["cell_type"] == "code"]
-    widget = "application/vnd.jupyter.widget-view+json"
-    return {i for i, c in enumerate(cells) if any(widget in o.get("data", {}) for o in c.get("outputs", []))}
-
-
-def _check(key: str, found: dict[str, dict[str, Any]], panels: frozenset[int] | set[int] = frozenset()) -> None:
-    """No violation, but for ``image-alt`` on the saved pictures of joint panels (``panels``: open work)."""
-    image = found.get("image-alt")
-    if image is not None and set(image["cells"]) <= panels:
-        found = {rule: v for rule, v in found.items() if rule != "image-alt"}
+def _check(key: str, found: dict[str, dict[str, Any]]) -> None:
+    """No violation of any rule."""
     assert not found, f"{key}: WCAG 2.1 A/AA violations in the outputs: " + "; ".join(
         f"{rule} x{v['nodes']} (cells {v['cells']}: {v['html']})" for rule, v in found.items()
     )
@@ -99,7 +88,7 @@ def test_saved_outputs_meet_wcag21_aa_in_jupyterlab(name: str, tab: Tab, axe: st
     page = tab.opened()
     found = audit_outputs(page, axe)
     _record(artifacts, f"opened/{name}", found)
-    _check(f"{name} (opened)", found, _panel_code_cells(name))
+    _check(f"{name} (opened)", found)
 
 
 def test_live_panels_meet_wcag21_aa_in_jupyterlab(name: str, tab: Tab, axe: str, artifacts: Path) -> None:

@@ -7,6 +7,7 @@ import pytest
 
 from puma_course.transforms import homogeneous, rotz
 from puma_course.viz import frames as V
+from puma_course.viz.style import contrast_ratio, text_color
 
 
 def _ranges(ax):
@@ -57,7 +58,9 @@ def test_draw_frame_axes_point_along_rotation_columns():
     arts = V.draw_frame(ax, T, label="{1}", length=0.5)
     assert len(arts) == 4 + 3  # three axes + a label + the letters x, y, z at the tips (issue 25)
     assert [a.get_text() for a in arts[4:]] == ["x", "y", "z"]
-    assert [a.get_color() for a in arts[4:]] == list(V.AXIS_COLORS)
+    # the letters in their axis' hue, darkened where needed to 4.5:1 on white (issue 34: tab:green is 3.4:1)
+    assert [a.get_color() for a in arts[4:]] == [text_color(c) for c in V.AXIS_COLORS]
+    assert all(contrast_ratio(a.get_color()) >= 4.5 for a in arts[4:])
     np.testing.assert_allclose(arts[4].get_position_3d(), [1.0, 2.0 + 1.18 * 0.5, 3.0], atol=1e-12)
     assert len(V.draw_frame(ax, T, label="{1}", length=0.5, letters=False)) == 4
     x_line = arts[0]

@@ -24,14 +24,18 @@ ACROSS = homogeneous(rotx(-np.pi / 2), [400.0, 0.0, 300.0])
 def test_the_arrows_are_the_goals_approach_and_its_projection_onto_the_arm_plane():
     fig = plot_nearest_attainable(ARM, [SIDEWAYS, ACROSS], ["sideways", "across"])
     top, side = fig.axes
-    tips = {tuple(np.round(a.xy, 6)) for a in top.texts}
+    arrows = [a for a in top.texts if not a.get_text()]  # the arrows (annotations without text)
+    tips = {tuple(np.round(a.xy, 6)) for a in arrows}
     p, z = SIDEWAYS[:3, 3], SIDEWAYS[:3, 2]
     m = np.array([-np.sin(BETA), np.cos(BETA), 0.0])
     zn = (z - (m @ z) * m) / np.linalg.norm(z - (m @ z) * m)  # the projection, worked here
     assert tuple(np.round(p[:2] + ARROW * z[:2], 6)) in tips  # the goal's approach
     assert tuple(np.round(p[:2] + ARROW * zn[:2], 6)) in tips  # the nearest, along the plane
     assert tuple(np.round(ACROSS[:2, 3] + ARROW * ACROSS[:2, 2], 6)) in tips
-    assert len(top.texts) == 3  # the across goal's nearest points straight down: a cross, no arrow
+    assert len(arrows) == 3  # the across goal's nearest points straight down: a cross, no arrow
+    # each goal is also named beside its tool point (issue 34: not told apart by colour alone)
+    names = {a.get_text(): tuple(np.round(a.xy, 6)) for a in top.texts if a.get_text()}
+    assert names == {"sideways": tuple(np.round(p[:2], 6)), "across": tuple(np.round(ACROSS[:2, 3], 6))}
     assert any(line.get_marker() == "x" for line in top.lines)
     # face on: both arms end at the tool point, and the arrow follows the projection
     h = np.array([np.cos(BETA), np.sin(BETA), 0.0])

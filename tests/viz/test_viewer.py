@@ -5,6 +5,10 @@ The browser side is checked by node (js/test, run from test_viewer_js.py) and in
 
 from __future__ import annotations
 
+import base64
+import html
+import re
+
 import numpy as np
 import pytest
 
@@ -113,7 +117,12 @@ def test_static_png_shows_the_pose_and_closes_its_figure():
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and plt.get_fignums() == []
     data = v._repr_mimebundle_()
     data = data[0] if isinstance(data, tuple) else data
-    assert "image/png" in data and "application/vnd.jupyter.widget-view+json" in data
+    # the still picture is an <img alt> in text/html (JupyterLab gives a bare image/png no alt): one copy, no PNG
+    assert "image/png" not in data and "application/vnd.jupyter.widget-view+json" in data
+    m = re.fullmatch(r'<img src="data:image/png;base64,([A-Za-z0-9+/=]+)" alt="([^"]+)">', data["text/html"])
+    assert m and base64.b64decode(m.group(1))[:8] == b"\x89PNG\r\n\x1a\n"
+    assert html.unescape(m.group(2)) == v.still_alt()
+    assert "Motoman MK3" in v.still_alt() and "6 frames" in v.still_alt()
 
 
 def test_the_picture_kept_for_a_live_viewer_says_it_is_still(monkeypatch):
