@@ -30,7 +30,9 @@ def pytest_collection_modifyitems(config: Any, items: list[pytest.Item]) -> None
     for item in items:
         if WHY and here in Path(str(item.fspath)).parents:
             item.add_marker(pytest.mark.skip(reason=f"browser tests skipped: {WHY}"))
-    slots = [i for i, item in enumerate(items) if hasattr(item.module, "CHECKS") and hasattr(item, "callspec")]
+    # the hook sees the whole session's items: doctests and nbval's cells have no ``module``
+    checked = [hasattr(getattr(item, "module", None), "CHECKS") and hasattr(item, "callspec") for item in items]
+    slots = [i for i, yes in enumerate(checked) if yes]
 
     def key(item: Any) -> tuple[str, str, int]:
         order = list(item.module.CHECKS)
