@@ -42,14 +42,17 @@ def pytest_collection_modifyitems(config: Any, items: list[pytest.Item]) -> None
         items[i] = item
 
 
-@pytest.fixture(scope="session")
+# Package scope, not session: Playwright's sync API keeps an asyncio loop running in the worker while it is open,
+# and the worker goes on to other folders' tests (nbclient's asyncio.run, the hub test's own Playwright), which
+# fail inside a running loop. Leaving this folder closes Chromium and JupyterLab; coming back starts them again.
+@pytest.fixture(scope="package")
 def lab() -> Iterator[Lab]:
-    """One JupyterLab server per pytest worker, shared by every browser test that worker runs."""
+    """One JupyterLab server per pytest worker while it runs this folder's tests, shared by all of them."""
     with Lab() as server:
         yield server
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def chromium() -> Iterator[Any]:
     with browser() as b:
         yield b
